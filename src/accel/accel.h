@@ -1,0 +1,61 @@
+// Ray queries against the scene's triangles: the only thing the integrator
+// asks of geometry. One Accel is built per render; queries are read-only and
+// safe from any number of threads.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "accel/bvh.h"
+#include "core/ray.h"
+#include "scene/mesh.h"
+
+namespace sombra {
+
+inline constexpr std::uint32_t kNoHit = 0xffffffffu;
+
+// The closest intersection found so far. (b1, b2) are the barycentric weights
+// of the triangle's second and third corner; the first has 1 - b1 - b2.
+struct Hit {
+    float t = 0;
+    float b1 = 0, b2 = 0;
+    std::uint32_t triangle = kNoHit;  // index into TriangleMesh::triangles
+};
+
+enum class AccelKind {
+    Brute,  // every triangle for every ray: the assignment's loop, kept as the reference
+    Bvh,    // sombra's own SAH bounding volume hierarchy (the default)
+};
+
+// "brute" or "bvh"; nullopt for a name this build does not offer.
+std::optional<AccelKind> parse_accel_kind(std::string_view name);
+std::string_view accel_name(AccelKind kind);
+// Names accepted by parse_accel_kind, in the order to list them to users.
+std::vector<std::string_view> available_accels();
+
+struct Accel {
+    AccelKind kind = AccelKind::Bvh;
+    const TriangleMesh* mesh = nullptr;  // not owned; must outlive the Accel
+    Bvh bvh;                             // empty unless kind == Bvh
+};
+
+// Builds the structure for `mesh` (world space). The mesh must stay alive and
+// unchanged while the Accel is used.
+Accel make_accel(const TriangleMesh& mesh, AccelKind kind);
+
+// Closest hit with 0 < t < ray.tmax. Returns false and leaves `hit` untouched
+// when nothing is hit. Between hits at exactly the same t the lower triangle
+// index wins, so every backend returns the same hit whatever its order.
+bool intersect(const Accel& accel, const Ray& ray, Hit& hit);
+
+// True when anything is hit with 0 < t < ray.tmax (shadow rays: any hit ends it).
+bool occluded(const Accel& accel, const Ray& ray);
+
+// Bytes held by the acceleration structure itself, not counting the mesh.
+std::size_t accel_memory_bytes(const Accel& accel);
+
+}  // namespace sombra

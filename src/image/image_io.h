@@ -1,0 +1,34 @@
+// Film → file: PNG (8-bit sRGB), PFM (32-bit float) and OpenEXR (linear).
+// Every write is atomic: the image goes to a temporary file in the target's
+// folder, which is renamed over the target only once complete, so a failed
+// run never leaves a partial file or spoils an existing one.
+#pragma once
+
+#include <filesystem>
+
+namespace sombra {
+
+// Linear RGB radiance, row-major, top row first, 3 floats per pixel.
+struct ImageView {
+    int width = 0;
+    int height = 0;
+    const float* rgb = nullptr;
+};
+
+enum class ImageFormat { Png, Pfm, Exr };
+
+// The format named by the path's extension (case-insensitive .png, .pfm,
+// .exr). Throws Error(path, ...) for any other extension.
+ImageFormat image_format_for(const std::filesystem::path& path);
+
+// Checks, before any rendering, that `path` can be written: known extension,
+// parent folder exists and is a writable folder, path is not a folder.
+// Throws Error(path, ...) otherwise.
+void check_output_path(const std::filesystem::path& path);
+
+// Writes the image in the format of the path's extension. `exposure` scales
+// radiance by 2^exposure for PNG only (PFM and EXR keep linear radiance).
+// Throws Error(path, ...) on failure, leaving any earlier file at `path` untouched.
+void write_image(const std::filesystem::path& path, ImageView image, float exposure);
+
+}  // namespace sombra

@@ -1,0 +1,47 @@
+// Triangle meshes as structure-of-arrays vectors: what the loaders produce and,
+// once transformed to world space and concatenated, what the acceleration
+// structures and the integrator read.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "core/vec3.h"
+#include "scene/material.h"
+
+namespace sombra {
+
+using Index3 = std::array<std::uint32_t, 3>;
+
+// Marks a triangle corner without a vertex normal.
+inline constexpr std::uint32_t kNoNormal = 0xffffffffu;
+
+struct TriangleMesh {
+    std::vector<Vec3> positions;
+    std::vector<Index3> triangles;  // corners, indices into positions
+
+    // Vertex normals: either both empty (no normals anywhere), or
+    // normal_indices.size() == triangles.size() with each entry an index into
+    // normals or kNoNormal. A triangle is smooth-shaded only when all three
+    // of its corners have a normal (spec §9).
+    std::vector<Vec3> normals;
+    std::vector<Index3> normal_indices;
+
+    // One material index per triangle: into the loader's material list for a
+    // loaded file, into Scene::materials for the scene's world geometry.
+    std::vector<std::uint32_t> material_ids;
+
+    std::size_t triangle_count() const { return triangles.size(); }
+    bool has_normals() const { return !normal_indices.empty(); }
+};
+
+// A mesh file as read from disk: geometry in the file's own coordinates and
+// the materials its faces refer to. Loaders always leave at least one
+// material when there are triangles (the default one for faces without).
+struct LoadedMesh {
+    TriangleMesh mesh;
+    std::vector<Material> materials;
+};
+
+}  // namespace sombra

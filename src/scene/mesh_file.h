@@ -1,0 +1,25 @@
+// Mesh files → LoadedMesh: OBJ (+MTL) and PLY.
+#pragma once
+
+#include <filesystem>
+
+#include "core/error.h"
+#include "scene/mesh.h"
+
+namespace sombra {
+
+// Reads an OBJ file and the MTL files it names (spec §5, §9). Polygons are
+// fan-triangulated from their first corner (concave ones ear-clipped); faces
+// with fewer than 3 corners, triangles touching non-finite positions and
+// out-of-range normal indices are dropped or ignored with a warning.
+// Throws Error("file:line", ...) for a file that cannot be read or is invalid.
+LoadedMesh load_obj(const std::filesystem::path& path, Diagnostics& diag);
+
+// Reads an ascii or binary (little/big endian) PLY file (spec §9).
+LoadedMesh load_ply(const std::filesystem::path& path, Diagnostics& diag);
+
+// Dispatches on the extension (.obj or .ply, case-insensitive); throws
+// Error(path, ...) for any other, for a missing file, or a folder.
+LoadedMesh load_mesh_file(const std::filesystem::path& path, Diagnostics& diag);
+
+}  // namespace sombra

@@ -1,0 +1,28 @@
+#!/usr/bin/env bash
+# Installs what building and testing sombra needs, from Debian 12's packages.
+# Idempotent: installs only what is missing, and does nothing when all is there.
+set -euo pipefail
+
+packages=(
+  build-essential cmake ninja-build pkg-config
+  libtinyobjloader-dev   # OBJ + MTL parsing
+  nlohmann-json3-dev     # scene JSON
+  libtbb-dev             # parallel render loop and BVH build
+  libpng-dev             # PNG output
+  libopenexr-dev         # EXR output
+  libcli11-dev           # command line
+  libgtest-dev libgmock-dev  # tests
+)
+
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+[ ${#missing[@]} -eq 0 ] && exit 0
+
+echo "sombra: installing ${missing[*]}" >&2
+sudo=""
+[ "$(id -u)" -eq 0 ] || sudo="sudo"
+export DEBIAN_FRONTEND=noninteractive
+$sudo apt-get update -qq
+$sudo apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
