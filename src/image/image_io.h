@@ -28,6 +28,7 @@ void check_output_path(const std::filesystem::path& path);
 
 // Writes the image in the format of the path's extension. `exposure` scales
 // radiance by 2^exposure for PNG only (PFM and EXR keep linear radiance).
+// Pixels with a non-finite channel are written as black in every format.
 // Throws Error(path, ...) on failure, leaving any earlier file at `path` untouched.
 void write_image(const std::filesystem::path& path, ImageView image, float exposure);
 
