@@ -1,1 +1,78 @@
-// placeholder: implemented by its owner
+#include "app/cli.h"
+
+#include <CLI/CLI.hpp>
+#include <iostream>
+
+#include "accel/accel.h"
+
+namespace sombra {
+
+namespace {
+
+// More workers than this is a typo, not a machine.
+constexpr int kMaxThreads = 4096;
+
+std::string accel_list() {
+    std::string names;
+    for (std::string_view name : available_accels()) names += (names.empty() ? "" : ", ") + std::string(name);
+    return names;
+}
+
+// CLI11 messages can span lines; the contract wants one.
+std::string one_line(std::string text) {
+    for (char& c : text)
+        if (c == '\n' || c == '\r') c = ' ';
+    while (!text.empty() && text.back() == ' ') text.pop_back();
+    return text;
+}
+
+}  // namespace
+
+CliParse parse_command_line(int argc, const char* const* argv) {
+    CLI::App app{"sombra: a ray tracer that is right to the last pixel", "sombra"};
+    app.set_version_flag("--version", std::string("sombra ") + SOMBRA_VERSION);
+    app.require_subcommand(1);
+
+    CliOptions o;
+    CLI::App* render = app.add_subcommand("render", "Render a scene (.json) or take a quick look at a model (.obj, .ply)");
+    render->add_option("input", o.input, "Scene file (.json) or model (.obj, .ply)")->required();
+    render->add_option("-o,--output", o.output, "Image to write: .png (8-bit sRGB), .pfm or .exr (linear)")
+        ->capture_default_str();
+    render->add_option("--width", o.width, "Image width in pixels (overrides the scene)");
+    render->add_option("--height", o.height, "Image height in pixels (overrides the scene)");
+    render->add_option("--spp", o.spp, "Samples per pixel (overrides the scene)");
+    render->add_option("--seed", o.seed, "Random seed, a non-negative integer (overrides the scene)")
+        ->check(CLI::NonNegativeNumber);
+    render->add_option("--threads", o.threads, "Worker threads; 0 = all hardware threads")
+        ->check(CLI::Range(0, kMaxThreads))
+        ->capture_default_str();
+    render->add_option("--exposure", o.exposure, "Multiply radiance by 2^E before PNG encoding")
+        ->check(CLI::Number)
+        ->capture_default_str();
+    render->add_option("--accel", o.accel, "Acceleration structure: " + accel_list())
+        ->check([](const std::string& name) {
+            return parse_accel_kind(name) ? std::string{} : "unknown accelerator '" + name + "' (available: " + accel_list() + ")";
+        })
+        ->capture_default_str();
+    render->add_option("--stats-json", o.stats_json, "Write the run's statistics as JSON to FILE");
+    render->add_flag("-q,--quiet", o.quiet, "No progress bar, no summary");
+
+    try {
+        app.parse(argc, argv);
+    } catch (const CLI::CallForHelp&) {
+        std::cout << app.help();
+        return {std::nullopt, 0};
+    } catch (const CLI::CallForAllHelp&) {
+        std::cout << app.help("", CLI::AppFormatMode::All);
+        return {std::nullopt, 0};
+    } catch (const CLI::CallForVersion& e) {
+        std::cout << e.what() << '\n';
+        return {std::nullopt, 0};
+    } catch (const CLI::ParseError& e) {
+        std::cerr << "sombra: error: command line: " << one_line(e.what()) << " (see 'sombra render --help')\n";
+        return {std::nullopt, 2};
+    }
+    return {o, 0};
+}
+
+}  // namespace sombra

@@ -1,1 +1,51 @@
-// placeholder: implemented by its owner
+#include "app/progress.h"
+
+#include <cstdio>
+
+namespace sombra {
+
+ProgressBar::ProgressBar(const RenderProgress& progress, std::uint64_t total_pixels, bool enabled)
+    : progress_(progress), total_pixels_(total_pixels), start_(std::chrono::steady_clock::now()) {
+    if (enabled && total_pixels_ > 0) thread_ = std::thread([this] { run(); });
+}
+
+ProgressBar::~ProgressBar() {
+    if (!thread_.joinable()) return;
+    {
+        std::lock_guard lock(mutex_);
+        stop_ = true;
+    }
+    wake_.notify_one();
+    thread_.join();
+    std::fputs("\r\033[K", stderr);  // leave the line clean for the summary
+    std::fflush(stderr);
+}
+
+void ProgressBar::run() {
+    std::unique_lock lock(mutex_);
+    // Redraw five times a second: smooth enough, and costs nothing.
+    while (!wake_.wait_for(lock, std::chrono::milliseconds(200), [this] { return stop_; })) {
+        const std::chrono::duration<double> elapsed = std::chrono::steady_clock::now() - start_;
+        draw(elapsed.count());
+    }
+}
+
+void ProgressBar::draw(double elapsed) const {
+    constexpr int kWidth = 30;
+    const double done = static_cast<double>(progress_.pixels_done.load(std::memory_order_relaxed)) /
+                        static_cast<double>(total_pixels_);
+    const double mrays = elapsed > 0 ? static_cast<double>(progress_.rays_traced.load(std::memory_order_relaxed)) / elapsed * 1e-6 : 0;
+    char bar[kWidth + 1];
+    const int filled = static_cast<int>(done * kWidth);
+    for (int k = 0; k < kWidth; ++k) bar[k] = k < filled ? '#' : '-';
+    bar[kWidth] = '\0';
+    char eta[32] = "--";
+    if (done > 0.01) {
+        const auto left = static_cast<long>(elapsed * (1.0 - done) / done + 0.5);
+        std::snprintf(eta, sizeof eta, "%ld:%02ld", left / 60, left % 60);
+    }
+    std::fprintf(stderr, "\r\033[Ksombra: [%s] %3d%%  %.1f Mrays/s  ETA %s", bar, static_cast<int>(done * 100), mrays, eta);
+    std::fflush(stderr);
+}
+
+}  // namespace sombra

@@ -1,1 +1,141 @@
-// placeholder: implemented by its owner
+#include "app/run.h"
+
+#include <unistd.h>
+
+#include <chrono>
+#include <cstdio>
+#include <iostream>
+#include <tbb/info.h>
+
+#include "accel/accel.h"
+#include "app/progress.h"
+#include "app/stats.h"
+#include "core/error.h"
+#include "image/image_io.h"
+#include "render/camera.h"
+#include "render/render.h"
+#include "scene/quicklook.h"
+#include "scene/scene_file.h"
+
+namespace sombra {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point start) {
+    return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+std::string lower_extension(const std::filesystem::path& path) {
+    std::string ext = path.extension().string();
+    for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    return ext;
+}
+
+Scene load_input(const std::filesystem::path& input, Diagnostics& diag) {
+    const std::string ext = lower_extension(input);
+    if (ext == ".json") return load_scene_file(input, diag);
+    if (ext == ".obj" || ext == ".ply") return make_quicklook_scene(input, diag);
+    throw Error(input.string(), "unknown input type '" + ext + "' (expected a scene .json, or a model .obj or .ply)");
+}
+
+// Applies the command line's overrides to the scene's render settings,
+// checking each against the same limits as the scene file's values (which
+// the loader already checked, so a problem names the option that caused it).
+RenderSettings resolve_settings(const RenderSettings& scene_settings, const CliOptions& o) {
+    RenderSettings s = scene_settings;
+    auto check = [&s](const char* option) {
+        if (const std::string problem = render_settings_problem(s); !problem.empty()) throw Error(option, problem);
+    };
+    if (o.width) { s.width = *o.width; check("--width"); }
+    if (o.height) { s.height = *o.height; check("--height"); }
+    if (o.spp) { s.spp = *o.spp; check("--spp"); }
+    if (o.seed) s.seed = *o.seed;
+    return s;
+}
+
+// The statistics file's folder must exist: found out before the render, not after.
+void check_stats_path(const std::filesystem::path& path) {
+    const std::filesystem::path folder = path.parent_path().empty() ? "." : path.parent_path();
+    std::error_code ec;
+    if (!std::filesystem::is_directory(folder, ec)) throw Error(path.string(), "folder '" + folder.string() + "' does not exist");
+    if (std::filesystem::is_directory(path, ec)) throw Error(path.string(), "is a folder");
+}
+
+}  // namespace
+
+int run_render(const CliOptions& o) {
+    const auto start = Clock::now();
+    try {
+        const std::filesystem::path output = o.output;
+        // Fail before a long render, not after it.
+        check_output_path(output);
+        if (!o.stats_json.empty()) check_stats_path(o.stats_json);
+
+        RunStats stats;
+        Diagnostics diag;
+        const auto load_start = Clock::now();
+        Scene scene = load_input(o.input, diag);
+        stats.load_seconds = seconds_since(load_start);
+        for (const std::string& w : diag.warnings) std::cerr << "sombra: warning: " << w << '\n';
+
+        const RenderSettings settings = resolve_settings(scene.render, o);
+        const AccelKind kind = *parse_accel_kind(o.accel);  // the command line checked the name
+
+        const auto build_start = Clock::now();
+        const Accel accel = make_accel(scene.geometry, kind);
+        stats.build_seconds = seconds_since(build_start);
+
+        RenderJob job;
+        job.scene = &scene;
+        job.accel = &accel;
+        job.camera = make_camera(scene.camera, settings.width, settings.height);
+        job.settings = settings;
+        job.threads = o.threads;
+
+        RenderProgress progress;
+        const auto render_start = Clock::now();
+        RenderOutput rendered;
+        {
+            const bool show = !o.quiet && isatty(STDERR_FILENO);
+            ProgressBar bar(progress, static_cast<std::uint64_t>(settings.width) * static_cast<std::uint64_t>(settings.height), show);
+            rendered = render_image(job, progress);
+        }
+        stats.render_seconds = seconds_since(render_start);
+
+        const auto write_start = Clock::now();
+        write_image(output, ImageView{rendered.film.width, rendered.film.height, rendered.film.rgb.data()}, o.exposure);
+        stats.write_seconds = seconds_since(write_start);
+
+        stats.triangles = scene.geometry.triangle_count();
+        stats.width = settings.width;
+        stats.height = settings.height;
+        stats.spp = settings.spp;
+        stats.threads = o.threads > 0 ? o.threads : tbb::info::default_concurrency();
+        stats.accel = std::string(accel_name(kind));
+        stats.accel_bytes = accel_memory_bytes(accel);
+        stats.camera_rays = rendered.counters.camera_rays;
+        stats.shadow_rays = rendered.counters.shadow_rays;
+        stats.nonfinite_samples = rendered.counters.nonfinite_samples;
+        stats.peak_rss_bytes = peak_rss_bytes();
+        stats.total_seconds = seconds_since(start);
+        if (!o.stats_json.empty()) write_stats_json(o.stats_json, stats);
+        if (!o.quiet) std::cerr << summary_line(stats, o.output) << '\n';
+        return 0;
+    } catch (const Error& e) {
+        std::cerr << "sombra: error: " << e.what() << '\n';
+        return 1;
+    } catch (const std::bad_alloc&) {
+        std::cerr << "sombra: error: " << o.input << ": out of memory\n";
+        return 1;
+    }
+}
+
+int run_sombra(int argc, const char* const* argv) {
+    const CliParse parsed = parse_command_line(argc, argv);
+    if (!parsed.options) return parsed.exit_code;
+    return run_render(*parsed.options);
+}
+
+}  // namespace sombra

@@ -1,1 +1,79 @@
-// placeholder: implemented by its owner
+#include "app/stats.h"
+
+#include <sys/resource.h>
+
+#include <cerrno>
+#include <cstdio>
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "core/error.h"
+#include "image/atomic_file.h"
+
+namespace sombra {
+
+std::uint64_t peak_rss_bytes() {
+    rusage usage{};
+    getrusage(RUSAGE_SELF, &usage);
+    return static_cast<std::uint64_t>(usage.ru_maxrss) * 1024u;  // Linux reports KiB
+}
+
+void write_stats_json(const std::filesystem::path& path, const RunStats& s) {
+    const nlohmann::ordered_json j = {
+        {"triangles", s.triangles},
+        {"width", s.width},
+        {"height", s.height},
+        {"spp", s.spp},
+        {"threads", s.threads},
+        {"accel", s.accel},
+        {"accel_bytes", s.accel_bytes},
+        {"load_seconds", s.load_seconds},
+        {"build_seconds", s.build_seconds},
+        {"render_seconds", s.render_seconds},
+        {"write_seconds", s.write_seconds},
+        {"total_seconds", s.total_seconds},
+        {"camera_rays", s.camera_rays},
+        {"shadow_rays", s.shadow_rays},
+        {"nonfinite_samples", s.nonfinite_samples},
+        {"peak_rss_bytes", s.peak_rss_bytes},
+    };
+    const std::string text = j.dump(2) + "\n";
+    write_file_atomically(path, [&text](const std::filesystem::path& temp) {
+        std::ofstream out(temp, std::ios::binary);
+        out << text;
+        out.close();
+        if (!out) throw std::runtime_error(errno_message(errno));
+    });
+}
+
+namespace {
+
+std::string with_thousands(std::uint64_t n) {
+    std::string digits = std::to_string(n), out;
+    for (std::size_t i = 0; i < digits.size(); ++i) {
+        if (i > 0 && (digits.size() - i) % 3 == 0) out += ',';
+        out += digits[i];
+    }
+    return out;
+}
+
+std::string seconds(double s) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%.2f s", s);
+    return buf;
+}
+
+}  // namespace
+
+std::string summary_line(const RunStats& s, const std::string& output) {
+    const double rays = static_cast<double>(s.camera_rays + s.shadow_rays);
+    const double mrays = s.render_seconds > 0 ? rays / s.render_seconds * 1e-6 : 0.0;
+    char rate[48];
+    std::snprintf(rate, sizeof rate, "%.1f Mrays/s", mrays);
+    return "sombra: " + with_thousands(s.triangles) + " triangles, " + std::to_string(s.width) + "x" +
+           std::to_string(s.height) + " at " + std::to_string(s.spp) + " spp | load " + seconds(s.load_seconds) +
+           ", build " + seconds(s.build_seconds) + ", render " + seconds(s.render_seconds) + " (" + rate + ", " +
+           std::to_string(s.threads) + " threads), write " + seconds(s.write_seconds) + " | wrote " + output;
+}
+
+}  // namespace sombra

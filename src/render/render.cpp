@@ -1,1 +1,62 @@
-// placeholder: implemented by its owner
+#include "render/render.h"
+
+#include <tbb/blocked_range2d.h>
+#include <tbb/combinable.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
+#include "render/sampler.h"
+
+namespace sombra {
+
+namespace {
+
+// Square tiles keep neighbouring rays together (cache-friendly traversal)
+// and are large enough that scheduling costs nothing.
+constexpr int kTileSize = 16;
+
+Vec3 render_pixel(const RenderJob& job, int i, int j, RayCounters& counters) {
+    const RenderSettings& s = job.settings;
+    const auto spp = static_cast<std::uint32_t>(s.spp);
+    const std::uint64_t key = pixel_key(s.seed, i, j, s.width);
+    Vec3 sum{0.0f};
+    for (std::uint32_t k = 0; k < spp; ++k) {
+        const PixelSample offset = pixel_sample(k, spp, key);
+        const float x = static_cast<float>(i) + offset.x;
+        const float y = static_cast<float>(j) + offset.y;
+        const Ray ray = camera_ray(job.camera, image_plane_s(x, s.width), image_plane_t(y, s.height));
+        sum += trace_direct(*job.scene, *job.accel, ray, counters);
+    }
+    return sum / static_cast<float>(spp);
+}
+
+}  // namespace
+
+RenderOutput render_image(const RenderJob& job, RenderProgress& progress) {
+    RenderOutput out;
+    out.film = Film(job.settings.width, job.settings.height);
+    tbb::combinable<RayCounters> per_thread;
+
+    const int threads = job.threads > 0 ? job.threads : tbb::task_arena::automatic;
+    tbb::task_arena arena(threads);
+    arena.execute([&] {
+        const tbb::blocked_range2d<int> image(0, job.settings.height, kTileSize, 0, job.settings.width, kTileSize);
+        tbb::parallel_for(image, [&](const tbb::blocked_range2d<int>& tile) {
+            if (progress.cancel.load(std::memory_order_relaxed)) return;
+            RayCounters& counters = per_thread.local();
+            const std::uint64_t rays_before = counters.camera_rays + counters.shadow_rays;
+            for (int j = tile.rows().begin(); j < tile.rows().end(); ++j)
+                for (int i = tile.cols().begin(); i < tile.cols().end(); ++i)
+                    out.film.set(i, j, render_pixel(job, i, j, counters));
+            const auto pixels = static_cast<std::uint64_t>(tile.rows().size()) * static_cast<std::uint64_t>(tile.cols().size());
+            progress.pixels_done.fetch_add(pixels, std::memory_order_relaxed);
+            progress.rays_traced.fetch_add(counters.camera_rays + counters.shadow_rays - rays_before, std::memory_order_relaxed);
+        });
+    });
+
+    per_thread.combine_each([&](const RayCounters& c) { out.counters += c; });
+    out.cancelled = progress.cancel.load();
+    return out;
+}
+
+}  // namespace sombra

@@ -1,0 +1,33 @@
+// The command line of spec §1, parsed into plain options.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string>
+
+namespace sombra {
+
+struct CliOptions {
+    std::string input;                 // scene .json, or a model .obj/.ply for the quick look
+    std::string output = "render.png";
+    std::optional<int> width, height, spp;
+    std::optional<std::uint64_t> seed;
+    int threads = 0;                   // 0 = all hardware threads
+    float exposure = 0;                // PNG only: radiance × 2^exposure
+    std::string accel = "bvh";
+    std::string stats_json;            // empty = none
+    bool quiet = false;
+};
+
+// What parsing decided: run a render, or exit now with `exit_code` after
+// `message` was printed (help, version, or a command-line error).
+struct CliParse {
+    std::optional<CliOptions> options;
+    int exit_code = 0;
+};
+
+// Parses argv. Prints help/version to stdout and command-line errors as one
+// line "sombra: error: command line: ..." to stderr (exit code 2).
+CliParse parse_command_line(int argc, const char* const* argv);
+
+}  // namespace sombra

@@ -1,0 +1,38 @@
+// The progress bar: while a render runs, a watcher thread redraws one
+// terminal line with the share done, the ray rate and the time left.
+#pragma once
+
+#include <chrono>
+#include <condition_variable>
+#include <cstdint>
+#include <mutex>
+#include <thread>
+
+#include "render/render.h"
+
+namespace sombra {
+
+class ProgressBar {
+public:
+    // Starts drawing on stderr when `enabled` (a terminal and not --quiet);
+    // otherwise does nothing at all.
+    ProgressBar(const RenderProgress& progress, std::uint64_t total_pixels, bool enabled);
+    // Stops the watcher and clears the line.
+    ~ProgressBar();
+    ProgressBar(const ProgressBar&) = delete;
+    ProgressBar& operator=(const ProgressBar&) = delete;
+
+private:
+    void run();
+    void draw(double elapsed_seconds) const;
+
+    const RenderProgress& progress_;
+    std::uint64_t total_pixels_;
+    std::chrono::steady_clock::time_point start_;
+    std::mutex mutex_;
+    std::condition_variable wake_;
+    bool stop_ = false;
+    std::thread thread_;
+};
+
+}  // namespace sombra

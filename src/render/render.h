@@ -1,0 +1,43 @@
+// The render loop: every pixel's samples through the integrator onto the
+// film, in parallel tiles.
+#pragma once
+
+#include <atomic>
+#include <cstdint>
+
+#include "accel/accel.h"
+#include "render/camera.h"
+#include "render/film.h"
+#include "render/integrator.h"
+#include "scene/scene.h"
+
+namespace sombra {
+
+// Shared with whoever watches the render (the progress bar): the loop adds
+// to the counts after each tile and stops early once `cancel` is set.
+struct RenderProgress {
+    std::atomic<std::uint64_t> pixels_done{0};
+    std::atomic<std::uint64_t> rays_traced{0};  // camera + shadow rays so far
+    std::atomic<bool> cancel{false};
+};
+
+struct RenderJob {
+    const Scene* scene = nullptr;  // geometry must be the mesh `accel` was built over
+    const Accel* accel = nullptr;
+    Camera camera;
+    RenderSettings settings;  // image size, spp and seed actually used
+    int threads = 0;          // worker threads; 0 = all hardware threads
+};
+
+struct RenderOutput {
+    Film film;
+    RayCounters counters;
+    bool cancelled = false;  // true when progress.cancel stopped the loop: the film is incomplete
+};
+
+// Renders the image. Each pixel is the equal-weight average (box filter) of
+// its spp samples; the result depends only on the scene, settings and seed,
+// not on the thread count or scheduling.
+RenderOutput render_image(const RenderJob& job, RenderProgress& progress);
+
+}  // namespace sombra

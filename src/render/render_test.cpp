@@ -1,0 +1,119 @@
+// Whole images: brute force against the BVH, one thread against many.
+#include "render/render.h"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+
+#include "scene/scene_file.h"
+
+namespace sombra {
+namespace {
+
+const std::filesystem::path kShared = SOMBRA_SHARED_DIR;
+
+struct Rendered {
+    Film film;
+    RayCounters counters;
+};
+
+Rendered render_scene(const Scene& scene, AccelKind kind, RenderSettings settings, int threads) {
+    const Accel accel = make_accel(scene.geometry, kind);
+    RenderJob job;
+    job.scene = &scene;
+    job.accel = &accel;
+    job.camera = make_camera(scene.camera, settings.width, settings.height);
+    job.settings = settings;
+    job.threads = threads;
+    RenderProgress progress;
+    RenderOutput out = render_image(job, progress);
+    EXPECT_FALSE(out.cancelled);
+    EXPECT_EQ(progress.pixels_done.load(), static_cast<std::uint64_t>(settings.width * settings.height));
+    return {std::move(out.film), out.counters};
+}
+
+Scene load_shared_scene(const char* name) {
+    Diagnostics diag;
+    return load_scene_file(kShared / "scenes" / name, diag);
+}
+
+#define SKIP_WITHOUT_SHARED()                                                                      \
+    if (!std::filesystem::exists(kShared / "scenes")) GTEST_SKIP() << "shared/ not found at " << kShared
+
+// Brute force is the reference; the BVH must give the very same floats.
+void expect_brute_equals_bvh(const char* scene_name, int w, int h) {
+    const Scene scene = load_shared_scene(scene_name);
+    const RenderSettings settings{w, h, 1, 0};
+    const Rendered brute = render_scene(scene, AccelKind::Brute, settings, 0);
+    const Rendered bvh = render_scene(scene, AccelKind::Bvh, settings, 0);
+    EXPECT_EQ(brute.counters.camera_rays, bvh.counters.camera_rays);
+    EXPECT_EQ(brute.counters.shadow_rays, bvh.counters.shadow_rays);
+    std::size_t differing = 0;
+    for (std::size_t k = 0; k < brute.film.rgb.size(); ++k) differing += brute.film.rgb[k] != bvh.film.rgb[k];
+    EXPECT_EQ(differing, 0u) << scene_name;
+}
+
+TEST(Render, BruteForceAndBvhGiveTheSameImageOnBunny) {
+    SKIP_WITHOUT_SHARED();
+    expect_brute_equals_bvh("bunny.json", 64, 36);
+}
+
+TEST(Render, BruteForceAndBvhGiveTheSameImageOnPhongModels) {
+    SKIP_WITHOUT_SHARED();
+    expect_brute_equals_bvh("phong.json", 128, 72);
+}
+
+TEST(Render, BruteForceAndBvhGiveTheSameImageOnCornellBox) {
+    SKIP_WITHOUT_SHARED();
+    expect_brute_equals_bvh("cornell.json", 96, 96);
+}
+
+TEST(Render, SameBytesForOneAndManyThreads) {
+    SKIP_WITHOUT_SHARED();
+    const Scene scene = load_shared_scene("phong.json");
+    const RenderSettings settings{96, 54, 5, 1234};
+    const Rendered one = render_scene(scene, AccelKind::Bvh, settings, 1);
+    for (int threads : {2, 3, 8}) {
+        const Rendered many = render_scene(scene, AccelKind::Bvh, settings, threads);
+        EXPECT_EQ(one.film.rgb, many.film.rgb) << threads << " threads";
+        EXPECT_EQ(one.counters.shadow_rays, many.counters.shadow_rays);
+    }
+}
+
+TEST(Render, SeedChangesTheSamplesButNotTheExpectation) {
+    SKIP_WITHOUT_SHARED();
+    const Scene scene = load_shared_scene("phong.json");
+    const Rendered a = render_scene(scene, AccelKind::Bvh, RenderSettings{64, 36, 16, 1}, 0);
+    const Rendered b = render_scene(scene, AccelKind::Bvh, RenderSettings{64, 36, 16, 2}, 0);
+    EXPECT_NE(a.film.rgb, b.film.rgb);
+    double mean_a = 0, mean_b = 0;
+    for (std::size_t k = 0; k < a.film.rgb.size(); ++k) {
+        mean_a += a.film.rgb[k];
+        mean_b += b.film.rgb[k];
+    }
+    EXPECT_NEAR(mean_a / mean_b, 1.0, 0.01);
+    EXPECT_EQ(a.counters.camera_rays, 64u * 36u * 16u);
+}
+
+TEST(Render, CancelStopsEarly) {
+    Scene scene;
+    scene.materials.push_back(default_material());
+    scene.geometry.positions = {{-1, -1, -5}, {1, -1, -5}, {0, 1, -5}};
+    scene.geometry.triangles = {{0, 1, 2}};
+    scene.geometry.material_ids = {0};
+    scene.camera.look_at = CameraLookAt{{0, 0, 0}, {0, 0, -1}, {0, 1, 0}, 45};
+    const Accel accel = make_accel(scene.geometry, AccelKind::Bvh);
+    RenderJob job;
+    job.scene = &scene;
+    job.accel = &accel;
+    job.camera = make_camera(scene.camera, 256, 256);
+    job.settings = RenderSettings{256, 256, 1, 0};
+    RenderProgress progress;
+    progress.cancel = true;
+    const RenderOutput out = render_image(job, progress);
+    EXPECT_TRUE(out.cancelled);
+    EXPECT_EQ(progress.pixels_done.load(), 0u);
+}
+
+}  // namespace
+}  // namespace sombra

@@ -1,0 +1,77 @@
+// Where in a pixel each sample goes. The positions are a pure function of
+// (seed, pixel, sample index), never of thread or order, so images are the
+// same for any thread count.
+#pragma once
+
+#include <cmath>
+#include <cstdint>
+
+namespace sombra {
+
+// SplitMix64's finaliser: a well-mixed 64-bit hash (Steele et al. 2014).
+constexpr std::uint64_t mix64(std::uint64_t x) {
+    x += 0x9e3779b97f4a7c15ull;
+    x = (x ^ (x >> 30)) * 0xbf58476d1ce4e5b9ull;
+    x = (x ^ (x >> 27)) * 0x94d049bb133111ebull;
+    return x ^ (x >> 31);
+}
+
+// A uniform float in [0, 1) from a hash of (index, key).
+inline float hash_to_unit(std::uint32_t index, std::uint64_t key) {
+    const std::uint64_t h = mix64(key ^ (static_cast<std::uint64_t>(index) * 0xd1b54a32d192ed03ull));
+    return static_cast<float>(h >> 40) * 0x1p-24f;  // 24 bits: exactly representable, < 1
+}
+
+// A pseudo-random permutation of [0, n): a bijective hash on the smallest
+// power-of-two range holding n, applied until the value falls inside
+// ("cycle walking"), as in Kensler's correlated multi-jittered sampling.
+inline std::uint32_t permute_index(std::uint32_t i, std::uint32_t n, std::uint32_t key) {
+    std::uint32_t mask = n - 1;
+    mask |= mask >> 1;
+    mask |= mask >> 2;
+    mask |= mask >> 4;
+    mask |= mask >> 8;
+    mask |= mask >> 16;
+    do {
+        // Each step is a bijection on [0, mask]: xor, odd multiply, xorshift.
+        i ^= key & mask;
+        i = (i * 0x9e3779b1u) & mask;
+        i ^= (i & mask) >> 7;
+        i = (i * 0x85ebca6bu + (key >> 16)) & mask;
+        i ^= (i & mask) >> 11;
+        i = (i * 0xc2b2ae35u) & mask;
+        i ^= (i & mask) >> 5;
+    } while (i >= n);
+    return i;
+}
+
+struct PixelSample {
+    float x, y;  // offset inside the pixel, each in [0, 1)
+};
+
+// Sample `index` of `count` for the pixel keyed by `pixel_key`: with one
+// sample, the pixel centre (spec §3); otherwise correlated multi-jittered
+// sampling (Kensler 2013), stratified in both 1-D projections and in an
+// m×n grid of cells, for any count.
+inline PixelSample pixel_sample(std::uint32_t index, std::uint32_t count, std::uint64_t pixel_key) {
+    if (count <= 1) return {0.5f, 0.5f};
+    const auto m = static_cast<std::uint32_t>(std::sqrt(static_cast<double>(count)));
+    const std::uint32_t n = (count + m - 1) / m;
+    const auto key = static_cast<std::uint32_t>(pixel_key);
+    const std::uint32_t s = permute_index(index, count, key * 0x51633e2du);
+    const std::uint32_t sx = permute_index(s % m, m, key * 0x68bc21ebu);
+    const std::uint32_t sy = permute_index(s / m, n, key * 0x02e5be93u);
+    const float jx = hash_to_unit(s, pixel_key ^ 0x967a889b00000000ull);
+    const float jy = hash_to_unit(s, pixel_key ^ 0x368cc8b700000000ull);
+    const float x = (static_cast<float>(sx) + (static_cast<float>(sy) + jx) / static_cast<float>(n)) / static_cast<float>(m);
+    const float y = (static_cast<float>(s) + jy) / static_cast<float>(count);
+    // Float rounding can reach 1.0 exactly; stay inside the pixel.
+    return {x < 1.0f ? x : 0x1.fffffep-1f, y < 1.0f ? y : 0x1.fffffep-1f};
+}
+
+// The key that seeds pixel (i, j)'s samples for a render seed.
+inline std::uint64_t pixel_key(std::uint64_t seed, int i, int j, int width) {
+    return mix64(mix64(seed) ^ (static_cast<std::uint64_t>(j) * static_cast<std::uint64_t>(width) + static_cast<std::uint64_t>(i)));
+}
+
+}  // namespace sombra
