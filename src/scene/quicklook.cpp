@@ -12,9 +12,9 @@ namespace {
 constexpr float kFovDegrees = 40.0f;
 
 // Radiance of a grey kd = 0.8 Lambertian surface facing the key light at the
-// sphere's centre: L = I/d² · kd/π. 0.6 leaves headroom for light from the
+// sphere's centre: L = I/d² · kd/π. 0.45 leaves headroom for light from the
 // fill and rim lights overlapping it.
-constexpr float kKeyRadiance = 0.6f;
+constexpr float kKeyRadiance = 0.45f;
 
 struct Sphere {
     Vec3 centre;

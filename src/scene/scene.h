@@ -3,6 +3,7 @@
 
 #include <cstdint>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "core/vec3.h"
@@ -17,6 +18,17 @@ struct RenderSettings {
     int spp = 1;
     std::uint64_t seed = 0;
 };
+
+// Limits on what a render may ask for: anything beyond is a mistake, not a
+// request (a 100000-pixel-wide image, a billion samples). The scene loader and
+// the command-line overrides check against the same numbers.
+inline constexpr int kMaxImageSide = 32768;
+inline constexpr std::int64_t kMaxPixels = std::int64_t{1} << 28;
+inline constexpr int kMaxSpp = 65536;
+
+// "" when the settings lie within the limits above, else a short message
+// naming the offending field, e.g. "width must be between 1 and 32768".
+std::string render_settings_problem(const RenderSettings& r);
 
 // The camera as written in the scene file (spec §3): exactly one form is set.
 struct CameraBasis {

@@ -1,1 +1,234 @@
-// placeholder: implemented by its owner
+// Scene file → Scene: reads the JSON sections, checks every object's file
+// before loading any mesh (a typo in the last object should not wait for the
+// first one's million triangles), then loads the meshes and concatenates them
+// into world-space geometry.
+#include "scene/scene_file.h"
+
+#include <fstream>
+#include <limits>
+#include <map>
+#include <optional>
+#include <sstream>
+
+#include "scene/mesh_file.h"
+#include "scene/scene_json_read.h"
+#include "scene/scene_json_sections.h"
+#include "scene/transform.h"
+
+namespace sombra {
+namespace fs = std::filesystem;
+
+namespace {
+
+// Scene files describe; meshes belong in their own files. Bounds what a
+// mistaken path (a huge mesh or a disk image) makes us read.
+constexpr std::uintmax_t kMaxSceneFileBytes = 64u << 20;
+
+// One entry of "objects", validated but not yet loaded.
+struct ObjectSpec {
+    std::string pointer;                    // "/objects/3"
+    fs::path path;                          // the mesh file, relative to the working directory
+    std::optional<std::uint32_t> material;  // override: index into Scene::materials
+    Transform transform;
+};
+
+ObjectSpec read_object(const SceneJson& s, const Json& v, std::string_view pointer, const fs::path& scene_path,
+                       const std::map<std::string, std::uint32_t, std::less<>>& material_index) {
+    expect_keys(s, v, pointer, {"file", "material", "transform"});
+    ObjectSpec spec;
+    spec.pointer = std::string(pointer);
+
+    const std::string file_pointer = json_child(pointer, "file");
+    const std::string& file = read_string(s, require_member(s, v, pointer, "file"), file_pointer);
+    if (file.empty()) json_fail(s, file_pointer, "expected a file name, not an empty string");
+    spec.path = scene_path.parent_path() / fs::path(file);
+    std::error_code ec;
+    const fs::file_status status = fs::status(spec.path, ec);
+    if (!fs::exists(status)) json_fail(s, file_pointer, "cannot open '" + file + "': no such file");
+    if (fs::is_directory(status)) json_fail(s, file_pointer, "'" + file + "' is a folder, not a mesh file");
+    // A device or a pipe could be read forever.
+    if (!fs::is_regular_file(status)) json_fail(s, file_pointer, "'" + file + "' is not a regular file");
+    if (fs::equivalent(spec.path, scene_path, ec))
+        json_fail(s, file_pointer, "'" + file + "' is the scene file itself, not a mesh");
+
+    if (const Json* m = find_member(v, "material")) {
+        const std::string material_pointer = json_child(pointer, "material");
+        const std::string& name = read_string(s, *m, material_pointer);
+        const auto it = material_index.find(name);
+        if (it == material_index.end()) json_fail(s, material_pointer, "unknown material '" + name + "'");
+        spec.material = it->second;
+    }
+    if (const Json* t = find_member(v, "transform"))
+        spec.transform = read_transform(s, *t, json_child(pointer, "transform"));
+    return spec;
+}
+
+// Appends one loaded mesh to the world geometry (capacity already reserved):
+// positions and normals to world space, indices offset, materials remapped.
+void append_object(Scene& scene, const LoadedMesh& loaded, const ObjectSpec& spec, const SceneJson& s) {
+    TriangleMesh& out = scene.geometry;
+    const TriangleMesh& in = loaded.mesh;
+    const std::string mesh_name = spec.path.string();
+
+    const auto position_base = static_cast<std::uint32_t>(out.positions.size());
+    for (const Vec3 p : in.positions) {
+        const Vec3 q = transform_point(spec.transform, p);
+        // Non-finite input positions are the loader's to drop (their triangles
+        // are gone); finite ones must stay finite.
+        if (is_finite(p) && !is_finite(q))
+            json_fail(s, json_child(spec.pointer, "transform"), "a transformed vertex is not finite");
+        out.positions.push_back(q);
+    }
+
+    const std::uint32_t vertex_count = static_cast<std::uint32_t>(in.positions.size());
+    for (const Index3& t : in.triangles) {
+        if (t[0] >= vertex_count || t[1] >= vertex_count || t[2] >= vertex_count)
+            throw Error(mesh_name, "a triangle refers to a vertex that does not exist");
+        out.triangles.push_back({t[0] + position_base, t[1] + position_base, t[2] + position_base});
+    }
+
+    // Normals: inverse transpose, renormalised; those that vanish or blow up are dropped.
+    const bool in_has_normals = in.has_normals() && in.normal_indices.size() == in.triangles.size();
+    if (in_has_normals || out.has_normals()) {
+        const std::size_t triangles_before = out.triangles.size() - in.triangles.size();
+        if (!out.has_normals()) out.normal_indices.assign(triangles_before, {kNoNormal, kNoNormal, kNoNormal});
+        if (!in_has_normals) {
+            out.normal_indices.insert(out.normal_indices.end(), in.triangles.size(), {kNoNormal, kNoNormal, kNoNormal});
+        } else {
+            const auto normal_base = static_cast<std::uint32_t>(out.normals.size());
+            const Transform to_world = normal_transform(spec.transform);
+            std::vector<bool> usable(in.normals.size());
+            for (std::size_t i = 0; i < in.normals.size(); ++i) {
+                const Vec3 n = transform_vector(to_world, in.normals[i]);
+                const float len = length(n);
+                usable[i] = len > 0 && std::isfinite(len);
+                out.normals.push_back(usable[i] ? n / len : Vec3{});
+            }
+            for (const Index3& corners : in.normal_indices) {
+                Index3 mapped;
+                for (int c = 0; c < 3; ++c) {
+                    const std::uint32_t n = corners[c];
+                    mapped[c] = n < usable.size() && usable[n] ? normal_base + n : kNoNormal;
+                }
+                out.normal_indices.push_back(mapped);
+            }
+        }
+    }
+
+    if (spec.material) {
+        out.material_ids.insert(out.material_ids.end(), in.triangles.size(), *spec.material);
+        return;
+    }
+    const auto material_base = static_cast<std::uint32_t>(scene.materials.size());
+    scene.materials.insert(scene.materials.end(), loaded.materials.begin(), loaded.materials.end());
+    // Loaders give every face a material; guard against one that did not.
+    std::optional<std::uint32_t> fallback;
+    const auto fallback_id = [&] {
+        if (!fallback) {
+            fallback = static_cast<std::uint32_t>(scene.materials.size());
+            scene.materials.push_back(default_material());
+        }
+        return *fallback;
+    };
+    const auto file_material_count = static_cast<std::uint32_t>(loaded.materials.size());
+    for (std::size_t i = 0; i < in.triangles.size(); ++i) {
+        const bool known = i < in.material_ids.size() && in.material_ids[i] < file_material_count;
+        out.material_ids.push_back(known ? material_base + in.material_ids[i] : fallback_id());
+    }
+}
+
+std::string read_scene_text(const fs::path& path) {
+    const std::string name = path.string();
+    std::error_code ec;
+    const fs::file_status status = fs::status(path, ec);
+    if (!fs::exists(status)) throw Error(name, "cannot open scene file: no such file");
+    if (fs::is_directory(status)) throw Error(name, "cannot open scene file: it is a folder");
+    if (!fs::is_regular_file(status)) throw Error(name, "cannot open scene file: not a regular file");
+    const std::uintmax_t size = fs::file_size(path, ec);
+    if (!ec && size > kMaxSceneFileBytes)
+        throw Error(name, "scene file is larger than " + std::to_string(kMaxSceneFileBytes >> 20) + " MiB");
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw Error(name, "cannot open scene file: permission denied or unreadable");
+    std::ostringstream text;
+    text << in.rdbuf();
+    if (in.bad()) throw Error(name, "cannot read scene file");
+    return std::move(text).str();
+}
+
+}  // namespace
+
+std::string render_settings_problem(const RenderSettings& r) {
+    const std::string side_range = " must be between 1 and " + std::to_string(kMaxImageSide);
+    if (r.width < 1 || r.width > kMaxImageSide) return "width" + side_range;
+    if (r.height < 1 || r.height > kMaxImageSide) return "height" + side_range;
+    if (r.spp < 1 || r.spp > kMaxSpp) return "spp must be between 1 and " + std::to_string(kMaxSpp);
+    const std::int64_t pixels = std::int64_t{r.width} * r.height;
+    if (pixels > kMaxPixels)
+        return "image of " + std::to_string(r.width) + "x" + std::to_string(r.height) +
+               " pixels exceeds the limit of " + std::to_string(kMaxPixels) + " pixels";
+    return {};
+}
+
+Scene load_scene_file(const fs::path& path, Diagnostics& diag) {
+    return load_scene_text(read_scene_text(path), path, diag);
+}
+
+Scene load_scene_text(const std::string& text, const fs::path& path, Diagnostics& diag) {
+    const SceneJson s{path.string(), diag};
+    const Json root = parse_scene_json(text, s.name);
+    expect_keys(s, root, "", {"render", "background", "camera", "materials", "lights", "objects"});
+
+    Scene scene;
+    if (const Json* v = find_member(root, "render")) scene.render = read_render(s, *v, "/render");
+    if (const Json* v = find_member(root, "background")) scene.background = read_rgb(s, *v, "/background");
+    scene.camera = read_camera(s, require_member(s, root, "", "camera"), "/camera");
+    if (const Json* v = find_member(root, "materials")) scene.materials = read_materials(s, *v, "/materials");
+    if (const Json* v = find_member(root, "lights")) scene.lights = read_lights(s, *v, "/lights");
+
+    std::map<std::string, std::uint32_t, std::less<>> material_index;
+    for (std::size_t i = 0; i < scene.materials.size(); ++i)
+        material_index.emplace(scene.materials[i].name, static_cast<std::uint32_t>(i));
+
+    const Json& objects = require_member(s, root, "", "objects");
+    expect_array(s, objects, "/objects");
+    if (objects.empty()) json_fail(s, "/objects", "at least one object is required");
+    std::vector<ObjectSpec> specs;
+    specs.reserve(objects.size());
+    for (std::size_t i = 0; i < objects.size(); ++i)
+        specs.push_back(read_object(s, objects[i], json_child("/objects", i), path, material_index));
+
+    // Load everything first so the world arrays are sized once, exactly.
+    std::vector<LoadedMesh> meshes;
+    meshes.reserve(specs.size());
+    std::size_t positions = 0, triangles = 0, normals = 0;
+    bool any_normals = false;
+    for (const ObjectSpec& spec : specs) {
+        meshes.push_back(load_mesh_file(spec.path, diag));
+        const TriangleMesh& m = meshes.back().mesh;
+        if (m.triangles.empty()) json_warn(s, json_child(spec.pointer, "file"), "the mesh has no triangles");
+        positions += m.positions.size();
+        triangles += m.triangles.size();
+        normals += m.normals.size();
+        any_normals = any_normals || m.has_normals();
+    }
+    // Indices are 32-bit; kNoNormal is reserved.
+    constexpr std::size_t kMaxIndex = std::numeric_limits<std::uint32_t>::max() - 1;
+    if (positions > kMaxIndex || normals > kMaxIndex || triangles > kMaxIndex)
+        json_fail(s, "/objects", "the scene has more than " + std::to_string(kMaxIndex) + " vertices or triangles");
+
+    TriangleMesh& world = scene.geometry;
+    world.positions.reserve(positions);
+    world.triangles.reserve(triangles);
+    world.material_ids.reserve(triangles);
+    if (any_normals) {
+        world.normals.reserve(normals);
+        world.normal_indices.reserve(triangles);
+    }
+    for (std::size_t i = 0; i < specs.size(); ++i) {
+        append_object(scene, meshes[i], specs[i], s);
+        meshes[i] = LoadedMesh{};  // free as we go: peak memory stays near two copies
+    }
+    return scene;
+}
+
+}  // namespace sombra

@@ -1,0 +1,144 @@
+// MTL → materials (spec §5, §9): Kd, Ks/Ns (Phong when Ks > 0), Ke, clamping,
+// and the default material for faces without a known one.
+#include <gtest/gtest.h>
+
+#include "scene/mesh_file.h"
+#include "scene/polygon_test_files.h"
+
+namespace sombra {
+namespace {
+
+using testing::shared_dir;
+using testing::TempFolder;
+
+const Material* find_material(const LoadedMesh& loaded, const std::string& name) {
+    for (const Material& m : loaded.materials) {
+        if (m.name == name) return &m;
+    }
+    return nullptr;
+}
+
+const Material& material_of(const LoadedMesh& loaded, std::size_t triangle) {
+    return loaded.materials.at(loaded.mesh.material_ids.at(triangle));
+}
+
+Vec3 face_normal(const TriangleMesh& mesh, std::size_t t) {
+    const Index3& c = mesh.triangles[t];
+    return normalize(cross(mesh.positions[c[1]] - mesh.positions[c[0]], mesh.positions[c[2]] - mesh.positions[c[0]]));
+}
+
+TEST(ObjMaterials, CubeMapsDiffuseAndPhongPerFace) {
+    SOMBRA_REQUIRE_SHARED("models");
+    Diagnostics diag;
+    const LoadedMesh cube = load_obj(shared_dir() / "models/cube.obj", diag);
+    EXPECT_TRUE(diag.warnings.empty());
+    ASSERT_EQ(cube.mesh.triangle_count(), 12u);
+
+    const Material* red = find_material(cube, "red");
+    const Material* white = find_material(cube, "white");
+    const Material* blue = find_material(cube, "blue_glossy");
+    ASSERT_TRUE(red && white && blue);
+    EXPECT_EQ(red->type, MaterialType::Diffuse);
+    EXPECT_EQ(red->kd, Vec3(0.7f, 0.1f, 0.1f));
+    EXPECT_EQ(white->type, MaterialType::Diffuse);
+    EXPECT_EQ(white->kd, Vec3(0.8f));
+    EXPECT_EQ(blue->type, MaterialType::Phong);
+    EXPECT_EQ(blue->kd, Vec3(0.1f, 0.2f, 0.6f));
+    EXPECT_EQ(blue->ks, Vec3(0.3f));
+    EXPECT_EQ(blue->shininess, 50.0f);
+    EXPECT_EQ(blue->ke, Vec3(0.0f));
+
+    // red on ±x, white on ±y, blue_glossy on ±z.
+    for (std::size_t t = 0; t < 12; ++t) {
+        const Vec3 n = abs(face_normal(cube.mesh, t));
+        const std::string expected = n.x > 0.9f ? "red" : (n.y > 0.9f ? "white" : "blue_glossy");
+        EXPECT_EQ(material_of(cube, t).name, expected) << "triangle " << t;
+    }
+}
+
+TEST(ObjMaterials, CornellBoxLightEmits) {
+    SOMBRA_REQUIRE_SHARED("models");
+    Diagnostics diag;
+    const LoadedMesh box = load_obj(shared_dir() / "models/CornellBox-Original.obj", diag);
+    ASSERT_EQ(box.mesh.triangle_count(), 36u);
+    EXPECT_EQ(box.mesh.positions.size(), 72u);
+    const Material* light = find_material(box, "light");
+    ASSERT_NE(light, nullptr);
+    EXPECT_EQ(light->ke, Vec3(17, 12, 4));
+    int emitting = 0;
+    for (std::size_t t = 0; t < box.mesh.triangle_count(); ++t) {
+        const Material& m = material_of(box, t);
+        EXPECT_EQ(m.type, MaterialType::Diffuse) << m.name;  // all Ks are 0
+        if (max_component(m.ke) > 0) {
+            ++emitting;
+            for (std::uint32_t v : box.mesh.triangles[t]) EXPECT_NEAR(box.mesh.positions[v].y, 1.98f, 1e-4f);
+        }
+    }
+    EXPECT_EQ(emitting, 2);  // the light quad
+}
+
+TEST(ObjMaterials, OutOfRangeValuesAreClampedWithWarnings) {
+    TempFolder tmp;
+    tmp.write("odd.mtl",
+              "newmtl odd\nKd 1.5 -0.2 0.5\nKs 2 0 0\nKe -1 5 100\nNs -3\n"
+              "newmtl fine\nKd 0.2 0.3 0.4\n");
+    const auto obj = tmp.write("odd.obj",
+                               "mtllib odd.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\n"
+                               "usemtl odd\nf 1 2 3\nusemtl fine\nf 1 3 2\n");
+    Diagnostics diag;
+    const LoadedMesh loaded = load_obj(obj, diag);
+    const Material& odd = material_of(loaded, 0);
+    EXPECT_EQ(odd.name, "odd");
+    EXPECT_EQ(odd.kd, Vec3(1, 0, 0.5f));
+    EXPECT_EQ(odd.type, MaterialType::Phong);
+    EXPECT_EQ(odd.ks, Vec3(1, 0, 0));
+    EXPECT_EQ(odd.shininess, 0.0f);
+    EXPECT_EQ(odd.ke, Vec3(0, 5, 100));  // radiance: only the negative part goes
+    int clamped = 0;
+    for (const std::string& w : diag.warnings) {
+        if (w.find("clamped") == std::string::npos) continue;
+        ++clamped;
+        EXPECT_NE(w.find("odd.mtl"), std::string::npos) << w;
+        EXPECT_NE(w.find("'odd'"), std::string::npos) << w;
+    }
+    EXPECT_EQ(clamped, 4);  // Kd, Ks, Ke, Ns
+    const Material& fine = material_of(loaded, 1);
+    EXPECT_EQ(fine.type, MaterialType::Diffuse);
+    EXPECT_EQ(fine.kd, Vec3(0.2f, 0.3f, 0.4f));
+}
+
+TEST(ObjMaterials, MissingMtlAndUnknownNamesGetTheDefault) {
+    TempFolder tmp;
+    tmp.write("known.mtl", "newmtl known\nKd 0.1 0.2 0.3\n");
+    const auto obj = tmp.write("m.obj",
+                               "mtllib absent.mtl\nmtllib known.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\n"
+                               "f 1 2 3\nusemtl known\nf 1 3 2\nusemtl nowhere\nf 2 1 3\n");
+    Diagnostics diag;
+    const LoadedMesh loaded = load_obj(obj, diag);
+    ASSERT_EQ(loaded.mesh.triangle_count(), 3u);
+    const Material& none = material_of(loaded, 0);
+    EXPECT_EQ(none.type, MaterialType::Diffuse);
+    EXPECT_EQ(none.kd, Vec3(0.8f));
+    EXPECT_EQ(material_of(loaded, 1).kd, Vec3(0.1f, 0.2f, 0.3f));
+    EXPECT_EQ(loaded.mesh.material_ids[2], loaded.mesh.material_ids[0]);  // the same default
+    bool missing_file = false, unknown_name = false;
+    for (const std::string& w : diag.warnings) {
+        missing_file |= w.find("absent.mtl") != std::string::npos;
+        unknown_name |= w.find("nowhere") != std::string::npos;
+    }
+    EXPECT_TRUE(missing_file);
+    EXPECT_TRUE(unknown_name);
+}
+
+TEST(ObjMaterials, NoMtlAtAllGivesOneDefaultMaterial) {
+    TempFolder tmp;
+    Diagnostics diag;
+    const LoadedMesh loaded = load_obj(tmp.write("plain.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n"), diag);
+    ASSERT_EQ(loaded.materials.size(), 1u);
+    EXPECT_EQ(loaded.materials[0].kd, default_material().kd);
+    EXPECT_EQ(loaded.mesh.material_ids, std::vector<std::uint32_t>{0});
+    EXPECT_TRUE(diag.warnings.empty());
+}
+
+}  // namespace
+}  // namespace sombra

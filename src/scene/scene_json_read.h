@@ -1,0 +1,67 @@
+// Private to the scene loader: parsing a scene file's JSON text and reading
+// typed values out of it, each failure naming its place as
+// "scene.json:line:col" (syntax) or "scene.json: /json/pointer" (meaning).
+#pragma once
+
+#include <cstdint>
+#include <initializer_list>
+#include <string>
+#include <string_view>
+
+#include <nlohmann/json.hpp>
+
+#include "core/error.h"
+#include "core/vec3.h"
+
+namespace sombra {
+
+using Json = nlohmann::json;
+
+// The scene file being read: its name prefixes every WHERE.
+struct SceneJson {
+    std::string name;
+    Diagnostics& diag;
+};
+
+// Parses JSON text. Throws Error("name:line:col", ...) for a syntax error (line
+// and column 1-based, counted in bytes), and Error("name: /pointer", ...) for a
+// duplicate key or nesting too deep to be a scene.
+Json parse_scene_json(const std::string& text, const std::string& name);
+
+// WHERE for the value at a JSON pointer ("" is the whole document).
+std::string json_where(const SceneJson& s, std::string_view pointer);
+[[noreturn]] void json_fail(const SceneJson& s, std::string_view pointer, const std::string& what);
+void json_warn(const SceneJson& s, std::string_view pointer, const std::string& what);
+
+// The pointer of a member or element below `pointer` (RFC 6901 escaping).
+std::string json_child(std::string_view pointer, std::string_view key);
+std::string json_child(std::string_view pointer, std::size_t index);
+
+// Fails with "expected an object" (or an array) unless v is one.
+void expect_object(const SceneJson& s, const Json& v, std::string_view pointer);
+void expect_array(const SceneJson& s, const Json& v, std::string_view pointer);
+// Fails with "unknown key 'k'" (WHERE naming the key) for any member not listed.
+void expect_keys(const SceneJson& s, const Json& object, std::string_view pointer,
+                 std::initializer_list<std::string_view> allowed);
+// The member `key` of an object, or nullptr when absent.
+const Json* find_member(const Json& object, std::string_view key);
+// The member `key`; fails with "missing required key 'key'" when absent.
+const Json& require_member(const SceneJson& s, const Json& object, std::string_view pointer, std::string_view key);
+
+// A finite number that fits a float; fails with "expected a number".
+float read_float(const SceneJson& s, const Json& v, std::string_view pointer);
+// An integer in [lo, hi]; fails with "expected an integer" or "must be between lo and hi".
+std::int64_t read_integer(const SceneJson& s, const Json& v, std::string_view pointer, std::int64_t lo,
+                          std::int64_t hi);
+// A non-negative integer of up to 64 bits.
+std::uint64_t read_unsigned(const SceneJson& s, const Json& v, std::string_view pointer);
+// [x, y, z] of finite numbers; fails with "expected an array of 3 numbers".
+Vec3 read_vec3(const SceneJson& s, const Json& v, std::string_view pointer);
+// An RGB triple with every component >= 0.
+Vec3 read_rgb(const SceneJson& s, const Json& v, std::string_view pointer);
+const std::string& read_string(const SceneJson& s, const Json& v, std::string_view pointer);
+
+// A float for messages: shortest form that reads back ("0.5", "1e+30").
+std::string format_number(double v);
+
+}  // namespace sombra
