@@ -1,1 +1,88 @@
-// placeholder: implemented by its owner
+// Backend selection and the brute-force reference loop.
+#include "accel/accel.h"
+
+#include "accel/triangle.h"
+
+namespace sombra {
+namespace {
+
+// The triangle's corners prepared for intersect_triangle, exactly as make_bvh
+// prepares them; a triangle with an out-of-range index gets n = 0 (no hits).
+TriangleEdges edges_of(const TriangleMesh& mesh, const Index3& tri) {
+    const std::size_t vertex_count = mesh.positions.size();
+    if (tri[0] >= vertex_count || tri[1] >= vertex_count || tri[2] >= vertex_count) return {};
+    return make_triangle_edges(mesh.positions[tri[0]], mesh.positions[tri[1]], mesh.positions[tri[2]]);
+}
+
+// Same rule as intersect_bvh: such rays hit nothing in any backend.
+bool is_traceable(const Ray& ray) {
+    return is_finite(ray.origin) && is_finite(ray.dir) && ray.dir != Vec3{};
+}
+
+bool intersect_brute(const TriangleMesh& mesh, const Ray& ray, Hit& hit) {
+    Hit best;
+    best.t = ray.tmax;
+    for (std::size_t i = 0; i < mesh.triangles.size(); ++i) {
+        float t, b1, b2;
+        // Passing the closest t so far as tmax keeps the first (lowest
+        // index) of several hits at exactly the same t.
+        if (intersect_triangle(ray.origin, ray.dir, edges_of(mesh, mesh.triangles[i]), best.t, t, b1, b2)) {
+            best = Hit{t, b1, b2, static_cast<std::uint32_t>(i)};
+        }
+    }
+    if (best.triangle == kNoHit) return false;
+    hit = best;
+    return true;
+}
+
+bool occluded_brute(const TriangleMesh& mesh, const Ray& ray) {
+    for (const Index3& tri : mesh.triangles) {
+        float t, b1, b2;
+        if (intersect_triangle(ray.origin, ray.dir, edges_of(mesh, tri), ray.tmax, t, b1, b2)) return true;
+    }
+    return false;
+}
+
+}  // namespace
+
+std::optional<AccelKind> parse_accel_kind(std::string_view name) {
+    if (name == "bvh") return AccelKind::Bvh;
+    if (name == "brute") return AccelKind::Brute;
+    return std::nullopt;
+}
+
+std::string_view accel_name(AccelKind kind) {
+    switch (kind) {
+        case AccelKind::Brute: return "brute";
+        case AccelKind::Bvh: return "bvh";
+    }
+    return "unknown";
+}
+
+std::vector<std::string_view> available_accels() { return {"bvh", "brute"}; }
+
+Accel make_accel(const TriangleMesh& mesh, AccelKind kind) {
+    Accel accel;
+    accel.kind = kind;
+    accel.mesh = &mesh;
+    if (kind == AccelKind::Bvh) accel.bvh = make_bvh(mesh);
+    return accel;
+}
+
+bool intersect(const Accel& accel, const Ray& ray, Hit& hit) {
+    if (accel.mesh == nullptr || !is_traceable(ray)) return false;
+    if (accel.kind == AccelKind::Bvh) return intersect_bvh(accel.bvh, *accel.mesh, ray, hit);
+    return intersect_brute(*accel.mesh, ray, hit);
+}
+
+bool occluded(const Accel& accel, const Ray& ray) {
+    if (accel.mesh == nullptr || !is_traceable(ray)) return false;
+    if (accel.kind == AccelKind::Bvh) return occluded_bvh(accel.bvh, *accel.mesh, ray);
+    return occluded_brute(*accel.mesh, ray);
+}
+
+std::size_t accel_memory_bytes(const Accel& accel) {
+    return accel.kind == AccelKind::Bvh ? bvh_memory_bytes(accel.bvh) : 0;
+}
+
+}  // namespace sombra

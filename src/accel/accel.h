@@ -44,18 +44,30 @@ struct Accel {
 };
 
 // Builds the structure for `mesh` (world space). The mesh must stay alive and
-// unchanged while the Accel is used.
+// unchanged while the Accel is used. Brute builds nothing; Bvh builds in
+// parallel (TBB) and deterministically: the same tree for any thread count.
 Accel make_accel(const TriangleMesh& mesh, AccelKind kind);
 
-// Closest hit with 0 < t < ray.tmax. Returns false and leaves `hit` untouched
-// when nothing is hit. Between hits at exactly the same t the lower triangle
-// index wins, so every backend returns the same hit whatever its order.
+// Closest hit with 0 < t < ray.tmax (tmax itself excluded). Returns false and
+// leaves `hit` untouched when nothing is hit. Between hits at exactly the same
+// t the lower triangle index wins, so every backend returns the same hit
+// whatever its order: the BVH's hits are bit-identical to the brute-force
+// loop's (same triangle, t, b1, b2). Both faces of a triangle count; points on
+// an edge or corner count as inside. Triangles that can never be hit:
+// degenerate ones (see make_triangle_edges in accel/triangle.h), ones with a
+// non-finite corner or an out-of-range index. Rays with a non-finite origin
+// or direction, or a zero direction, hit nothing.
+//
+// A hit triangle always has a usable geometric normal:
+// normalize(cross(p1 - p0, p2 - p0)) is a unit vector, never NaN.
 bool intersect(const Accel& accel, const Ray& ray, Hit& hit);
 
-// True when anything is hit with 0 < t < ray.tmax (shadow rays: any hit ends it).
+// True when anything is hit with 0 < t < ray.tmax (shadow rays: any hit ends
+// it). Agrees with intersect(): true exactly when intersect() would hit.
 bool occluded(const Accel& accel, const Ray& ray);
 
-// Bytes held by the acceleration structure itself, not counting the mesh.
+// Bytes held by the acceleration structure itself, not counting the mesh:
+// nodes plus index and precomputed triangle arrays; 0 for Brute.
 std::size_t accel_memory_bytes(const Accel& accel);
 
 }  // namespace sombra

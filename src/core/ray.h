@@ -1,4 +1,4 @@
-// A ray o + t·d for t in (0, tmax]. d need not be unit length: t is measured
+// A ray o + t·d for t in (0, tmax), both ends open. d need not be unit length: t is measured
 // in multiples of d, which lets camera rays keep the assignment's unnormalised
 // directions and shadow rays reach their light at t = 1.
 #pragma once

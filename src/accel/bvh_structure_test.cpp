@@ -1,0 +1,185 @@
+// The shape of the built tree: bounds, leaf contents, depth, determinism.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <map>
+#include <random>
+#include <utility>
+#include <vector>
+
+#include <tbb/global_control.h>
+
+#include "accel/accel.h"
+#include "accel/accel_test_util.h"
+
+namespace sombra {
+namespace {
+
+using testing::add_triangle;
+using testing::compare_with_brute;
+using testing::Comparison;
+using testing::random_soup;
+
+bool contains(const BvhNode& node, Vec3 p) {
+    return node.bmin.x <= p.x && p.x <= node.bmax.x && node.bmin.y <= p.y && p.y <= node.bmax.y &&
+           node.bmin.z <= p.z && p.z <= node.bmax.z;
+}
+
+struct TreeFacts {
+    int depth = 0;       // of the deepest leaf; the root has depth 0
+    int leaves = 0;
+    int bad_bounds = 0;  // children or triangles outside their parent's box
+    int oversized_leaves = 0;
+};
+
+TreeFacts inspect(const Bvh& bvh, const TriangleMesh& mesh, std::uint32_t node = 0, int depth = 0) {
+    TreeFacts facts;
+    const BvhNode& n = bvh.nodes[node];
+    facts.depth = depth;
+    if (n.count > 0) {
+        facts.leaves = 1;
+        facts.oversized_leaves = n.count > kBvhMaxLeafSize;
+        for (std::uint32_t k = n.left_or_first; k < n.left_or_first + n.count; ++k) {
+            for (std::uint32_t v : mesh.triangles[bvh.triangle_order[k]]) facts.bad_bounds += !contains(n, mesh.positions[v]);
+        }
+        return facts;
+    }
+    for (std::uint32_t child : {n.left_or_first, n.left_or_first + 1}) {
+        facts.bad_bounds += !contains(n, bvh.nodes[child].bmin) || !contains(n, bvh.nodes[child].bmax);
+        const TreeFacts sub = inspect(bvh, mesh, child, depth + 1);
+        facts.depth = std::max(facts.depth, sub.depth);
+        facts.leaves += sub.leaves;
+        facts.bad_bounds += sub.bad_bounds;
+        facts.oversized_leaves += sub.oversized_leaves;
+    }
+    return facts;
+}
+
+TEST(BvhStructure, LeavesBoundTheirTrianglesAndHoldEachOnce) {
+    const TriangleMesh mesh = random_soup(20000, 21);
+    const Bvh bvh = make_bvh(mesh);
+    ASSERT_FALSE(bvh.nodes.empty());
+    const TreeFacts facts = inspect(bvh, mesh);
+    EXPECT_EQ(facts.bad_bounds, 0);
+    EXPECT_EQ(facts.oversized_leaves, 0);
+    EXPECT_EQ(static_cast<std::size_t>(2 * facts.leaves - 1), bvh.nodes.size());  // a full binary tree
+    EXPECT_LT(facts.depth, kBvhMaxDepth);
+    EXPECT_GT(facts.leaves, 20000 / static_cast<int>(kBvhMaxLeafSize));
+
+    std::vector<int> seen(mesh.triangles.size(), 0);
+    for (std::uint32_t t : bvh.triangle_order) ++seen[t];
+    for (std::size_t i = 0; i < seen.size(); ++i) ASSERT_EQ(seen[i], 1) << "triangle " << i;
+
+    // The precomputed triangles are bit for bit what the brute-force loop computes.
+    ASSERT_EQ(bvh.ordered_triangles.size(), bvh.triangle_order.size());
+    for (std::size_t k = 0; k < bvh.triangle_order.size(); ++k) {
+        const Index3& tri = mesh.triangles[bvh.triangle_order[k]];
+        const TriangleEdges want = make_triangle_edges(mesh.positions[tri[0]], mesh.positions[tri[1]], mesh.positions[tri[2]]);
+        ASSERT_EQ(std::memcmp(&want, &bvh.ordered_triangles[k], sizeof want), 0) << k;
+    }
+    EXPECT_EQ(bvh_memory_bytes(bvh),
+              bvh.nodes.size() * 32 + bvh.triangle_order.size() * (4 + sizeof(TriangleEdges)));
+}
+
+// The SAH's cost terms must reward splitting a big node: a well-spread soup
+// gives leaves of a few triangles, not a handful of huge ones.
+TEST(BvhStructure, SahProducesSmallLeaves) {
+    const TriangleMesh mesh = random_soup(5000, 22, 0.01f);
+    const Bvh bvh = make_bvh(mesh);
+    const TreeFacts facts = inspect(bvh, mesh);
+    const double mean_leaf = static_cast<double>(mesh.triangles.size()) / facts.leaves;
+    EXPECT_GT(mean_leaf, 1.0);
+    EXPECT_LT(mean_leaf, 6.0);
+    EXPECT_LT(facts.depth, 30);
+}
+
+// Parallel triangles in the planes x = 3^k · 1e-37, k = 0 … 155: every SAH
+// split peels a few off the far end, so SAH alone builds a spine about 50
+// levels deep. The median splits below kBvhSahMaxDepth keep it to
+// kBvhSahMaxDepth + log2(156 / leaf size) + 1.
+TEST(BvhStructure, DepthStaysWithinTheTraversalStack) {
+    TriangleMesh mesh;
+    std::vector<float> planes;
+    for (float x = 1e-37f; x < 1e37f; x *= 3) {
+        planes.push_back(x);
+        add_triangle(mesh, {x, 0, 0}, {x, 1, 0}, {x, 0, 1});
+    }
+    const Bvh bvh = make_bvh(mesh);
+    const TreeFacts facts = inspect(bvh, mesh);
+    EXPECT_EQ(facts.bad_bounds, 0);
+    EXPECT_LE(facts.depth, kBvhSahMaxDepth + 6);
+    EXPECT_LT(facts.depth, kBvhMaxDepth);
+    // Rays between each pair of planes, both ways along x, and oblique ones.
+    std::vector<Ray> rays;
+    for (std::size_t k = 0; k + 1 < planes.size(); ++k) {
+        const float between = 2 * planes[k];
+        rays.push_back(Ray{{between, 0.2f, 0.3f}, {1, 0, 0}});
+        rays.push_back(Ray{{between, 0.2f, 0.3f}, {-1, 0, 0}});
+        rays.push_back(Ray{{between, 0.2f, 0.3f}, {planes[k + 1], 0.1f, -0.1f}});
+    }
+    const Comparison c = compare_with_brute(mesh, rays);
+    EXPECT_EQ(c.mismatches, 0) << c.first_mismatch;
+    EXPECT_GE(c.hits, static_cast<int>(rays.size()) * 2 / 3);
+}
+
+TEST(BvhStructure, SameTreeForAnyThreadCount) {
+    const TriangleMesh mesh = random_soup(60000, 23, 0.02f);
+    const Bvh parallel = make_bvh(mesh);
+    Bvh serial;
+    {
+        tbb::global_control one_thread(tbb::global_control::max_allowed_parallelism, 1);
+        serial = make_bvh(mesh);
+    }
+    ASSERT_EQ(parallel.nodes.size(), serial.nodes.size());
+    EXPECT_EQ(std::memcmp(parallel.nodes.data(), serial.nodes.data(), parallel.nodes.size() * sizeof(BvhNode)), 0);
+    EXPECT_EQ(parallel.triangle_order, serial.triangle_order);
+}
+
+// A closed mesh (a subdivided octahedron pushed onto a sphere): every ray
+// from inside hits it, in both backends alike.
+TriangleMesh closed_sphere(int subdivisions) {
+    TriangleMesh mesh;
+    mesh.positions = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
+    mesh.triangles = {{0, 2, 4}, {2, 1, 4}, {1, 3, 4}, {3, 0, 4}, {2, 0, 5}, {1, 2, 5}, {3, 1, 5}, {0, 3, 5}};
+    for (int s = 0; s < subdivisions; ++s) {
+        std::vector<Index3> finer;
+        std::map<std::pair<std::uint32_t, std::uint32_t>, std::uint32_t> midpoints;
+        auto midpoint = [&](std::uint32_t a, std::uint32_t b) {
+            const auto key = std::minmax(a, b);
+            const auto found = midpoints.find(key);
+            if (found != midpoints.end()) return found->second;
+            mesh.positions.push_back(normalize(mesh.positions[a] + mesh.positions[b]));
+            const auto index = static_cast<std::uint32_t>(mesh.positions.size() - 1);
+            midpoints[key] = index;
+            return index;
+        };
+        for (const Index3& t : mesh.triangles) {
+            const std::uint32_t ab = midpoint(t[0], t[1]), bc = midpoint(t[1], t[2]), ca = midpoint(t[2], t[0]);
+            finer.insert(finer.end(), {{t[0], ab, ca}, {ab, t[1], bc}, {ca, bc, t[2]}, {ab, bc, ca}});
+        }
+        mesh.triangles = std::move(finer);
+    }
+    return mesh;
+}
+
+TEST(BvhStructure, RaysFromInsideAClosedMeshAlwaysHit) {
+    const TriangleMesh mesh = closed_sphere(4);  // 2048 triangles
+    std::mt19937 rng(24);
+    std::uniform_real_distribution<float> unit(-1.0f, 1.0f);
+    std::vector<Ray> rays;
+    while (rays.size() < 3000) {
+        const Vec3 o{0.5f * unit(rng), 0.5f * unit(rng), 0.5f * unit(rng)};
+        Vec3 d{unit(rng), unit(rng), unit(rng)};
+        if (rays.size() % 5 == 0) d = Vec3{rays.size() % 2 ? 1.0f : -1.0f, 0, 0};  // zero components too
+        if (dot(d, d) > 0) rays.push_back(Ray{o, d});
+    }
+    const Comparison c = compare_with_brute(mesh, rays);
+    EXPECT_EQ(c.mismatches, 0) << c.first_mismatch;
+    EXPECT_EQ(c.hits, 3000);
+    EXPECT_EQ(c.occluded, 3000);
+}
+
+}  // namespace
+}  // namespace sombra
