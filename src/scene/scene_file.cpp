@@ -197,14 +197,27 @@ Scene load_scene_text(const std::string& text, const fs::path& path, Diagnostics
     for (std::size_t i = 0; i < objects.size(); ++i)
         specs.push_back(read_object(s, objects[i], json_child("/objects", i), path, material_index));
 
-    // Load everything first so the world arrays are sized once, exactly.
+    // Load everything first so the world arrays are sized once, exactly. A
+    // file used by several objects (one sphere, five materials) is read once.
     std::vector<LoadedMesh> meshes;
-    meshes.reserve(specs.size());
+    std::vector<std::size_t> mesh_of(specs.size());
+    std::vector<std::size_t> last_use;
+    std::map<fs::path, std::size_t> loaded_index;
     std::size_t positions = 0, triangles = 0, normals = 0;
     bool any_normals = false;
-    for (const ObjectSpec& spec : specs) {
-        meshes.push_back(load_mesh_file(spec.path, diag));
-        const TriangleMesh& m = meshes.back().mesh;
+    for (std::size_t i = 0; i < specs.size(); ++i) {
+        const ObjectSpec& spec = specs[i];
+        std::error_code ec;
+        fs::path key = fs::canonical(spec.path, ec);
+        if (ec) key = spec.path;
+        const auto [it, is_new] = loaded_index.try_emplace(key, meshes.size());
+        if (is_new) {
+            meshes.push_back(load_mesh_file(spec.path, diag));
+            last_use.push_back(i);
+        }
+        mesh_of[i] = it->second;
+        last_use[it->second] = i;
+        const TriangleMesh& m = meshes[it->second].mesh;
         if (m.triangles.empty()) json_warn(s, json_child(spec.pointer, "file"), "the mesh has no triangles");
         positions += m.positions.size();
         triangles += m.triangles.size();
@@ -225,8 +238,9 @@ Scene load_scene_text(const std::string& text, const fs::path& path, Diagnostics
         world.normal_indices.reserve(triangles);
     }
     for (std::size_t i = 0; i < specs.size(); ++i) {
-        append_object(scene, meshes[i], specs[i], s);
-        meshes[i] = LoadedMesh{};  // free as we go: peak memory stays near two copies
+        append_object(scene, meshes[mesh_of[i]], specs[i], s);
+        // Free each file's mesh after its last object: peak memory stays near two copies.
+        if (last_use[mesh_of[i]] == i) meshes[mesh_of[i]] = LoadedMesh{};
     }
     return scene;
 }
