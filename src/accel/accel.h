@@ -53,10 +53,12 @@ Accel make_accel(const TriangleMesh& mesh, AccelKind kind);
 // t the lower triangle index wins, so every backend returns the same hit
 // whatever its order: the BVH's hits are bit-identical to the brute-force
 // loop's (same triangle, t, b1, b2). Both faces of a triangle count; points on
-// an edge or corner count as inside. Triangles that can never be hit:
-// degenerate ones (see make_triangle_edges in accel/triangle.h), ones with a
-// non-finite corner or an out-of-range index. Rays with a non-finite origin
-// or direction, or a zero direction, hit nothing.
+// an edge or corner count as inside, and the test is watertight: a ray never
+// slips between triangles that share an edge or corner (accel/triangle.h),
+// so a ray from inside a closed mesh always hits it. Triangles that can never
+// be hit: degenerate ones (see make_triangle_edges in accel/triangle.h), ones
+// with a non-finite corner or an out-of-range index. Rays with a non-finite
+// origin or direction, or a zero direction, hit nothing.
 //
 // A hit triangle always has a usable geometric normal:
 // normalize(cross(p1 - p0, p2 - p0)) is a unit vector, never NaN.
