@@ -8,6 +8,7 @@
 #include <tbb/info.h>
 
 #include "accel/accel.h"
+#include "app/interrupt.h"
 #include "app/progress.h"
 #include "app/stats.h"
 #include "core/error.h"
@@ -67,6 +68,8 @@ void check_stats_path(const std::filesystem::path& path) {
 
 int run_render(const CliOptions& o) {
     const auto start = Clock::now();
+    RenderProgress progress;
+    InterruptWatcher interrupt(progress);  // first: before any other thread starts
     try {
         const std::filesystem::path output = o.output;
         // Fail before a long render, not after it.
@@ -94,7 +97,7 @@ int run_render(const CliOptions& o) {
         job.settings = settings;
         job.threads = o.threads;
 
-        RenderProgress progress;
+        interrupt.set_phase(InterruptWatcher::Phase::Rendering);
         const auto render_start = Clock::now();
         RenderOutput rendered;
         {
@@ -103,6 +106,12 @@ int run_render(const CliOptions& o) {
             rendered = render_image(job, progress);
         }
         stats.render_seconds = seconds_since(render_start);
+        if (rendered.cancelled) {
+            const int sig = interrupt.signal_received();
+            std::cerr << "sombra: error: " << signal_name(sig) << ": interrupted, nothing written\n";
+            return interrupted_exit_status(sig);
+        }
+        interrupt.set_phase(InterruptWatcher::Phase::Writing);
 
         const auto write_start = Clock::now();
         write_image(output, ImageView{rendered.film.width, rendered.film.height, rendered.film.rgb.data()}, o.exposure);

@@ -46,8 +46,11 @@ RenderOutput render_image(const RenderJob& job, RenderProgress& progress) {
             RayCounters& counters = per_thread.local();
             const std::uint64_t rays_before = counters.camera_rays + counters.shadow_rays;
             for (int j = tile.rows().begin(); j < tile.rows().end(); ++j)
-                for (int i = tile.cols().begin(); i < tile.cols().end(); ++i)
+                for (int i = tile.cols().begin(); i < tile.cols().end(); ++i) {
+                    // Checked per pixel too: at thousands of samples a tile can take seconds.
+                    if (progress.cancel.load(std::memory_order_relaxed)) return;
                     out.film.set(i, j, render_pixel(job, i, j, counters));
+                }
             const auto pixels = static_cast<std::uint64_t>(tile.rows().size()) * static_cast<std::uint64_t>(tile.cols().size());
             progress.pixels_done.fetch_add(pixels, std::memory_order_relaxed);
             progress.rays_traced.fetch_add(counters.camera_rays + counters.shadow_rays - rays_before, std::memory_order_relaxed);

@@ -1,0 +1,53 @@
+// Ctrl-C (SIGINT) and kill (SIGTERM) during a run: the render stops within a
+// moment and nothing is written, so an existing image stays as it was.
+//
+// No signal handler and no global: the signals are blocked in every thread
+// and one watcher thread takes them with sigtimedwait, then acts in plain code.
+#pragma once
+
+#include <atomic>
+#include <csignal>
+#include <thread>
+
+#include "render/render.h"
+
+namespace sombra {
+
+class InterruptWatcher {
+public:
+    enum class Phase {
+        Preparing,  // loading and building: nothing to save, so the watcher exits the process at once
+        Rendering,  // the watcher cancels the render; the run then stops without writing
+        Writing,    // too late to stop: the (atomic) write completes and the run ends normally
+    };
+
+    // Must be constructed before any other thread exists (oneTBB's workers
+    // included): the blocked signal mask is inherited by threads created later.
+    explicit InterruptWatcher(RenderProgress& progress);
+    ~InterruptWatcher();
+    InterruptWatcher(const InterruptWatcher&) = delete;
+    InterruptWatcher& operator=(const InterruptWatcher&) = delete;
+
+    void set_phase(Phase phase) { phase_.store(phase); }
+    // The signal received, or 0 when none was.
+    int signal_received() const { return signal_.load(); }
+
+private:
+    void watch();
+
+    RenderProgress& progress_;
+    std::atomic<Phase> phase_{Phase::Preparing};
+    std::atomic<int> signal_{0};
+    std::atomic<bool> stop_{false};
+    sigset_t blocked_{};
+    sigset_t previous_mask_{};
+    std::thread thread_;
+};
+
+// "SIGINT", "SIGTERM": how messages name the signals the watcher takes.
+const char* signal_name(int signal);
+
+// The exit status for a run stopped by `signal`: 128 + the signal number, as shells report it.
+inline int interrupted_exit_status(int signal) { return 128 + signal; }
+
+}  // namespace sombra
