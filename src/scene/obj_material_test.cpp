@@ -107,6 +107,18 @@ TEST(ObjMaterials, OutOfRangeValuesAreClampedWithWarnings) {
     EXPECT_EQ(fine.kd, Vec3(0.2f, 0.3f, 0.4f));
 }
 
+TEST(ObjMaterials, PhongThatReflectsMoreThanItReceivesWarns) {
+    TempFolder tmp;
+    tmp.write("e.mtl", "newmtl hot\nKd 0.8 0.2 0.2\nKs 0.5 0.5 0.5\nNs 10\nnewmtl ok\nKd 0.5 0.2 0.2\nKs 0.5 0.5 0.5\n");
+    const auto obj = tmp.write("e.obj", "mtllib e.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl hot\nf 1 2 3\nusemtl ok\nf 1 3 2\n");
+    Diagnostics diag;
+    const LoadedMesh loaded = load_obj(obj, diag);
+    ASSERT_EQ(diag.warnings.size(), 1u);
+    EXPECT_NE(diag.warnings[0].find("'hot'"), std::string::npos) << diag.warnings[0];
+    EXPECT_NE(diag.warnings[0].find("exceeds 1"), std::string::npos) << diag.warnings[0];
+    EXPECT_EQ(material_of(loaded, 0).kd, Vec3(0.8f, 0.2f, 0.2f));  // warned, not changed
+}
+
 TEST(ObjMaterials, MissingMtlAndUnknownNamesGetTheDefault) {
     TempFolder tmp;
     tmp.write("known.mtl", "newmtl known\nKd 0.1 0.2 0.3\n");
