@@ -2,8 +2,12 @@
 
 #include <tbb/blocked_range2d.h>
 #include <tbb/combinable.h>
+#include <tbb/global_control.h>
+#include <tbb/info.h>
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
+
+#include <optional>
 
 #include "render/sampler.h"
 
@@ -38,6 +42,12 @@ RenderOutput render_image(const RenderJob& job, RenderProgress& progress) {
     tbb::combinable<RayCounters> per_thread;
 
     const int threads = job.threads > 0 ? job.threads : tbb::task_arena::automatic;
+    // oneTBB caps its workers at the hardware's thread count (and says so on
+    // stderr) unless more are allowed explicitly; more threads than cores is
+    // a legitimate request, e.g. to test determinism.
+    std::optional<tbb::global_control> allow_more;
+    if (threads > tbb::info::default_concurrency())
+        allow_more.emplace(tbb::global_control::max_allowed_parallelism, static_cast<std::size_t>(threads));
     tbb::task_arena arena(threads);
     arena.execute([&] {
         const tbb::blocked_range2d<int> image(0, job.settings.height, kTileSize, 0, job.settings.width, kTileSize);
