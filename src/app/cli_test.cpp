@@ -2,78 +2,15 @@
 // its one-line messages, and the files it leaves behind.
 #include <gtest/gtest.h>
 
-#include <cstdlib>
-#include <filesystem>
-#include <fstream>
 #include <nlohmann/json.hpp>
-#include <sstream>
-#include <string>
+
+#include "cli_test_fixture.h"
 
 namespace {
 
-namespace fs = std::filesystem;
+using namespace sombra::cli_test;
 
-struct RunResult {
-    int status = -1;
-    std::string out, err;
-};
-
-std::string read_text(const fs::path& p) {
-    std::ifstream in(p, std::ios::binary);
-    std::stringstream ss;
-    ss << in.rdbuf();
-    return ss.str();
-}
-
-void write_text(const fs::path& p, const std::string& text) { std::ofstream(p, std::ios::binary) << text; }
-
-class Cli : public ::testing::Test {
-protected:
-    void SetUp() override {
-        dir_ = fs::temp_directory_path() / ("sombra-cli-" + std::to_string(::getpid()) + "-" +
-                                            ::testing::UnitTest::GetInstance()->current_test_info()->name());
-        fs::remove_all(dir_);
-        fs::create_directories(dir_);
-        // A unit square facing +z, and a scene that frames it.
-        write_text(dir_ / "square.obj", "v -1 -1 0\nv 1 -1 0\nv 1 1 0\nv -1 1 0\nf 1 2 3 4\n");
-    }
-    void TearDown() override { fs::remove_all(dir_); }
-
-    // Runs sombra with `args` (already shell-quoted) in the temp folder.
-    RunResult run(const std::string& args) {
-        const fs::path out = dir_ / "stdout.txt", err = dir_ / "stderr.txt";
-        const std::string cmd = "cd '" + dir_.string() + "' && '" + std::string(SOMBRA_EXE) + "' " + args + " >'" +
-                                out.string() + "' 2>'" + err.string() + "' </dev/null";
-        const int raw = std::system(cmd.c_str());
-        RunResult r;
-        r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
-        r.out = read_text(out);
-        r.err = read_text(err);
-        return r;
-    }
-
-    std::string scene(const std::string& render = R"({"width": 32, "height": 24})",
-                      const std::string& camera = R"({"origin": [0, 0, 4], "look_at": [0, 0, 0], "fov": 40})",
-                      const std::string& extra = "") {
-        return R"({"render": )" + render + R"(, "camera": )" + camera +
-               R"(, "materials": {"grey": {"type": "diffuse", "kd": [0.5, 0.5, 0.5]}},
-                 "lights": [{"type": "point", "position": [0, 0, 3], "intensity": [5, 5, 5]}],
-                 "objects": [{"file": "square.obj", "material": "grey"}])" + extra + "}";
-    }
-
-    // The contract for every bad input: exit 1, one line "sombra: error: WHERE: WHAT", no image.
-    void expect_input_error(const RunResult& r, const std::string& fragment) {
-        EXPECT_EQ(r.status, 1) << r.err;
-        EXPECT_EQ(r.err.rfind("sombra: error: ", 0), 0u) << r.err;
-        EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
-        EXPECT_NE(r.err.find(fragment), std::string::npos) << "expected '" << fragment << "' in: " << r.err;
-        EXPECT_FALSE(fs::exists(dir_ / "out.png"));
-        for (const auto& entry : fs::directory_iterator(dir_))
-            EXPECT_EQ(entry.path().filename().string().find(".tmp"), std::string::npos) << entry.path();
-    }
-
-    fs::path dir_;
-};
+class Cli : public CliFixture {};
 
 TEST_F(Cli, RendersASceneAndWritesStatistics) {
     write_text(dir_ / "s.json", scene());

@@ -34,6 +34,14 @@ std::string lower_extension(const std::filesystem::path& path) {
     return ext;
 }
 
+// Each message stays one line whatever the paths in it hold: control
+// characters (a newline or NUL in a file name) are shown as '?'.
+std::string one_line(std::string text) {
+    for (char& c : text)
+        if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) c = '?';
+    return text;
+}
+
 Scene load_input(const std::filesystem::path& input, Diagnostics& diag) {
     const std::string ext = lower_extension(input);
     if (ext == ".json") return load_scene_file(input, diag);
@@ -81,7 +89,7 @@ int run_render(const CliOptions& o) {
         const auto load_start = Clock::now();
         Scene scene = load_input(o.input, diag);
         stats.load_seconds = seconds_since(load_start);
-        for (const std::string& w : diag.warnings) std::cerr << "sombra: warning: " << w << '\n';
+        for (const std::string& w : diag.warnings) std::cerr << "sombra: warning: " << one_line(w) << '\n';
 
         const RenderSettings settings = resolve_settings(scene.render, o);
         const AccelKind kind = *parse_accel_kind(o.accel);  // the command line checked the name
@@ -133,10 +141,14 @@ int run_render(const CliOptions& o) {
         if (!o.quiet) std::cerr << summary_line(stats, o.output) << '\n';
         return 0;
     } catch (const Error& e) {
-        std::cerr << "sombra: error: " << e.what() << '\n';
+        std::cerr << "sombra: error: " << one_line(e.where() + ": " + e.message()) << '\n';
         return 1;
     } catch (const std::bad_alloc&) {
-        std::cerr << "sombra: error: " << o.input << ": out of memory\n";
+        std::cerr << "sombra: error: " << one_line(o.input) << ": out of memory\n";
+        return 1;
+    } catch (const std::exception& e) {
+        // A bug, not the input's fault; still one line and no image.
+        std::cerr << "sombra: error: " << one_line(o.input) << ": internal error: " << one_line(e.what()) << '\n';
         return 1;
     }
 }

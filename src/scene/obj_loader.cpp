@@ -134,12 +134,15 @@ std::vector<std::uint32_t> face_sizes(const std::vector<tinyobj::shape_t>& shape
 
 LoadedMesh load_obj(const std::filesystem::path& path, Diagnostics& diag) {
     const std::string where = path.string();
-    const std::string bytes = read_polygon_file(path);
+    std::string bytes = read_polygon_file(path);
     std::string_view text = bytes;
     if (text.starts_with("\xFE\xFF") || text.starts_with("\xFF\xFE")) {
         throw Error(where, "no triangles: the file is UTF-16 text; save it as UTF-8 or ASCII");
     }
     if (text.starts_with("\xEF\xBB\xBF")) text.remove_prefix(3);  // UTF-8 byte order mark
+    comment_out_skin_weights(std::span<char>(bytes).subspan(bytes.size() - text.size()));
+    // tinyobjloader wraps huge indices into valid ones and reports a 0 without saying which.
+    if (const auto bad = find_bad_face_index(text)) throw Error(where + ":" + std::to_string(bad->line), bad->what);
 
     tinyobj::attrib_t attrib;
     std::vector<tinyobj::shape_t> shapes;

@@ -5,6 +5,9 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
+#include <span>
+#include <string>
 #include <string_view>
 #include <vector>
 
@@ -21,5 +24,22 @@ struct ObjFaceLine {
 
 // Every `f` line with 3 or more corners (the faces tinyobjloader keeps), in file order.
 std::vector<ObjFaceLine> scan_obj_faces(std::string_view text);
+
+// Turns every `vw` line (skin weights, a tinyobjloader extension sombra does
+// not use) into a comment, keeping the line numbers: tinyobjloader converts
+// their joint ids to int unchecked, undefined for 1e38 or nan (found by fuzz_obj).
+void comment_out_skin_weights(std::span<char> text);
+
+struct ObjIndexProblem {
+    std::uint32_t line;  // 1-based line number of the `f` line
+    std::string what;    // e.g. "face index 0 is not allowed (OBJ indices start at 1)"
+};
+
+// The first face corner index that tinyobjloader would misread or reject
+// without saying which: 0, beyond 32 bits (its atoi wraps them to a valid
+// index), or a negative (relative) vertex index reaching before the first
+// vertex. std::nullopt when every index is usable or is left for the loader
+// to check against the final counts.
+std::optional<ObjIndexProblem> find_bad_face_index(std::string_view text);
 
 }  // namespace sombra

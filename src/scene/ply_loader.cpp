@@ -3,6 +3,7 @@
 // vertex_indices or vertex_index; every other element and property skipped.
 // Every count the header claims is checked against the bytes left before
 // anything is reserved for it.
+#include <algorithm>
 #include <bit>
 #include <limits>
 #include <span>
@@ -177,7 +178,11 @@ void read_body(Cursor& cursor, const PlyHeader& header, const PlyPlan& plan, Pol
             read_vertices(cursor, element, plan.layout, builder);
             have_vertices = true;
         } else if (static_cast<int>(e) == plan.face_element) {
-            builder.reserve_triangles(static_cast<std::size_t>(element.count));
+            // The count is the file's claim: checked against the bytes left before reserving for it.
+            cursor.check_count(element, min_record_size<Cursor>(element));
+            // A triangle takes at least 4 bytes (a count and three 1-byte indices): empty faces reserve nothing.
+            const std::uint64_t most_triangles = cursor.remaining() / 4;
+            builder.reserve_triangles(static_cast<std::size_t>(std::min<std::uint64_t>(element.count, most_triangles)));
             read_faces(cursor, element, plan.face_list, vertex_count, [&](const std::vector<std::uint32_t>& corners) {
                 if (have_vertices) {
                     add_face(corners);

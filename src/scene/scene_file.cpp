@@ -41,6 +41,8 @@ ObjectSpec read_object(const SceneJson& s, const Json& v, std::string_view point
     const std::string file_pointer = json_child(pointer, "file");
     const std::string& file = read_string(s, require_member(s, v, pointer, "file"), file_pointer);
     if (file.empty()) json_fail(s, file_pointer, "expected a file name, not an empty string");
+    // The system reads a path up to its first NUL: "a.obj\u0000b" must not quietly load a.obj.
+    if (file.find('\0') != std::string::npos) json_fail(s, file_pointer, "the file name contains a NUL character");
     spec.path = scene_path.parent_path() / fs::path(file);
     std::error_code ec;
     const fs::file_status status = fs::status(spec.path, ec);
