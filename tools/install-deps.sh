@@ -12,6 +12,9 @@ packages=(
   libopenexr-dev         # EXR output
   libcli11-dev           # command line
   libgtest-dev libgmock-dev  # tests
+  libembree-dev          # --accel embree, the BVH's yardstick (optional: the build works without it)
+  python3-matplotlib python3-numpy  # tools/bench.sh: the big benchmark mesh and the cost-growth plot
+  clang-14 libclang-rt-14-dev  # libFuzzer + sanitizer runtimes (tools/fuzz.sh)
 )
 
 missing=()

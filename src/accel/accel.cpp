@@ -1,6 +1,7 @@
 // Backend selection and the brute-force reference loop.
 #include "accel/accel.h"
 
+#include "accel/embree_backend.h"
 #include "accel/triangle.h"
 
 namespace sombra {
@@ -48,6 +49,9 @@ bool occluded_brute(const TriangleMesh& mesh, const Ray& ray) {
 std::optional<AccelKind> parse_accel_kind(std::string_view name) {
     if (name == "bvh") return AccelKind::Bvh;
     if (name == "brute") return AccelKind::Brute;
+#ifdef SOMBRA_HAVE_EMBREE
+    if (name == "embree") return AccelKind::Embree;
+#endif
     return std::nullopt;
 }
 
@@ -55,33 +59,54 @@ std::string_view accel_name(AccelKind kind) {
     switch (kind) {
         case AccelKind::Brute: return "brute";
         case AccelKind::Bvh: return "bvh";
+#ifdef SOMBRA_HAVE_EMBREE
+        case AccelKind::Embree: return "embree";
+#endif
     }
     return "unknown";
 }
 
-std::vector<std::string_view> available_accels() { return {"bvh", "brute"}; }
+std::vector<std::string_view> available_accels() {
+#ifdef SOMBRA_HAVE_EMBREE
+    return {"bvh", "brute", "embree"};
+#else
+    return {"bvh", "brute"};
+#endif
+}
 
 Accel make_accel(const TriangleMesh& mesh, AccelKind kind) {
     Accel accel;
     accel.kind = kind;
     accel.mesh = &mesh;
     if (kind == AccelKind::Bvh) accel.bvh = make_bvh(mesh);
+#ifdef SOMBRA_HAVE_EMBREE
+    if (kind == AccelKind::Embree) accel.embree = make_embree_scene(mesh);
+#endif
     return accel;
 }
 
 bool intersect(const Accel& accel, const Ray& ray, Hit& hit) {
     if (accel.mesh == nullptr || !is_traceable(ray)) return false;
     if (accel.kind == AccelKind::Bvh) return intersect_bvh(accel.bvh, *accel.mesh, ray, hit);
+#ifdef SOMBRA_HAVE_EMBREE
+    if (accel.kind == AccelKind::Embree) return accel.embree != nullptr && intersect_embree(*accel.embree, ray, hit);
+#endif
     return intersect_brute(*accel.mesh, ray, hit);
 }
 
 bool occluded(const Accel& accel, const Ray& ray) {
     if (accel.mesh == nullptr || !is_traceable(ray)) return false;
     if (accel.kind == AccelKind::Bvh) return occluded_bvh(accel.bvh, *accel.mesh, ray);
+#ifdef SOMBRA_HAVE_EMBREE
+    if (accel.kind == AccelKind::Embree) return accel.embree != nullptr && occluded_embree(*accel.embree, ray);
+#endif
     return occluded_brute(*accel.mesh, ray);
 }
 
 std::size_t accel_memory_bytes(const Accel& accel) {
+#ifdef SOMBRA_HAVE_EMBREE
+    if (accel.kind == AccelKind::Embree) return accel.embree != nullptr ? embree_memory_bytes(*accel.embree) : 0;
+#endif
     return accel.kind == AccelKind::Bvh ? bvh_memory_bytes(accel.bvh) : 0;
 }
 

@@ -5,6 +5,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -29,30 +30,43 @@ struct Hit {
 enum class AccelKind {
     Brute,  // every triangle for every ray: the assignment's loop, kept as the reference
     Bvh,    // sombra's own SAH bounding volume hierarchy (the default)
+#ifdef SOMBRA_HAVE_EMBREE
+    Embree,  // Intel Embree 3: the yardstick for the BVH's speed (accel/embree_backend.h)
+#endif
 };
 
-// "brute" or "bvh"; nullopt for a name this build does not offer.
+// "brute", "bvh" or (when built with Embree) "embree"; nullopt for a name
+// this build does not offer.
 std::optional<AccelKind> parse_accel_kind(std::string_view name);
 std::string_view accel_name(AccelKind kind);
 // Names accepted by parse_accel_kind, in the order to list them to users.
 std::vector<std::string_view> available_accels();
 
+struct EmbreeScene;  // accel/embree_backend.h
+
 struct Accel {
     AccelKind kind = AccelKind::Bvh;
     const TriangleMesh* mesh = nullptr;  // not owned; must outlive the Accel
     Bvh bvh;                             // empty unless kind == Bvh
+#ifdef SOMBRA_HAVE_EMBREE
+    std::shared_ptr<const EmbreeScene> embree;  // null unless kind == Embree
+#endif
 };
 
 // Builds the structure for `mesh` (world space). The mesh must stay alive and
 // unchanged while the Accel is used. Brute builds nothing; Bvh builds in
 // parallel (TBB) and deterministically: the same tree for any thread count.
+// Embree builds its own BVH (and may throw Error("embree", ...)).
 Accel make_accel(const TriangleMesh& mesh, AccelKind kind);
 
 // Closest hit with 0 < t < ray.tmax (tmax itself excluded). Returns false and
 // leaves `hit` untouched when nothing is hit. Between hits at exactly the same
 // t the lower triangle index wins, so every backend returns the same hit
 // whatever its order: the BVH's hits are bit-identical to the brute-force
-// loop's (same triangle, t, b1, b2). Both faces of a triangle count; points on
+// loop's (same triangle, t, b1, b2). Embree is the exception: its hits agree
+// only to float rounding, it may pick either triangle of a tie, and it is
+// not watertight (see accel/embree_backend.h); the rest of this paragraph is
+// about sombra's own backends. Both faces of a triangle count; points on
 // an edge or corner count as inside, and the test is watertight: a ray never
 // slips between triangles that share an edge or corner (accel/triangle.h),
 // so a ray from inside a closed mesh always hits it. Triangles that can never
@@ -69,7 +83,8 @@ bool intersect(const Accel& accel, const Ray& ray, Hit& hit);
 bool occluded(const Accel& accel, const Ray& ray);
 
 // Bytes held by the acceleration structure itself, not counting the mesh:
-// nodes plus index and precomputed triangle arrays; 0 for Brute.
+// nodes plus index and precomputed triangle arrays; 0 for Brute. For Embree,
+// what Embree allocated plus the buffers sombra shares with it.
 std::size_t accel_memory_bytes(const Accel& accel);
 
 }  // namespace sombra

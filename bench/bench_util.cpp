@@ -1,0 +1,89 @@
+#include "bench_util.h"
+
+#include <sys/resource.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+namespace sombra::bench {
+
+double median(std::vector<double> values) {
+    if (values.empty()) return 0;
+    std::sort(values.begin(), values.end());
+    const std::size_t n = values.size();
+    return n % 2 == 1 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
+}
+
+std::string fixed(double value, int digits) {
+    char text[64];
+    std::snprintf(text, sizeof text, "%.*f", digits, value);
+    return text;
+}
+
+std::string seconds(double s) {
+    if (s >= 10) return fixed(s, 1);
+    if (s >= 1) return fixed(s, 2);
+    if (s >= 0.1) return fixed(s, 3);
+    if (s >= 0.01) return fixed(s, 4);
+    return fixed(s, 5);
+}
+
+std::string thousands(std::uint64_t n) {
+    const std::string digits = std::to_string(n);
+    std::string out;
+    for (std::size_t i = 0; i < digits.size(); ++i) {
+        if (i > 0 && (digits.size() - i) % 3 == 0) out += ',';
+        out += digits[i];
+    }
+    return out;
+}
+
+std::string ratio(double a, double b) { return b > 0 ? fixed(a / b, 2) : "–"; }
+
+std::string to_markdown(const Table& table) {
+    auto line = [](const std::vector<std::string>& cells) {
+        std::string text = "|";
+        for (const std::string& cell : cells) text += " " + cell + " |";
+        return text + "\n";
+    };
+    std::string out = line(table.header);
+    std::vector<std::string> rule;
+    for (std::size_t c = 0; c < table.header.size(); ++c) {
+        rule.push_back(c < table.right.size() && table.right[c] ? "---:" : "---");
+    }
+    out += line(rule);
+    for (const std::vector<std::string>& row : table.rows) out += line(row);
+    return out;
+}
+
+std::vector<AccelKind> compared_accels() {
+#ifdef SOMBRA_HAVE_EMBREE
+    return {AccelKind::Bvh, AccelKind::Embree};
+#else
+    return {AccelKind::Bvh};
+#endif
+}
+
+ImageAgreement compare_films(const Film& a, const Film& b) {
+    ImageAgreement agreement;
+    if (a.rgb.size() != b.rgb.size()) return agreement;
+    agreement.pixels = a.rgb.size() / 3;
+    for (std::size_t p = 0; p < agreement.pixels; ++p) {
+        bool same = true;
+        for (std::size_t c = 3 * p; c < 3 * p + 3; ++c) {
+            const float scale = std::max({std::fabs(a.rgb[c]), std::fabs(b.rgb[c]), 1e-2f});
+            same = same && std::fabs(a.rgb[c] - b.rgb[c]) <= 1e-3f * scale;
+        }
+        agreement.equal += same;
+    }
+    return agreement;
+}
+
+std::uint64_t peak_rss_bytes() {
+    rusage usage{};
+    getrusage(RUSAGE_SELF, &usage);
+    return static_cast<std::uint64_t>(usage.ru_maxrss) * 1024u;  // Linux reports KiB
+}
+
+}  // namespace sombra::bench

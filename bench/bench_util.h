@@ -1,0 +1,61 @@
+// Small helpers shared by the benchmarks: timing, medians, number formatting,
+// Markdown tables, and the image check that runs before any timing.
+#pragma once
+
+#include <chrono>
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "accel/accel.h"
+#include "render/film.h"
+
+namespace sombra::bench {
+
+using Clock = std::chrono::steady_clock;
+
+inline double seconds_since(Clock::time_point start) {
+    return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+// The median of the values (the mean of the middle two for an even count); 0 for none.
+double median(std::vector<double> values);
+
+// `value` with `digits` digits after the point, e.g. fixed(0.1234, 3) = "0.123".
+std::string fixed(double value, int digits);
+// Seconds with three significant digits at least (0.00123, 0.0456, 1.23, 12.3).
+std::string seconds(double s);
+// An integer with thousands separators: 871414 → "871,414".
+std::string thousands(std::uint64_t n);
+// a / b as "1.23" (two decimals), or "–" when b is zero.
+std::string ratio(double a, double b);
+
+// A Markdown table; columns listed in `right` are right-aligned (numbers).
+struct Table {
+    std::vector<std::string> header;
+    std::vector<bool> right;
+    std::vector<std::vector<std::string>> rows;
+};
+std::string to_markdown(const Table& table);
+
+// The backends the benchmarks compare: bvh first, then embree when built in.
+std::vector<AccelKind> compared_accels();
+
+// Pixel-by-pixel agreement of two films of the same size. Two pixels agree
+// when every channel does to 1e-3 relative (below what an 8-bit PNG shows,
+// above the rounding of a slightly different t or barycentric).
+struct ImageAgreement {
+    std::size_t pixels = 0;
+    std::size_t equal = 0;
+    double fraction() const { return pixels == 0 ? 1.0 : double(equal) / double(pixels); }
+};
+ImageAgreement compare_films(const Film& a, const Film& b);
+
+// The benchmark refuses to time backends whose images agree in fewer pixels.
+inline constexpr double kMinEqualFraction = 0.999;
+
+// The process's peak resident set size so far, in bytes.
+std::uint64_t peak_rss_bytes();
+
+}  // namespace sombra::bench

@@ -1,0 +1,87 @@
+#include "growth_bench.h"
+
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+
+#include "bench_util.h"
+#include "core/error.h"
+#include "measure.h"
+#include "scene/quicklook.h"
+
+namespace sombra::bench {
+
+namespace {
+
+// One mesh's numbers: the table row and the CSV lines.
+struct GrowthPoint {
+    std::string name;
+    double load_seconds = 0;
+    std::uint64_t peak_rss = 0;
+    SceneMeasurement m;
+};
+
+std::string megabytes(double bytes) { return fixed(bytes * 1e-6, 1); }
+
+void write_csv(const std::string& path, const std::vector<GrowthPoint>& points) {
+    std::ofstream csv(path);
+    csv << "mesh,triangles,load_seconds,accel,build_seconds,render_seconds,accel_bytes,rays\n";
+    for (const GrowthPoint& p : points) {
+        for (const BackendTiming& b : p.m.backends) {
+            csv << p.name << ',' << p.m.triangles << ',' << p.load_seconds << ',' << accel_name(b.kind) << ','
+                << b.build_seconds << ',' << b.render_seconds << ',' << b.accel_bytes << ',' << b.rays << '\n';
+        }
+    }
+    if (!csv) throw Error(path, "could not write the CSV file");
+}
+
+}  // namespace
+
+void run_growth_bench(const std::vector<std::string>& model_files, const GrowthOptions& o, std::ostream& out) {
+    RenderSettings settings;
+    settings.width = o.width;
+    settings.height = o.height;
+    settings.spp = 1;
+    if (const std::string problem = render_settings_problem(settings); !problem.empty()) throw Error("--width/--height", problem);
+
+    std::vector<GrowthPoint> points;
+    for (const std::string& file : model_files) {
+        GrowthPoint p;
+        p.name = std::filesystem::path(file).stem().string();
+        std::cerr << "sombra-bench: " << p.name << ": loading\n";
+        Diagnostics diag;
+        const auto load_start = Clock::now();
+        const Scene scene = make_quicklook_scene(file, diag);
+        p.load_seconds = seconds_since(load_start);
+        std::cerr << "sombra-bench: " << p.name << ": " << thousands(scene.geometry.triangle_count())
+                  << " triangles; checking the images agree, then " << o.reps << " rounds\n";
+        p.m = measure_scene(scene, settings, o.reps, file);
+        p.peak_rss = peak_rss_bytes();
+        points.push_back(std::move(p));
+    }
+
+    const std::vector<AccelKind> kinds = compared_accels();
+    Table table;
+    table.header = {"mesh", "triangles", "load s"};
+    for (const char* what : {"build s", "render s", "MB", "bytes/tri"}) {
+        for (const AccelKind kind : kinds) table.header.push_back(std::string(accel_name(kind)) + " " + what);
+    }
+    table.header.push_back("peak RSS MB");
+    table.right.assign(table.header.size(), true);
+    table.right[0] = false;
+    for (const GrowthPoint& p : points) {
+        std::vector<std::string> row = {p.name, thousands(p.m.triangles), seconds(p.load_seconds)};
+        for (const BackendTiming& b : p.m.backends) row.push_back(seconds(b.build_seconds));
+        for (const BackendTiming& b : p.m.backends) row.push_back(seconds(b.render_seconds));
+        for (const BackendTiming& b : p.m.backends) row.push_back(megabytes(double(b.accel_bytes)));
+        for (const BackendTiming& b : p.m.backends) {
+            row.push_back(p.m.triangles > 0 ? fixed(double(b.accel_bytes) / double(p.m.triangles), 1) : "–");
+        }
+        row.push_back(megabytes(double(p.peak_rss)));
+        table.rows.push_back(std::move(row));
+    }
+    out << to_markdown(table);
+    if (!o.csv.empty()) write_csv(o.csv, points);
+}
+
+}  // namespace sombra::bench

@@ -1,0 +1,63 @@
+// sombra-bench: how fast sombra's BVH is next to Embree, how fast its OBJ
+// loader is next to tinyobjloader, and how the costs grow with the mesh.
+// Tables go to stdout (Markdown), progress to stderr; tools/bench.sh runs
+// all three and writes docs/performance.md.
+#include <CLI/CLI.hpp>
+#include <iostream>
+#include <string>
+#include <vector>
+
+#include "core/error.h"
+#include "growth_bench.h"
+#include "load_bench.h"
+#include "scene_bench.h"
+
+int main(int argc, char** argv) {
+    using namespace sombra::bench;
+    CLI::App app{"sombra-bench: sombra's BVH against Embree, its OBJ loader against tinyobjloader, cost growth",
+                 "sombra-bench"};
+    app.require_subcommand(1);
+
+    SceneBenchOptions scene_options;
+    std::vector<std::string> scene_files;
+    CLI::App* scenes = app.add_subcommand("scenes", "Render scenes with every backend (bvh, embree), alternating");
+    scenes->add_option("scene", scene_files, "Scene files (.json)")->required()->check(CLI::ExistingFile);
+    scenes->add_option("--reps", scene_options.reps, "Timed rounds per backend (median reported)")
+        ->check(CLI::Range(1, 1000))
+        ->capture_default_str();
+    scenes->add_option("--width", scene_options.width, "Image width (overrides the scenes)");
+    scenes->add_option("--height", scene_options.height, "Image height (overrides the scenes)");
+
+    int load_reps = 5;
+    std::string obj_file;
+    CLI::App* load = app.add_subcommand("load", "Load an OBJ with sombra and with tinyobjloader, alternating");
+    load->add_option("obj", obj_file, "OBJ file")->required()->check(CLI::ExistingFile);
+    load->add_option("--reps", load_reps, "Timed rounds per loader (median reported)")
+        ->check(CLI::Range(1, 1000))
+        ->capture_default_str();
+
+    GrowthOptions growth_options;
+    std::vector<std::string> model_files;
+    CLI::App* growth = app.add_subcommand("growth", "Build and render cost against triangle count (quick-look view)");
+    growth->add_option("model", model_files, "Meshes (.obj, .ply), smallest first")->required()->check(CLI::ExistingFile);
+    growth->add_option("--reps", growth_options.reps, "Timed rounds per backend (median reported)")
+        ->check(CLI::Range(1, 1000))
+        ->capture_default_str();
+    growth->add_option("--width", growth_options.width, "Image width")->capture_default_str();
+    growth->add_option("--height", growth_options.height, "Image height")->capture_default_str();
+    growth->add_option("--csv", growth_options.csv, "Also write the numbers as CSV to this file");
+
+    CLI11_PARSE(app, argc, argv);
+    try {
+        if (*scenes) run_scene_bench(scene_files, scene_options, std::cout);
+        if (*load) run_load_bench(obj_file, load_reps, std::cout);
+        if (*growth) run_growth_bench(model_files, growth_options, std::cout);
+    } catch (const sombra::Error& e) {
+        std::cerr << "sombra-bench: error: " << e.what() << '\n';
+        return 1;
+    } catch (const std::bad_alloc&) {
+        std::cerr << "sombra-bench: error: out of memory\n";
+        return 1;
+    }
+    return 0;
+}

@@ -1,0 +1,86 @@
+#include "measure.h"
+
+#include <utility>
+
+#include "core/error.h"
+#include "render/camera.h"
+#include "render/render.h"
+
+namespace sombra::bench {
+
+namespace {
+
+struct Round {
+    double build_seconds = 0;
+    double render_seconds = 0;
+    std::size_t accel_bytes = 0;
+    RenderOutput output;
+};
+
+Round build_and_render(const Scene& scene, const RenderSettings& settings, AccelKind kind) {
+    Round round;
+    const auto build_start = Clock::now();
+    const Accel accel = make_accel(scene.geometry, kind);
+    round.build_seconds = seconds_since(build_start);
+    round.accel_bytes = accel_memory_bytes(accel);
+
+    RenderJob job;
+    job.scene = &scene;
+    job.accel = &accel;
+    job.camera = make_camera(scene.camera, settings.width, settings.height);
+    job.settings = settings;
+    RenderProgress progress;
+    const auto render_start = Clock::now();
+    round.output = render_image(job, progress);
+    round.render_seconds = seconds_since(render_start);
+    return round;
+}
+
+}  // namespace
+
+SceneMeasurement measure_scene(const Scene& scene, const RenderSettings& settings, int reps, const std::string& name) {
+    const std::vector<AccelKind> kinds = compared_accels();
+    SceneMeasurement m;
+    m.triangles = scene.geometry.triangle_count();
+
+    // The check, which also warms caches and thread pools for the rounds.
+    std::vector<Film> films;
+    for (const AccelKind kind : kinds) {
+        Round round = build_and_render(scene, settings, kind);
+        BackendTiming timing;
+        timing.kind = kind;
+        timing.rays = round.output.counters.camera_rays + round.output.counters.shadow_rays;
+        timing.accel_bytes = round.accel_bytes;
+        m.backends.push_back(timing);
+        films.push_back(std::move(round.output.film));
+    }
+    m.agreement.pixels = films[0].rgb.size() / 3;
+    m.agreement.equal = m.agreement.pixels;
+    for (std::size_t k = 1; k < films.size(); ++k) {
+        const ImageAgreement a = compare_films(films[0], films[k]);
+        if (a.fraction() < m.agreement.fraction()) m.agreement = a;
+        if (a.fraction() < kMinEqualFraction) {
+            throw Error(name, std::string(accel_name(kinds[k])) + " and " + std::string(accel_name(kinds[0])) +
+                                  " images differ in " + thousands(a.pixels - a.equal) + " of " +
+                                  thousands(a.pixels) + " pixels (more than 0.1 %): not timing a wrong result");
+        }
+    }
+    films.clear();
+
+    std::vector<std::vector<double>> builds(kinds.size()), renders(kinds.size());
+    for (int rep = 0; rep < reps; ++rep) {
+        for (std::size_t i = 0; i < kinds.size(); ++i) {
+            const std::size_t k = rep % 2 == 0 ? i : kinds.size() - 1 - i;
+            const Round round = build_and_render(scene, settings, kinds[k]);
+            builds[k].push_back(round.build_seconds);
+            renders[k].push_back(round.render_seconds);
+        }
+    }
+    for (std::size_t k = 0; k < kinds.size(); ++k) {
+        m.backends[k].build_seconds = median(builds[k]);
+        m.backends[k].render_seconds = median(renders[k]);
+    }
+    return m;
+}
+
+}  // namespace sombra::bench

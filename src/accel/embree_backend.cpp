@@ -1,0 +1,185 @@
+// The Embree 3 backend: one device and one triangle geometry per Accel,
+// queried with rtcIntersect1 / rtcOccluded1.
+#include "accel/embree_backend.h"
+
+#include <embree3/rtcore.h>
+
+#include <atomic>
+#include <cmath>
+#include <cstdint>
+#include <mutex>
+#include <string>
+#include <vector>
+
+#include "accel/accel.h"
+#include "accel/triangle.h"
+#include "core/error.h"
+
+namespace sombra {
+
+struct EmbreeScene {
+    RTCDevice device = nullptr;
+    RTCScene scene = nullptr;
+    // Net bytes Embree has allocated on `device` (its memory monitor adds
+    // allocations and subtracts frees, from any build thread).
+    std::atomic<std::int64_t> embree_bytes{0};
+    // x, y, z per vertex plus one float: Embree reads the last vertex with a
+    // 16-byte load.
+    std::vector<float> vertices;
+    // Only when some triangles cannot be hit: the ones handed to Embree and
+    // their indices in the mesh (Embree's primID → TriangleMesh index).
+    // Both empty when every triangle is kept: Embree then reads the mesh's
+    // own index array and primID is the triangle index.
+    std::vector<Index3> kept_triangles;
+    std::vector<std::uint32_t> mesh_index_of;
+    // The first error Embree reported (it may report from build threads).
+    std::mutex error_mutex;
+    std::string first_error;
+
+    EmbreeScene() = default;
+    EmbreeScene(const EmbreeScene&) = delete;
+    EmbreeScene& operator=(const EmbreeScene&) = delete;
+    ~EmbreeScene() {
+        if (scene != nullptr) rtcReleaseScene(scene);
+        if (device != nullptr) rtcReleaseDevice(device);
+    }
+};
+
+namespace {
+
+bool count_memory(void* user, ssize_t bytes, bool /*post*/) {
+    static_cast<EmbreeScene*>(user)->embree_bytes.fetch_add(bytes, std::memory_order_relaxed);
+    return true;  // never refuse an allocation
+}
+
+void record_error(void* user, RTCError /*code*/, const char* message) {
+    auto* s = static_cast<EmbreeScene*>(user);
+    const std::lock_guard lock(s->error_mutex);
+    if (s->first_error.empty()) s->first_error = message != nullptr ? message : "unknown error";
+}
+
+void throw_if_failed(EmbreeScene& s, const char* doing) {
+    const RTCError code = rtcGetDeviceError(s.device);
+    if (code == RTC_ERROR_NONE) return;
+    const std::lock_guard lock(s.error_mutex);
+    throw Error("embree", std::string(doing) + " failed: " +
+                              (s.first_error.empty() ? "error " + std::to_string(int(code)) : s.first_error));
+}
+
+// Embree accepts t <= tfar; sombra wants t < tmax. The float just below tmax
+// makes the two agree (and turns +inf into FLT_MAX).
+float embree_tfar(float tmax) { return std::nextafter(tmax, 0.0f); }
+
+RTCRay make_rtc_ray(const Ray& ray) {
+    RTCRay r;
+    r.org_x = ray.origin.x;
+    r.org_y = ray.origin.y;
+    r.org_z = ray.origin.z;
+    r.tnear = 0.0f;  // Embree accepts t > tnear, as sombra wants t > 0
+    r.dir_x = ray.dir.x;
+    r.dir_y = ray.dir.y;
+    r.dir_z = ray.dir.z;
+    r.time = 0.0f;
+    r.tfar = embree_tfar(ray.tmax);
+    r.mask = 0xffffffffu;
+    r.id = 0;
+    r.flags = 0;
+    return r;
+}
+
+}  // namespace
+
+std::shared_ptr<const EmbreeScene> make_embree_scene(const TriangleMesh& mesh) {
+    auto s = std::make_shared<EmbreeScene>();
+    s->device = rtcNewDevice(nullptr);
+    if (s->device == nullptr) {
+        throw Error("embree", "could not create a device (error " + std::to_string(int(rtcGetDeviceError(nullptr))) + ")");
+    }
+    rtcSetDeviceErrorFunction(s->device, record_error, s.get());
+    rtcSetDeviceMemoryMonitorFunction(s->device, count_memory, s.get());
+
+    // The triangles sombra can hit, by the same test as make_bvh.
+    const std::size_t vertex_count = mesh.positions.size();
+    std::vector<std::uint32_t> kept;
+    bool all_kept = true;
+    for (std::size_t i = 0; i < mesh.triangles.size(); ++i) {
+        const Index3& t = mesh.triangles[i];
+        const bool hittable = t[0] < vertex_count && t[1] < vertex_count && t[2] < vertex_count &&
+                              is_hittable(make_triangle_edges(mesh.positions[t[0]], mesh.positions[t[1]],
+                                                              mesh.positions[t[2]]));
+        if (hittable) kept.push_back(static_cast<std::uint32_t>(i));
+        all_kept = all_kept && hittable;
+    }
+    if (!all_kept) {
+        s->kept_triangles.reserve(kept.size());
+        for (std::uint32_t i : kept) s->kept_triangles.push_back(mesh.triangles[i]);
+        s->mesh_index_of = std::move(kept);
+    }
+    const std::size_t triangle_count = all_kept ? mesh.triangles.size() : s->kept_triangles.size();
+
+    s->scene = rtcNewScene(s->device);
+    throw_if_failed(*s, "creating the scene");
+    if (triangle_count > 0) {
+        s->vertices.resize(3 * vertex_count + 1, 0.0f);
+        for (std::size_t i = 0; i < vertex_count; ++i) {
+            s->vertices[3 * i + 0] = mesh.positions[i].x;
+            s->vertices[3 * i + 1] = mesh.positions[i].y;
+            s->vertices[3 * i + 2] = mesh.positions[i].z;
+        }
+        const Index3* indices = all_kept ? mesh.triangles.data() : s->kept_triangles.data();
+        RTCGeometry geometry = rtcNewGeometry(s->device, RTC_GEOMETRY_TYPE_TRIANGLE);
+        rtcSetSharedGeometryBuffer(geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, s->vertices.data(), 0,
+                                   3 * sizeof(float), vertex_count);
+        rtcSetSharedGeometryBuffer(geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, indices, 0, sizeof(Index3),
+                                   triangle_count);
+        rtcCommitGeometry(geometry);
+        rtcAttachGeometry(s->scene, geometry);  // geometry ID 0
+        rtcReleaseGeometry(geometry);           // the scene holds it now
+        throw_if_failed(*s, "setting up the triangles");
+    }
+    // Default scene flags and build quality: Embree as most users run it.
+    rtcCommitScene(s->scene);
+    throw_if_failed(*s, "building the BVH");
+    return s;
+}
+
+bool intersect_embree(const EmbreeScene& s, const Ray& ray, Hit& hit) {
+    if (!(ray.tmax > 0.0f)) return false;
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    RTCRayHit rh;
+    rh.ray = make_rtc_ray(ray);
+    rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+    rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+    rtcIntersect1(s.scene, &context, &rh);
+    if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return false;
+
+    // Embree's u, v are the weights of corners 1 and 2, as sombra's b1, b2.
+    // Its division can leave them a rounding step outside the triangle;
+    // clamp as intersect_triangle does, so b0 = 1 − b1 − b2 ≥ 0.
+    float u = rh.hit.u > 0.0f ? (rh.hit.u < 1.0f ? rh.hit.u : 1.0f) : 0.0f;
+    float v = rh.hit.v > 0.0f ? rh.hit.v : 0.0f;
+    if (u + v > 1.0f) v = 1.0f - u;
+    hit.t = rh.ray.tfar;
+    hit.b1 = u;
+    hit.b2 = v;
+    hit.triangle = s.mesh_index_of.empty() ? rh.hit.primID : s.mesh_index_of[rh.hit.primID];
+    return true;
+}
+
+bool occluded_embree(const EmbreeScene& s, const Ray& ray) {
+    if (!(ray.tmax > 0.0f)) return false;
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    RTCRay r = make_rtc_ray(ray);
+    rtcOccluded1(s.scene, &context, &r);
+    return r.tfar < 0.0f;  // Embree sets tfar to −inf when something is hit
+}
+
+std::size_t embree_memory_bytes(const EmbreeScene& s) {
+    const std::int64_t embree = s.embree_bytes.load(std::memory_order_relaxed);
+    return static_cast<std::size_t>(embree > 0 ? embree : 0) + s.vertices.size() * sizeof(float) +
+           s.kept_triangles.size() * sizeof(Index3) + s.mesh_index_of.size() * sizeof(std::uint32_t);
+}
+
+}  // namespace sombra

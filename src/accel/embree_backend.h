@@ -1,0 +1,54 @@
+// The Embree yardstick (`--accel embree`): Intel's Embree 3 answers the same
+// two questions as sombra's BVH, so the BVH's speed can be measured against a
+// production kernel on the same scenes with the same shading code. Compiled
+// only when CMake finds Embree 3 (then SOMBRA_HAVE_EMBREE is defined).
+//
+// Embree is used as it comes: default scene flags (RTC_SCENE_FLAG_NONE, so
+// not the watertight "robust" mode) and the default build quality
+// (RTC_BUILD_QUALITY_MEDIUM), one triangle geometry over the whole mesh.
+// Hits agree with the BVH's to float rounding, not bit for bit: Embree's
+// Möller–Trumbore variant rounds differently, is not watertight at edges, and
+// does not send ties at equal t to the lower triangle index.
+#pragma once
+
+#ifdef SOMBRA_HAVE_EMBREE
+
+#include <cstddef>
+#include <memory>
+
+#include "core/ray.h"
+#include "scene/mesh.h"
+
+namespace sombra {
+
+struct Hit;
+
+// An Embree device and committed scene over one mesh, plus the buffers shared
+// with Embree; opaque outside embree_backend.cpp.
+struct EmbreeScene;
+
+// Builds Embree's BVH over the triangles of `mesh` that sombra can hit (the
+// same ones make_bvh keeps: in-range indices, finite corners, non-zero area).
+// The mesh must outlive the result. Throws Error("embree", ...) when Embree
+// fails (unsupported CPU, out of memory).
+std::shared_ptr<const EmbreeScene> make_embree_scene(const TriangleMesh& mesh);
+
+// Closest hit with 0 < t < ray.tmax; (b1, b2) are Embree's (u, v), which are
+// the weights of the triangle's second and third corner as in sombra, and
+// hit.triangle is the index into mesh.triangles. Returns false and leaves
+// `hit` untouched on a miss. The ray must be traceable (finite origin,
+// finite non-zero direction): accel.cpp checks that before calling.
+bool intersect_embree(const EmbreeScene& scene, const Ray& ray, Hit& hit);
+
+// True when any triangle is hit with 0 < t < ray.tmax.
+bool occluded_embree(const EmbreeScene& scene, const Ray& ray);
+
+// Bytes held for the structure beyond the mesh itself: what Embree allocated
+// (summed by a device memory monitor, net of frees, after the commit) plus
+// sombra's copies handed to Embree (the padded vertex buffer and, when some
+// triangles were left out, the filtered index buffer and its index map).
+std::size_t embree_memory_bytes(const EmbreeScene& scene);
+
+}  // namespace sombra
+
+#endif  // SOMBRA_HAVE_EMBREE
