@@ -1,0 +1,144 @@
+// What each fuzz target does with one input, shared with the regression test
+// (src/scene/fuzz_regression_test.cpp) so that a reproducer replays exactly as
+// the fuzzer ran it: the bytes become files in a scratch folder, the loader
+// reads them by path, and the result is checked against the invariants the
+// renderer relies on. A sombra::Error is the expected outcome for a bad input;
+// anything else escaping is a bug.
+#pragma once
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <string>
+#include <string_view>
+
+#include "core/error.h"
+#include "scene/mesh_file.h"
+#include "scene/scene.h"
+#include "scene/scene_file.h"
+
+namespace sombra::fuzz {
+
+namespace fs = std::filesystem;
+
+// fuzz_obj's input is OBJ text, optionally followed by this line and the text
+// of the MTL file "m.mtl" beside it (reached through "mtllib m.mtl").
+inline constexpr std::string_view kMtlSeparator = "\n#MTL\n";
+inline constexpr const char* kMtlName = "m.mtl";
+
+enum class Target { Obj, Ply, Scene };
+
+inline void write_file(const fs::path& path, std::string_view bytes) {
+    std::FILE* file = std::fopen(path.c_str(), "wb");
+    if (!file) throw std::runtime_error("fuzz harness: cannot write " + path.string());
+    const bool ok = std::fwrite(bytes.data(), 1, bytes.size(), file) == bytes.size();
+    if (std::fclose(file) != 0 || !ok) throw std::runtime_error("fuzz harness: cannot write " + path.string());
+}
+
+// The meshes fuzz_scene's objects can name ("file": "m.obj" or "m.ply"):
+// a quad with a normal and an MTL material, and a PLY triangle.
+inline void write_scene_meshes(const fs::path& folder) {
+    write_file(folder / "m.obj",
+               "mtllib m.mtl\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nvn 0 0 1\nusemtl red\nf 1//1 2//1 3//1 4//1\n");
+    write_file(folder / "m.mtl", "newmtl red\nKd 0.8 0.1 0.1\nKs 0.1 0.1 0.1\nNs 10\nKe 0 0 0\n");
+    write_file(folder / "m.ply",
+               "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
+               "element face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n");
+}
+
+// Writes one input's files into `folder` and returns the file to load.
+inline fs::path stage_input(Target target, std::string_view bytes, const fs::path& folder) {
+    switch (target) {
+        case Target::Obj: {
+            const std::size_t split = bytes.find(kMtlSeparator);
+            write_file(folder / "fuzz.obj", bytes.substr(0, split));
+            std::error_code ec;
+            fs::remove(folder / kMtlName, ec);
+            if (split != std::string_view::npos) write_file(folder / kMtlName, bytes.substr(split + kMtlSeparator.size()));
+            return folder / "fuzz.obj";
+        }
+        case Target::Ply: write_file(folder / "fuzz.ply", bytes); return folder / "fuzz.ply";
+        case Target::Scene:
+            if (!fs::exists(folder / "m.ply")) write_scene_meshes(folder);
+            write_file(folder / "scene.json", bytes);
+            return folder / "scene.json";
+    }
+    return {};
+}
+
+inline bool in_unit_range(Vec3 c) { return min_component(c) >= 0 && max_component(c) <= 1; }
+
+// "" when `m` is usable by the renderer with `materials`, else what is wrong.
+inline std::string mesh_problem(const TriangleMesh& m, std::size_t material_count) {
+    if (m.triangles.empty()) return "no triangles";
+    for (const Vec3& p : m.positions)
+        if (!is_finite(p)) return "non-finite position";
+    for (const Index3& t : m.triangles)
+        for (std::uint32_t i : t)
+            if (i >= m.positions.size()) return "triangle index out of range";
+    if (m.material_ids.size() != m.triangles.size()) return "material_ids and triangles differ in size";
+    for (std::uint32_t id : m.material_ids)
+        if (id >= material_count) return "material id out of range";
+    if (!m.normal_indices.empty() && m.normal_indices.size() != m.triangles.size())
+        return "normal_indices and triangles differ in size";
+    if (m.normal_indices.empty() && !m.normals.empty()) return "normals without normal_indices";
+    for (const Index3& t : m.normal_indices)
+        for (std::uint32_t i : t)
+            if (i != kNoNormal && i >= m.normals.size()) return "normal index out of range";
+    for (const Vec3& n : m.normals)
+        if (!is_finite(n) || std::fabs(length(n) - 1) > 1e-3f) return "normal not of unit length";
+    return {};
+}
+
+inline std::string material_problem(const Material& m) {
+    if (!in_unit_range(m.kd) || !in_unit_range(m.ks)) return "material '" + m.name + "': kd or ks outside [0, 1]";
+    if (!is_finite(m.ke) || min_component(m.ke) < 0) return "material '" + m.name + "': ke not finite and >= 0";
+    if (!std::isfinite(m.shininess) || m.shininess < 0) return "material '" + m.name + "': bad shininess";
+    return {};
+}
+
+inline std::string loaded_mesh_problem(const LoadedMesh& loaded) {
+    for (const Material& m : loaded.materials)
+        if (std::string problem = material_problem(m); !problem.empty()) return problem;
+    return mesh_problem(loaded.mesh, loaded.materials.size());
+}
+
+inline std::string scene_problem(const Scene& scene) {
+    if (std::string problem = render_settings_problem(scene.render); !problem.empty()) return problem;
+    if (!is_finite(scene.background) || min_component(scene.background) < 0) return "bad background";
+    const CameraSpec& c = scene.camera;
+    if (c.basis.has_value() == c.look_at.has_value()) return "not exactly one camera form";
+    if (c.basis && !(is_finite(c.basis->origin) && is_finite(c.basis->left) && is_finite(c.basis->up) &&
+                     is_finite(c.basis->forward)))
+        return "non-finite camera basis";
+    if (c.look_at && !(is_finite(c.look_at->origin) && is_finite(c.look_at->look_at) && is_finite(c.look_at->up) &&
+                       c.look_at->fov_degrees > 0 && c.look_at->fov_degrees < 180))
+        return "bad look-at camera";
+    for (const PointLight& light : scene.lights)
+        if (!is_finite(light.position) || !is_finite(light.intensity) || min_component(light.intensity) < 0)
+            return "bad light";
+    for (const Material& m : scene.materials)
+        if (std::string problem = material_problem(m); !problem.empty()) return problem;
+    return mesh_problem(scene.geometry, scene.materials.size());
+}
+
+// Loads one input as the fuzz target for `target` does. Returns "" when it
+// loaded and passed every check, or when the loader threw sombra::Error (the
+// right answer to a bad input); otherwise what is wrong with the result.
+// Any other exception propagates: that is a bug too.
+inline std::string run_input(Target target, std::string_view bytes, const fs::path& folder) {
+    const fs::path path = stage_input(target, bytes, folder);
+    Diagnostics diag;
+    try {
+        switch (target) {
+            case Target::Obj: return loaded_mesh_problem(load_obj(path, diag));
+            case Target::Ply: return loaded_mesh_problem(load_ply(path, diag));
+            case Target::Scene: return scene_problem(load_scene_file(path, diag));
+        }
+    } catch (const Error&) {
+        return {};
+    }
+    return {};
+}
+
+}  // namespace sombra::fuzz

@@ -1,0 +1,129 @@
+#!/usr/bin/env bash
+# Builds the libFuzzer targets (CMake preset "fuzz", clang) and runs each for
+# a given time, one after the other, with its seed corpus.
+#
+#   tools/fuzz.sh [SECONDS_PER_TARGET] [TARGET...]     (default: 60 s; obj ply scene)
+#
+# Targets: obj (OBJ + MTL), ply, scene (scene JSON down to loaded meshes); see
+# fuzz/fuzz_harness.h. Corpora grow in build/fuzz/corpus/TARGET (seeded from
+# ../shared/objsuite, the small ../shared/models, scenes/ and ../shared/scenes;
+# nothing is written into the repository). Exits non-zero when a target finds
+# a crash, leak, timeout or out-of-memory, and prints the reproducer's path:
+# replay it with  build/fuzz/fuzz/fuzz_TARGET REPRODUCER  and, once fixed, add it
+# to fuzz/regressions/TARGET/ (src/scene/fuzz_regression_test.cpp replays those).
+# Every run is appended to build/fuzz/runs.tsv (date, target, seconds run, result, inputs run).
+set -euo pipefail
+
+root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+seconds="${1:-60}"
+[ $# -gt 0 ] && shift
+targets=("$@")
+[ ${#targets[@]} -gt 0 ] || targets=(obj ply scene)
+case "$seconds" in
+  '' | *[!0-9]*) echo "usage: tools/fuzz.sh [SECONDS_PER_TARGET] [obj|ply|scene ...]" >&2; exit 2 ;;
+esac
+for t in "${targets[@]}"; do
+  case "$t" in obj | ply | scene) ;; *) echo "fuzz.sh: unknown target '$t' (obj, ply, scene)" >&2; exit 2 ;; esac
+done
+
+shared="${SOMBRA_SHARED_DIR:-$root/../shared}"
+build="$root/build/fuzz"
+cd "$root"
+cmake --preset fuzz >/dev/null
+cmake --build --preset fuzz
+
+# The targets write each input to files under TMPDIR: memory, not disk.
+scratch_base=/dev/shm
+[ -d "$scratch_base" ] && [ -w "$scratch_base" ] || scratch_base="${TMPDIR:-/tmp}"
+scratch="$(mktemp -d "$scratch_base/sombra-fuzz.XXXXXX")"
+trap 'rm -rf "$scratch"' EXIT
+
+# Copies a seed into a corpus folder unless it is there already.
+add_seed() {  # add_seed CORPUS NAME < bytes
+  local out="$1/seed-$2"
+  if [ -e "$out" ]; then cat >/dev/null; else cat >"$out"; fi
+}
+
+# OBJ seeds: each OBJ with its first MTL file appended after the "#MTL" line
+# (fuzz_harness.h), its mtllib pointed at the m.mtl the target writes.
+seed_obj() {
+  local corpus="$1" obj name mtl
+  local files=()
+  [ -d "$shared/objsuite" ] && while IFS= read -r -d '' obj; do files+=("$obj"); done \
+    < <(find "$shared/objsuite" -name '*.obj' -print0)
+  [ -d "$shared/models" ] && while IFS= read -r -d '' obj; do files+=("$obj"); done \
+    < <(find "$shared/models" -name '*.obj' -size -400k -print0)
+  for obj in "${files[@]}" "$root"/scenes/models/*.obj; do
+    name="$(basename "$(dirname "$obj")")-$(basename "$obj" .obj | tr -c 'A-Za-z0-9_.\n-' '_')"
+    mtl=""
+    while read -r lib; do
+      [ -f "$(dirname "$obj")/$lib" ] && { mtl="$(dirname "$obj")/$lib"; break; }
+    done < <(sed -n 's/^[[:space:]]*mtllib[[:space:]]\+//p' "$obj" | tr -d '\r' | tr ' ' '\n')
+    if [ -n "$mtl" ]; then
+      { sed 's/^\([[:space:]]*\)mtllib[[:space:]].*/\1mtllib m.mtl/' "$obj"; printf '\n#MTL\n'; cat "$mtl"; } |
+        add_seed "$corpus" "$name"
+    else
+      add_seed "$corpus" "$name" <"$obj"
+    fi
+  done
+}
+
+# PLY seeds: ascii and both binary byte orders, with and without normals,
+# faces before vertices, an extra element; plus the start of the dragon's header.
+seed_ply() {
+  local corpus="$1" xyz='property float x\nproperty float y\nproperty float z\n'
+  local faces='element face 2\nproperty list uchar int vertex_indices\n'
+  printf "ply\nformat ascii 1.0\ncomment quad\nelement vertex 4\n${xyz}${faces}end_header\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n3 0 1 2\n3 0 2 3\n" |
+    add_seed "$corpus" ascii-quad
+  printf "ply\nformat ascii 1.0\nelement vertex 3\n${xyz}property float nx\nproperty float ny\nproperty float nz\nproperty uchar red\nelement face 1\nproperty list uchar uint vertex_index\nproperty int flags\nelement edge 1\nproperty int a\nproperty list ushort float b\nend_header\n0 0 0 0 0 1 255\n1 0 0 0 0 1 0\n0 1 0 0 0 1 9\n3 0 1 2 7\n5 2 1.5 -2\n" |
+    add_seed "$corpus" ascii-normals-extra
+  printf "ply\r\nformat ascii 1.0\r\nelement face 1\r\nproperty list uchar int vertex_indices\r\nelement vertex 5\r\n${xyz//\\n/\\r\\n}end_header\r\n5 0 1 2 3 4\r\n0 0 0\r\n2 0 0\r\n2 2 0\r\n1 0.5 0\r\n0 2 0\r\n" |
+    add_seed "$corpus" ascii-crlf-faces-first
+  local le_one='\x00\x00\x80\x3f' be_one='\x3f\x80\x00\x00' zero='\x00\x00\x00\x00'
+  printf "ply\nformat binary_little_endian 1.0\nelement vertex 3\n${xyz}element face 1\nproperty list uchar int vertex_indices\nend_header\n${zero}${zero}${zero}${le_one}${zero}${zero}${zero}${le_one}${zero}\x03\x00\x00\x00\x00\x01\x00\x00\x00\x02\x00\x00\x00" |
+    add_seed "$corpus" binary-le-triangle
+  printf "ply\nformat binary_big_endian 1.0\nelement vertex 3\n${xyz}property float nx\nproperty float ny\nproperty float nz\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n${zero}${zero}${zero}${zero}${zero}${be_one}${be_one}${zero}${zero}${zero}${zero}${be_one}${zero}${be_one}${zero}${zero}${zero}${be_one}\x03\x00\x00\x00\x00\x00\x00\x00\x01\x00\x00\x00\x02" |
+    add_seed "$corpus" binary-be-normals
+  [ -f "$shared/models/dragon.ply" ] && head -c 4096 "$shared/models/dragon.ply" | add_seed "$corpus" dragon-start
+  return 0
+}
+
+# Scene seeds: every scene with its objects' files pointed at the target's
+# m.obj, and once more at m.ply.
+seed_scene() {
+  local corpus="$1" json name
+  for json in "$root"/scenes/*.json "$shared"/scenes/*.json; do
+    [ -f "$json" ] || continue
+    name="$(basename "$json" .json)"
+    sed 's/"file"[[:space:]]*:[[:space:]]*"[^"]*"/"file": "m.obj"/g' "$json" | add_seed "$corpus" "$name-obj"
+    sed 's/"file"[[:space:]]*:[[:space:]]*"[^"]*"/"file": "m.ply"/g' "$json" | add_seed "$corpus" "$name-ply"
+  done
+}
+
+status=0
+for t in "${targets[@]}"; do
+  corpus="$build/corpus/$t"
+  artifacts="$build/artifacts/$t"
+  mkdir -p "$corpus" "$artifacts"
+  "seed_$t" "$corpus"
+  log="$build/fuzz_$t.log"
+  echo "fuzz.sh: fuzz_$t for $seconds s ($(find "$corpus" -type f | wc -l) inputs in $corpus; log $log)" >&2
+  before="$(find "$artifacts" -type f | sort)"
+  result=clean
+  started=$SECONDS
+  TMPDIR="$scratch" "$build/fuzz/fuzz_$t" "$corpus" -dict="$root/fuzz/$t.dict" \
+    -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 -max_len=65536 \
+    -artifact_prefix="$artifacts/" -print_final_stats=1 >"$log" 2>&1 || result=failed
+  elapsed=$((SECONDS - started))
+  runs="$(sed -n 's/^stat::number_of_executed_units:[[:space:]]*//p' "$log" | tail -1)"
+  printf '%s\t%s\t%s\t%s\t%s\n' "$(date -u +%FT%TZ)" "$t" "$elapsed" "$result" "${runs:-?}" >>"$build/runs.tsv"
+  if [ "$result" = clean ]; then
+    echo "fuzz.sh: fuzz_$t clean: ${runs:-?} inputs in $elapsed s" >&2
+    continue
+  fi
+  status=1
+  tail -n 40 "$log" >&2
+  found="$(comm -13 <(echo "$before") <(find "$artifacts" -type f | sort) | sed '/^$/d')"
+  echo "fuzz.sh: fuzz_$t FAILED; reproducer: ${found:-(none written; see $log)}" >&2
+done
+exit "$status"
