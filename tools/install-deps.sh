@@ -5,7 +5,7 @@ set -euo pipefail
 
 packages=(
   build-essential cmake ninja-build pkg-config
-  libtinyobjloader-dev   # OBJ + MTL parsing
+  libtinyobjloader-dev   # MTL parsing (and the OBJ load benchmark's yardstick)
   nlohmann-json3-dev     # scene JSON
   libtbb-dev             # parallel render loop and BVH build
   libpng-dev             # PNG output
