@@ -37,6 +37,17 @@ inline TriangleMesh random_soup(int count, std::uint32_t seed, float size = 0.15
     return mesh;
 }
 
+// The triangles the BVH's leaves hold, in leaf order (empty lanes left out).
+inline std::vector<std::uint32_t> bvh_triangles(const Bvh& bvh) {
+    std::vector<std::uint32_t> out;
+    for (const TriangleBlock& block : bvh.blocks) {
+        for (std::uint32_t t : block.triangle) {
+            if (t != kBvhEmptyLane) out.push_back(t);
+        }
+    }
+    return out;
+}
+
 // A point on a random triangle of `mesh` (its corners' random blend); at
 // least one triangle must have all its indices in range.
 inline Vec3 random_surface_point(const TriangleMesh& mesh, std::mt19937& rng) {

@@ -1,55 +1,93 @@
-// BVH traversal: iterative with a fixed stack, both children's boxes tested,
-// nearer first, pruned by the closest hit so far.
+// BVH traversal: iterative with a fixed stack; the eight child boxes of a
+// node tested at once with AVX (in two halves with SSE), the children entered nearest first, and boxes
+// pruned by the closest hit so far. Leaves are tested four triangles at a
+// time (bvh_triangle4.h); lanes near an edge fall back to the scalar test.
+#include <immintrin.h>
+
 #include <cassert>
 #include <cfloat>
 #include <cmath>
 #include <cstdint>
-#include <limits>
 
 #include "accel/accel.h"
 #include "accel/bvh.h"
+#include "accel/bvh_triangle4.h"
+#include "accel/triangle.h"
 
 namespace sombra {
 namespace {
 
-constexpr float kMiss = std::numeric_limits<float>::infinity();
 // The slab test rounds (1/d, b − o, and their product); scaling the exit
 // distance by 1 + 2γ₃ (pbrt's bound, here rounded up to 4 ulp) keeps it
 // conservative, so a hit the triangle test accepts on a box face, or a tie
 // at exactly the closest t, is never culled.
 constexpr float kBoxSlack = 1.0f + 4.0f * FLT_EPSILON;
 
-// What the slab test needs of a ray, computed once per ray.
+// What the slab test needs of a ray, computed once per ray, each value in
+// every lane: eight with AVX, four (the node in two halves) without.
+#ifdef __AVX__
+using Lanes = __m256;
+inline Lanes set1(float v) { return _mm256_set1_ps(v); }
+inline Lanes load(const float* p) { return _mm256_load_ps(p); }
+inline Lanes sub(Lanes a, Lanes b) { return _mm256_sub_ps(a, b); }
+inline Lanes mul(Lanes a, Lanes b) { return _mm256_mul_ps(a, b); }
+inline Lanes max(Lanes a, Lanes b) { return _mm256_max_ps(a, b); }
+inline Lanes min(Lanes a, Lanes b) { return _mm256_min_ps(a, b); }
+inline int le_mask(Lanes a, Lanes b) { return _mm256_movemask_ps(_mm256_cmp_ps(a, b, _CMP_LE_OQ)); }
+inline void store(float* p, Lanes a) { _mm256_store_ps(p, a); }
+constexpr int kLanes = 8;
+#else
+using Lanes = __m128;
+inline Lanes set1(float v) { return _mm_set1_ps(v); }
+inline Lanes load(const float* p) { return _mm_load_ps(p); }
+inline Lanes sub(Lanes a, Lanes b) { return _mm_sub_ps(a, b); }
+inline Lanes mul(Lanes a, Lanes b) { return _mm_mul_ps(a, b); }
+inline Lanes max(Lanes a, Lanes b) { return _mm_max_ps(a, b); }
+inline Lanes min(Lanes a, Lanes b) { return _mm_min_ps(a, b); }
+inline int le_mask(Lanes a, Lanes b) { return _mm_movemask_ps(_mm_cmple_ps(a, b)); }
+inline void store(float* p, Lanes a) { _mm_store_ps(p, a); }
+constexpr int kLanes = 4;
+#endif
+static_assert(kBvhWidth % kLanes == 0);
+
 struct BoxRay {
-    Vec3 origin;
-    Vec3 inv_dir;             // 1/d: ±∞ for a zero component, with the zero's sign
-    bool neg_x, neg_y, neg_z;  // the ray runs towards −axis: it enters through bmax
+    Lanes ox, oy, oz;
+    Lanes ix, iy, iz;  // 1/d: ±∞ for a zero component, with the zero's sign
+    // Offsets into BvhWideNode::bounds of the near planes per axis (the far
+    // plane's is the offset ^ kBvhWidth): a ray running towards −axis
+    // enters through the max plane.
+    int near_x, near_y, near_z;
 };
 
 BoxRay make_box_ray(const Ray& ray) {
     const Vec3 inv{1.0f / ray.dir.x, 1.0f / ray.dir.y, 1.0f / ray.dir.z};
-    return {ray.origin, inv, std::signbit(inv.x), std::signbit(inv.y), std::signbit(inv.z)};
+    constexpr int W = kBvhWidth;
+    return {set1(ray.origin.x), set1(ray.origin.y), set1(ray.origin.z), set1(inv.x), set1(inv.y), set1(inv.z),
+            std::signbit(inv.x) ? W : 0, std::signbit(inv.y) ? 3 * W : 2 * W, std::signbit(inv.z) ? 5 * W : 4 * W};
 }
 
-// Distance to where the ray enters the node's box within [0, tmax], or kMiss.
+// Writes the distances at which the ray enters the child boxes within
+// [0, tmax] to tnear[] and returns a bit mask of the children it enters.
 // Near and far planes are picked by the direction's sign, so a slab whose
-// plane holds the origin while d is zero along that axis gives NaN (0·∞), and
-// `a > b ? a : b` / `a < b ? a : b` keep b when a is NaN: that slab then
-// constrains nothing, and a ray lying in a box face still enters the box.
-inline float box_entry(const BvhNode& node, const BoxRay& r, float tmax) {
-    const float tx0 = ((r.neg_x ? node.bmax.x : node.bmin.x) - r.origin.x) * r.inv_dir.x;
-    const float tx1 = ((r.neg_x ? node.bmin.x : node.bmax.x) - r.origin.x) * r.inv_dir.x;
-    const float ty0 = ((r.neg_y ? node.bmax.y : node.bmin.y) - r.origin.y) * r.inv_dir.y;
-    const float ty1 = ((r.neg_y ? node.bmin.y : node.bmax.y) - r.origin.y) * r.inv_dir.y;
-    const float tz0 = ((r.neg_z ? node.bmax.z : node.bmin.z) - r.origin.z) * r.inv_dir.z;
-    const float tz1 = ((r.neg_z ? node.bmin.z : node.bmax.z) - r.origin.z) * r.inv_dir.z;
-    float tnear = tx0 > 0.0f ? tx0 : 0.0f;
-    tnear = ty0 > tnear ? ty0 : tnear;
-    tnear = tz0 > tnear ? tz0 : tnear;
-    float tfar = tx1 < tmax ? tx1 : tmax;
-    tfar = ty1 < tfar ? ty1 : tfar;
-    tfar = tz1 < tfar ? tz1 : tfar;
-    return tnear <= tfar * kBoxSlack ? tnear : kMiss;
+// plane holds the origin while d is zero along that axis gives NaN (0·∞);
+// max(a, b) and min(a, b) (maxps, minps) return b when a is NaN, so that slab
+// then constrains nothing, and a ray lying in a box face still enters the box.
+inline int enter_children(const BvhWideNode& node, const BoxRay& r, float tmax, float* tnear) {
+    int mask = 0;
+    for (int h = 0; h < kBvhWidth; h += kLanes) {
+        const float* b = node.bounds + h;
+        const Lanes tx0 = mul(sub(load(b + r.near_x), r.ox), r.ix);
+        const Lanes tx1 = mul(sub(load(b + (r.near_x ^ kBvhWidth)), r.ox), r.ix);
+        const Lanes ty0 = mul(sub(load(b + r.near_y), r.oy), r.iy);
+        const Lanes ty1 = mul(sub(load(b + (r.near_y ^ kBvhWidth)), r.oy), r.iy);
+        const Lanes tz0 = mul(sub(load(b + r.near_z), r.oz), r.iz);
+        const Lanes tz1 = mul(sub(load(b + (r.near_z ^ kBvhWidth)), r.oz), r.iz);
+        const Lanes t0 = max(tz0, max(ty0, max(tx0, set1(0.0f))));
+        const Lanes t1 = min(tz1, min(ty1, min(tx1, set1(tmax))));
+        store(tnear + h, t0);
+        mask |= le_mask(t0, mul(t1, set1(kBoxSlack))) << h;
+    }
+    return mask;
 }
 
 // Rays that could only produce NaN or visit every box hit nothing.
@@ -57,58 +95,86 @@ bool is_traceable(const Ray& ray) {
     return is_finite(ray.origin) && is_finite(ray.dir) && ray.dir != Vec3{};
 }
 
+// The triangle prepared for the scalar test from the mesh's own corners,
+// exactly as the brute-force loop prepares it (its indices are in range:
+// make_bvh checked them).
+TriangleEdges edges_of(const TriangleMesh& mesh, std::uint32_t triangle) {
+    const Index3& tri = mesh.triangles[triangle];
+    return make_triangle_edges(mesh.positions[tri[0]], mesh.positions[tri[1]], mesh.positions[tri[2]]);
+}
+
+// A child to visit: an inner node (count 0) or a leaf.
 struct StackEntry {
-    std::uint32_t node;
+    std::uint32_t child;
+    std::uint32_t count;
     float tnear;  // the box's entry distance when pushed: pruned on pop if beyond the closest hit
 };
 
+// Pushes the entered children (bits of `mask`) but the nearest onto the
+// stack, farthest deepest, and returns the nearest: the next to visit.
+inline StackEntry enter_nearest_first(const BvhWideNode& node, int mask, const float* tnear, StackEntry* stack,
+                                      int& size) {
+    // The entered children, sorted nearest first (insertion sort of ≤ kBvhWidth).
+    StackEntry entered[kBvhWidth];
+    int n = 0;
+    while (mask != 0) {
+        const int i = __builtin_ctz(static_cast<unsigned>(mask));
+        mask &= mask - 1;
+        const StackEntry e{node.child[i], node.count[i], tnear[i]};
+        int j = n++;
+        for (; j > 0 && entered[j - 1].tnear > e.tnear; --j) entered[j] = entered[j - 1];
+        entered[j] = e;
+    }
+    assert(size + n - 1 <= kBvhStackSize);
+    for (int j = n - 1; j > 0; --j) stack[size++] = entered[j];
+    return entered[0];
+}
+
 }  // namespace
 
-bool intersect_bvh(const Bvh& bvh, const TriangleMesh& /*mesh*/, const Ray& ray, Hit& hit) {
+bool intersect_bvh(const Bvh& bvh, const TriangleMesh& mesh, const Ray& ray, Hit& hit) {
     if (bvh.nodes.empty() || !is_traceable(ray)) return false;
     const BoxRay box_ray = make_box_ray(ray);
-    const BvhNode* nodes = bvh.nodes.data();
-    const TriangleEdges* triangles = bvh.ordered_triangles.data();
+    const BvhWideNode* nodes = bvh.nodes.data();
+    const TriangleBlock* blocks = bvh.blocks.data();
+    const RayLanes lanes = make_ray_lanes(ray.origin, ray.dir);
 
     Hit best;
     best.t = ray.tmax;
-    if (box_entry(nodes[0], box_ray, best.t) == kMiss) return false;
-
-    StackEntry stack[kBvhMaxDepth];
+    StackEntry stack[kBvhStackSize];
     int size = 0;
-    std::uint32_t current = 0;
+    StackEntry current{0, 0, 0.0f};
     for (;;) {
-        const BvhNode& node = nodes[current];
-        if (node.count > 0) {
-            const std::uint32_t end = node.left_or_first + node.count;
-            for (std::uint32_t k = node.left_or_first; k < end; ++k) {
-                float t, b1, b2;
-                if (!intersect_triangle(ray.origin, ray.dir, triangles[k], ray.tmax, t, b1, b2)) continue;
-                const std::uint32_t triangle = bvh.triangle_order[k];
-                // Equal t: the lower index wins, as in the brute-force loop.
-                if (t < best.t || (t == best.t && triangle < best.triangle)) best = Hit{t, b1, b2, triangle};
+        if (current.count > 0) {
+            const std::uint32_t end = current.child + (current.count + 3) / 4;
+            for (std::uint32_t k = current.child; k < end; ++k) {
+                const TriangleBlock& block = blocks[k];
+                BlockHits found;
+                intersect_block(block, lanes, ray.tmax, found);
+                for (int sure = found.sure; sure != 0; sure &= sure - 1) {
+                    const int lane = __builtin_ctz(static_cast<unsigned>(sure));
+                    const float t = found.t[lane];
+                    const std::uint32_t triangle = block.triangle[lane];
+                    // Equal t: the lower index wins, as in the brute-force loop.
+                    if (t < best.t || (t == best.t && triangle < best.triangle)) {
+                        best.t = t;
+                        best.triangle = triangle;
+                        finish_barycentrics(found, lane, best.b1, best.b2);
+                    }
+                }
+                for (int near = found.near; near != 0; near &= near - 1) {
+                    const std::uint32_t triangle = block.triangle[__builtin_ctz(static_cast<unsigned>(near))];
+                    float t, b1, b2;
+                    if (!intersect_triangle(ray.origin, ray.dir, edges_of(mesh, triangle), ray.tmax, t, b1, b2)) continue;
+                    if (t < best.t || (t == best.t && triangle < best.triangle)) best = Hit{t, b1, b2, triangle};
+                }
             }
         } else {
-            const std::uint32_t left = node.left_or_first;
-            const float t_left = box_entry(nodes[left], box_ray, best.t);
-            const float t_right = box_entry(nodes[left + 1], box_ray, best.t);
-            if (t_left != kMiss && t_right != kMiss) {
-                assert(size < kBvhMaxDepth);
-                if (t_right < t_left) {
-                    stack[size++] = {left, t_left};
-                    current = left + 1;
-                } else {
-                    stack[size++] = {left + 1, t_right};
-                    current = left;
-                }
-                continue;
-            }
-            if (t_left != kMiss) {
-                current = left;
-                continue;
-            }
-            if (t_right != kMiss) {
-                current = left + 1;
+            const BvhWideNode& node = nodes[current.child];
+            alignas(32) float tnear[kBvhWidth];
+            const int mask = enter_children(node, box_ray, best.t, tnear);
+            if (mask != 0) {
+                current = enter_nearest_first(node, mask, tnear, stack, size);
                 continue;
             }
         }
@@ -121,43 +187,52 @@ bool intersect_bvh(const Bvh& bvh, const TriangleMesh& /*mesh*/, const Ray& ray,
             }
             const StackEntry entry = stack[--size];
             if (entry.tnear <= best.t * kBoxSlack) {
-                current = entry.node;
+                current = entry;
                 break;
             }
         }
     }
 }
 
-bool occluded_bvh(const Bvh& bvh, const TriangleMesh& /*mesh*/, const Ray& ray) {
+bool occluded_bvh(const Bvh& bvh, const TriangleMesh& mesh, const Ray& ray) {
     if (bvh.nodes.empty() || !is_traceable(ray)) return false;
     const BoxRay box_ray = make_box_ray(ray);
-    const BvhNode* nodes = bvh.nodes.data();
-    const TriangleEdges* triangles = bvh.ordered_triangles.data();
-    if (box_entry(nodes[0], box_ray, ray.tmax) == kMiss) return false;
+    const BvhWideNode* nodes = bvh.nodes.data();
+    const TriangleBlock* blocks = bvh.blocks.data();
+    const RayLanes lanes = make_ray_lanes(ray.origin, ray.dir);
 
-    std::uint32_t stack[kBvhMaxDepth];
+    StackEntry stack[kBvhStackSize];
     int size = 0;
-    std::uint32_t current = 0;
+    StackEntry current{0, 0, 0.0f};
     for (;;) {
-        const BvhNode& node = nodes[current];
-        if (node.count > 0) {
-            const std::uint32_t end = node.left_or_first + node.count;
-            for (std::uint32_t k = node.left_or_first; k < end; ++k) {
-                float t, b1, b2;
-                if (intersect_triangle(ray.origin, ray.dir, triangles[k], ray.tmax, t, b1, b2)) return true;
+        if (current.count > 0) {
+            const std::uint32_t end = current.child + (current.count + 3) / 4;
+            for (std::uint32_t k = current.child; k < end; ++k) {
+                BlockHits found;
+                intersect_block(blocks[k], lanes, ray.tmax, found);
+                if (found.sure != 0) return true;
+                for (int near = found.near; near != 0; near &= near - 1) {
+                    const std::uint32_t triangle = blocks[k].triangle[__builtin_ctz(static_cast<unsigned>(near))];
+                    float t, b1, b2;
+                    if (intersect_triangle(ray.origin, ray.dir, edges_of(mesh, triangle), ray.tmax, t, b1, b2)) return true;
+                }
             }
         } else {
-            const std::uint32_t left = node.left_or_first;
-            const bool hit_left = box_entry(nodes[left], box_ray, ray.tmax) != kMiss;
-            const bool hit_right = box_entry(nodes[left + 1], box_ray, ray.tmax) != kMiss;
-            if (hit_left && hit_right) {
-                assert(size < kBvhMaxDepth);
-                stack[size++] = left + 1;
-                current = left;
-                continue;
-            }
-            if (hit_left || hit_right) {
-                current = hit_left ? left : left + 1;
+            const BvhWideNode& node = nodes[current.child];
+            alignas(32) float tnear[kBvhWidth];
+            int mask = enter_children(node, box_ray, ray.tmax, tnear);
+            if (mask != 0) {
+                // Any order finds an occluder, and sorting costs more than it
+                // saves here (optimisation log, step 7): slot order.
+                const int first = __builtin_ctz(static_cast<unsigned>(mask));
+                mask &= mask - 1;
+                while (mask != 0) {
+                    const int i = __builtin_ctz(static_cast<unsigned>(mask));
+                    mask &= mask - 1;
+                    assert(size < kBvhStackSize);
+                    stack[size++] = {node.child[i], node.count[i], 0.0f};
+                }
+                current = {node.child[first], node.count[first], 0.0f};
                 continue;
             }
         }

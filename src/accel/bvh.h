@@ -1,6 +1,7 @@
-// sombra's own bounding volume hierarchy: a binary SAH tree in one flat array
-// of 32-byte nodes, built with binned SAH (Wald 2007) and traversed
-// iteratively, nearer child first.
+// sombra's own bounding volume hierarchy: built as a binary tree with binned
+// SAH (Wald 2007, bvh_build.cpp), collapsed into an 8-wide tree of 256-byte
+// nodes (bvh_collapse.cpp) and traversed iteratively with AVX box tests,
+// nearest child first (bvh.cpp).
 #pragma once
 
 #include <cstdint>
@@ -15,13 +16,21 @@ namespace sombra {
 
 struct Hit;
 
-struct BvhNode {
-    Vec3 bmin;
-    std::uint32_t left_or_first;  // inner node: index of the left child (right = left + 1); leaf: first entry in Bvh::triangle_order
-    Vec3 bmax;
-    std::uint32_t count;          // 0 for an inner node, else the leaf's triangle count
+// Children per node of the wide tree.
+inline constexpr int kBvhWidth = 8;
+
+// One node of the wide tree: the boxes of up to kBvhWidth children, stored
+// as structure of arrays so one AVX instruction handles a coordinate of all
+// eight (Embree's BVH8 layout). 256 bytes, four cache lines.
+struct alignas(64) BvhWideNode {
+    // bounds[kBvhWidth·k + i] for child i: k = 0 min x, 1 max x, 2 min y,
+    // 3 max y, 4 min z, 5 max z. An empty slot has min +∞ and max −∞: no ray
+    // enters it.
+    float bounds[6 * kBvhWidth];
+    std::uint32_t child[kBvhWidth];  // inner child: its index in Bvh::nodes; leaf: its first block in Bvh::blocks
+    std::uint32_t count[kBvhWidth];  // leaf: its triangle count (≥ 1), in (count + 3) / 4 blocks; inner child or empty slot: 0
 };
-static_assert(sizeof(BvhNode) == 32);
+static_assert(sizeof(BvhWideNode) == 256);
 
 // The deepest path from the root to a leaf that make_bvh builds (the root has
 // depth 0); traversal stacks hold this many entries.
@@ -34,20 +43,37 @@ inline constexpr std::uint32_t kBvhMaxLeafSize = 8;
 // above kBvhMaxDepth even for 2^32 triangles: 31 + 29 < 64.
 inline constexpr int kBvhSahMaxDepth = 31;
 
+// A lane of a TriangleBlock that holds no triangle.
+inline constexpr std::uint32_t kBvhEmptyLane = 0xffffffffu;
+
+// Four triangles of a leaf, structure of arrays for the SSE test
+// (bvh_triangle4.h): [axis][lane]. p0 is the first corner as the mesh gives
+// it, e1 = p1 − p0 and e2 = p2 − p0 computed in float exactly as
+// intersect_triangle computes them, so each lane repeats the scalar test's
+// arithmetic. An empty lane is all zeros (a zero normal: never hit). 176
+// bytes, against 48 + 4 for a TriangleEdges and an index.
+struct alignas(16) TriangleBlock {
+    float p0[3][4];
+    float e1[3][4];
+    float e2[3][4];
+    float em[4];                // max_component(max(abs(e1), abs(e2))): the near-edge band's edge length
+    std::uint32_t triangle[4];  // index into TriangleMesh::triangles, or kBvhEmptyLane
+};
+static_assert(sizeof(TriangleBlock) == 176);
+
+// Traversal stacks hold this many entries: each node pushes all but one of
+// its children, on a path at most kBvhMaxDepth deep.
+inline constexpr int kBvhStackSize = (kBvhWidth - 1) * kBvhMaxDepth + 1;
+
 struct Bvh {
-    std::vector<BvhNode> nodes;                 // nodes[0] is the root; empty when no triangle can be hit
-    std::vector<std::uint32_t> triangle_order;  // leaf entries, indices into TriangleMesh::triangles
-    // triangle_order[k]'s corners prepared for intersect_triangle, in leaf
-    // order so traversal reads them without the index indirection. Computed
-    // from the mesh's own vertex values by make_triangle_edges, so hits are
-    // bit-identical to the brute-force loop.
-    std::vector<TriangleEdges> ordered_triangles;
+    std::vector<BvhWideNode> nodes;        // nodes[0] is the root; empty when no triangle can be hit
+    std::vector<TriangleBlock> blocks;   // the leaves' triangles, each leaf's blocks contiguous
 };
 
 // Builds the tree over every triangle of `mesh` that can be hit: triangles
 // with an out-of-range index, a non-finite corner or zero area are left out
 // (they never hit). Deterministic: the same tree for any number of threads.
-// Subtrees above ~10k triangles are built in parallel with TBB.
+// Subtrees above ~2k triangles are built in parallel with TBB.
 Bvh make_bvh(const TriangleMesh& mesh);
 
 // Closest hit with 0 < t < ray.tmax, ties at equal t going to the lower
@@ -59,7 +85,7 @@ bool intersect_bvh(const Bvh& bvh, const TriangleMesh& mesh, const Ray& ray, Hit
 // True when any triangle is hit with 0 < t < ray.tmax; stops at the first.
 bool occluded_bvh(const Bvh& bvh, const TriangleMesh& mesh, const Ray& ray);
 
-// Bytes of nodes, index and precomputed triangle arrays (sizes, not capacities).
+// Bytes of the node and triangle block arrays (sizes, not capacities).
 std::size_t bvh_memory_bytes(const Bvh& bvh);
 
 }  // namespace sombra

@@ -22,38 +22,60 @@ using testing::compare_with_brute;
 using testing::Comparison;
 using testing::random_soup;
 
-bool contains(const BvhNode& node, Vec3 p) {
-    return node.bmin.x <= p.x && p.x <= node.bmax.x && node.bmin.y <= p.y && p.y <= node.bmax.y &&
-           node.bmin.z <= p.z && p.z <= node.bmax.z;
+constexpr int W = kBvhWidth;
+
+bool slot_used(const BvhWideNode& node, int i) { return node.bounds[i] <= node.bounds[W + i]; }
+
+// Child box i of `node` contains p.
+bool contains(const BvhWideNode& node, int i, Vec3 p) {
+    const float* b = node.bounds;
+    return b[i] <= p.x && p.x <= b[W + i] && b[2 * W + i] <= p.y && p.y <= b[3 * W + i] && b[4 * W + i] <= p.z &&
+           p.z <= b[5 * W + i];
 }
 
 struct TreeFacts {
-    int depth = 0;       // of the deepest leaf; the root has depth 0
+    int depth = 0;       // of the deepest leaf; the root's children have depth 1
     int leaves = 0;
+    int nodes = 0;       // inner nodes reached
+    int narrow_nodes = 0;  // nodes with fewer than two children
     int bad_bounds = 0;  // children or triangles outside their parent's box
     int oversized_leaves = 0;
 };
 
 TreeFacts inspect(const Bvh& bvh, const TriangleMesh& mesh, std::uint32_t node = 0, int depth = 0) {
     TreeFacts facts;
-    const BvhNode& n = bvh.nodes[node];
+    const BvhWideNode& n = bvh.nodes[node];
     facts.depth = depth;
-    if (n.count > 0) {
-        facts.leaves = 1;
-        facts.oversized_leaves = n.count > kBvhMaxLeafSize;
-        for (std::uint32_t k = n.left_or_first; k < n.left_or_first + n.count; ++k) {
-            for (std::uint32_t v : mesh.triangles[bvh.triangle_order[k]]) facts.bad_bounds += !contains(n, mesh.positions[v]);
+    facts.nodes = 1;
+    int used = 0;
+    for (int i = 0; i < W; ++i) {
+        if (!slot_used(n, i)) continue;
+        ++used;
+        if (n.count[i] > 0) {
+            facts.depth = std::max(facts.depth, depth + 1);
+            facts.leaves += 1;
+            facts.oversized_leaves += n.count[i] > kBvhMaxLeafSize;
+            for (std::uint32_t k = 0; k < n.count[i]; ++k) {
+                const std::uint32_t triangle = bvh.blocks[n.child[i] + k / 4].triangle[k % 4];
+                for (std::uint32_t v : mesh.triangles[triangle]) facts.bad_bounds += !contains(n, i, mesh.positions[v]);
+            }
+            continue;
         }
-        return facts;
-    }
-    for (std::uint32_t child : {n.left_or_first, n.left_or_first + 1}) {
-        facts.bad_bounds += !contains(n, bvh.nodes[child].bmin) || !contains(n, bvh.nodes[child].bmax);
-        const TreeFacts sub = inspect(bvh, mesh, child, depth + 1);
+        const BvhWideNode& c = bvh.nodes[n.child[i]];
+        for (int j = 0; j < W; ++j) {
+            if (!slot_used(c, j)) continue;
+            facts.bad_bounds += !contains(n, i, {c.bounds[j], c.bounds[2 * W + j], c.bounds[4 * W + j]}) ||
+                                !contains(n, i, {c.bounds[W + j], c.bounds[3 * W + j], c.bounds[5 * W + j]});
+        }
+        const TreeFacts sub = inspect(bvh, mesh, n.child[i], depth + 1);
         facts.depth = std::max(facts.depth, sub.depth);
         facts.leaves += sub.leaves;
+        facts.nodes += sub.nodes;
+        facts.narrow_nodes += sub.narrow_nodes;
         facts.bad_bounds += sub.bad_bounds;
         facts.oversized_leaves += sub.oversized_leaves;
     }
+    facts.narrow_nodes += used < 2;
     return facts;
 }
 
@@ -64,23 +86,40 @@ TEST(BvhStructure, LeavesBoundTheirTrianglesAndHoldEachOnce) {
     const TreeFacts facts = inspect(bvh, mesh);
     EXPECT_EQ(facts.bad_bounds, 0);
     EXPECT_EQ(facts.oversized_leaves, 0);
-    EXPECT_EQ(static_cast<std::size_t>(2 * facts.leaves - 1), bvh.nodes.size());  // a full binary tree
+    EXPECT_EQ(facts.narrow_nodes, 0);
+    EXPECT_EQ(static_cast<std::size_t>(facts.nodes), bvh.nodes.size());  // every node reached once
+    // Collapsing a binary tree fills nodes: far fewer than one per four leaves.
+    EXPECT_LT(facts.nodes * 4, facts.leaves);
     EXPECT_LT(facts.depth, kBvhMaxDepth);
     EXPECT_GT(facts.leaves, 20000 / static_cast<int>(kBvhMaxLeafSize));
 
     std::vector<int> seen(mesh.triangles.size(), 0);
-    for (std::uint32_t t : bvh.triangle_order) ++seen[t];
+    for (std::uint32_t t : testing::bvh_triangles(bvh)) ++seen[t];
     for (std::size_t i = 0; i < seen.size(); ++i) ASSERT_EQ(seen[i], 1) << "triangle " << i;
 
-    // The precomputed triangles are bit for bit what the brute-force loop computes.
-    ASSERT_EQ(bvh.ordered_triangles.size(), bvh.triangle_order.size());
-    for (std::size_t k = 0; k < bvh.triangle_order.size(); ++k) {
-        const Index3& tri = mesh.triangles[bvh.triangle_order[k]];
-        const TriangleEdges want = make_triangle_edges(mesh.positions[tri[0]], mesh.positions[tri[1]], mesh.positions[tri[2]]);
-        ASSERT_EQ(std::memcmp(&want, &bvh.ordered_triangles[k], sizeof want), 0) << k;
+    // Each lane holds the mesh's own first corner and the edges as the
+    // scalar test computes them, bit for bit; empty lanes are all zero.
+    for (const TriangleBlock& block : bvh.blocks) {
+        for (int lane = 0; lane < 4; ++lane) {
+            Vec3 p0{}, e1{}, e2{};
+            if (block.triangle[lane] != kBvhEmptyLane) {
+                const Index3& tri = mesh.triangles[block.triangle[lane]];
+                p0 = mesh.positions[tri[0]];
+                e1 = mesh.positions[tri[1]] - p0;
+                e2 = mesh.positions[tri[2]] - p0;
+            }
+            const float em = max_component(max(abs(e1), abs(e2)));
+            ASSERT_EQ(std::memcmp(&block.em[lane], &em, 4), 0);
+            for (int a = 0; a < 3; ++a) {
+                ASSERT_EQ(std::memcmp(&block.p0[a][lane], &p0[a], 4), 0);
+                ASSERT_EQ(std::memcmp(&block.e1[a][lane], &e1[a], 4), 0);
+                ASSERT_EQ(std::memcmp(&block.e2[a][lane], &e2[a], 4), 0);
+            }
+        }
     }
-    EXPECT_EQ(bvh_memory_bytes(bvh),
-              bvh.nodes.size() * 32 + bvh.triangle_order.size() * (4 + sizeof(TriangleEdges)));
+    EXPECT_EQ(bvh_memory_bytes(bvh), bvh.nodes.size() * sizeof(BvhWideNode) + bvh.blocks.size() * 176);
+    // Leaves of up to four triangles fill one block: few lanes stay empty.
+    EXPECT_GT(static_cast<double>(mesh.triangles.size()) / (4.0 * static_cast<double>(bvh.blocks.size())), 0.6);
 }
 
 // The SAH's cost terms must reward splitting a big node: a well-spread soup
@@ -133,8 +172,9 @@ TEST(BvhStructure, SameTreeForAnyThreadCount) {
         serial = make_bvh(mesh);
     }
     ASSERT_EQ(parallel.nodes.size(), serial.nodes.size());
-    EXPECT_EQ(std::memcmp(parallel.nodes.data(), serial.nodes.data(), parallel.nodes.size() * sizeof(BvhNode)), 0);
-    EXPECT_EQ(parallel.triangle_order, serial.triangle_order);
+    EXPECT_EQ(std::memcmp(parallel.nodes.data(), serial.nodes.data(), parallel.nodes.size() * sizeof(BvhWideNode)), 0);
+    ASSERT_EQ(parallel.blocks.size(), serial.blocks.size());
+    EXPECT_EQ(std::memcmp(parallel.blocks.data(), serial.blocks.data(), parallel.blocks.size() * sizeof(TriangleBlock)), 0);
 }
 
 // A closed mesh (a subdivided octahedron pushed onto a sphere): every ray

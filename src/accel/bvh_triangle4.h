@@ -1,0 +1,114 @@
+// intersect_triangle (triangle.h) for the four lanes of a TriangleBlock at
+// once, with SSE. Each lane performs the scalar test's float operations in
+// the same order (no FMA: the build sets -ffp-contract=off), so a lane the
+// float test decides gives bit for bit the scalar result. Lanes the scalar
+// test would send to its double-precision near-edge re-decision are not
+// decided here but reported in `near`: the caller runs the scalar test on
+// them. Internal to src/accel (bvh.cpp).
+#pragma once
+
+#include <immintrin.h>
+
+#include "accel/bvh.h"
+
+namespace sombra {
+
+// The ray, broadcast to four lanes, and what the near-edge band needs of it.
+struct RayLanes {
+    __m128 ox, oy, oz, dx, dy, dz;
+    __m128 dm;  // max_component(abs(d)), as the scalar band computes it
+};
+
+inline RayLanes make_ray_lanes(Vec3 o, Vec3 d) {
+    return {_mm_set1_ps(o.x), _mm_set1_ps(o.y), _mm_set1_ps(o.z),
+            _mm_set1_ps(d.x), _mm_set1_ps(d.y), _mm_set1_ps(d.z), _mm_set1_ps(max_component(abs(d)))};
+}
+
+// What intersect_block found. Lane i's bit in `sure` is set when the scalar
+// test returns true with t = t[i] (0 < t < tmax) and weights from su[i],
+// sv[i], inv_det[i] (finish_barycentrics); its bit in `near` when only the
+// scalar test can decide. Lanes in neither are misses.
+struct BlockHits {
+    int sure = 0;
+    int near = 0;
+    alignas(16) float t[4];
+    alignas(16) float su[4];
+    alignas(16) float sv[4];
+    alignas(16) float inv_det[4];
+};
+
+namespace detail {
+inline __m128 dot4(__m128 ax, __m128 ay, __m128 az, __m128 bx, __m128 by, __m128 bz) {
+    return _mm_add_ps(_mm_add_ps(_mm_mul_ps(ax, bx), _mm_mul_ps(ay, by)), _mm_mul_ps(az, bz));
+}
+inline __m128 abs4(__m128 a) { return _mm_andnot_ps(_mm_set1_ps(-0.0f), a); }
+}  // namespace detail
+
+// The float part of intersect_triangle for the block's four lanes; `tmax`
+// is the scalar test's tmax. Fills t, su, sv, inv_det only when `sure` ≠ 0.
+inline void intersect_block(const TriangleBlock& b, const RayLanes& r, float tmax, BlockHits& out) {
+    using detail::dot4;
+    const __m128 sign = _mm_set1_ps(-0.0f);
+    const __m128 e1x = _mm_load_ps(b.e1[0]), e1y = _mm_load_ps(b.e1[1]), e1z = _mm_load_ps(b.e1[2]);
+    const __m128 e2x = _mm_load_ps(b.e2[0]), e2y = _mm_load_ps(b.e2[1]), e2z = _mm_load_ps(b.e2[2]);
+    // n = cross(e1, e2), as make_triangle_edges computes it.
+    const __m128 nx = _mm_sub_ps(_mm_mul_ps(e1y, e2z), _mm_mul_ps(e1z, e2y));
+    const __m128 ny = _mm_sub_ps(_mm_mul_ps(e1z, e2x), _mm_mul_ps(e1x, e2z));
+    const __m128 nz = _mm_sub_ps(_mm_mul_ps(e1x, e2y), _mm_mul_ps(e1y, e2x));
+    const __m128 det = _mm_xor_ps(dot4(r.dx, r.dy, r.dz, nx, ny, nz), sign);
+    const __m128 nonzero = _mm_cmpneq_ps(det, _mm_setzero_ps());  // true for NaN, as !(det != 0) is false
+    const __m128 tvx = _mm_sub_ps(r.ox, _mm_load_ps(b.p0[0]));
+    const __m128 tvy = _mm_sub_ps(r.oy, _mm_load_ps(b.p0[1]));
+    const __m128 tvz = _mm_sub_ps(r.oz, _mm_load_ps(b.p0[2]));
+    // c = cross(tvec, d)
+    const __m128 cx = _mm_sub_ps(_mm_mul_ps(tvy, r.dz), _mm_mul_ps(tvz, r.dy));
+    const __m128 cy = _mm_sub_ps(_mm_mul_ps(tvz, r.dx), _mm_mul_ps(tvx, r.dz));
+    const __m128 cz = _mm_sub_ps(_mm_mul_ps(tvx, r.dy), _mm_mul_ps(tvy, r.dx));
+    const __m128 su = dot4(e2x, e2y, e2z, cx, cy, cz);
+    const __m128 sv = _mm_xor_ps(dot4(e1x, e1y, e1z, cx, cy, cz), sign);
+    const __m128 flip = _mm_and_ps(_mm_cmplt_ps(det, _mm_setzero_ps()), sign);
+    const __m128 U = _mm_xor_ps(su, flip), V = _mm_xor_ps(sv, flip);
+    const __m128 W = _mm_sub_ps(_mm_sub_ps(_mm_xor_ps(det, flip), U), V);
+    const __m128 zero = _mm_setzero_ps();
+    const __m128 inside = _mm_and_ps(_mm_and_ps(_mm_cmpge_ps(U, zero), _mm_cmpge_ps(V, zero)), _mm_cmpge_ps(W, zero));
+    const int inside_bits = _mm_movemask_ps(_mm_and_ps(inside, nonzero));
+    const int outside_bits = _mm_movemask_ps(_mm_andnot_ps(inside, nonzero));
+    out.sure = 0;
+    out.near = 0;
+    if (outside_bits != 0) {
+        // The scalar band, doubled: a lane within it goes to the scalar
+        // test, which decides it exactly, so the filter only has to be
+        // conservative.
+        using detail::abs4;
+        const __m128 tm = _mm_max_ps(abs4(tvx), _mm_max_ps(abs4(tvy), abs4(tvz)));
+        const __m128 em = _mm_load_ps(b.em);
+        const __m128 band = _mm_mul_ps(_mm_set1_ps(0x1p-14f), _mm_mul_ps(_mm_mul_ps(r.dm, em), _mm_add_ps(tm, em)));
+        const __m128 neg_band = _mm_xor_ps(band, sign);
+        const __m128 within = _mm_and_ps(_mm_and_ps(_mm_cmpge_ps(U, neg_band), _mm_cmpge_ps(V, neg_band)),
+                                         _mm_cmpge_ps(W, neg_band));
+        out.near = outside_bits & _mm_movemask_ps(within);
+    }
+    if (inside_bits == 0) return;
+    const __m128 inv_det = _mm_div_ps(_mm_set1_ps(1.0f), det);
+    const __m128 t = _mm_mul_ps(dot4(tvx, tvy, tvz, nx, ny, nz), inv_det);
+    const __m128 in_range = _mm_and_ps(_mm_cmpgt_ps(t, zero), _mm_cmplt_ps(t, _mm_set1_ps(tmax)));
+    out.sure = inside_bits & _mm_movemask_ps(in_range);
+    if (out.sure == 0) return;
+    _mm_store_ps(out.t, t);
+    _mm_store_ps(out.su, su);
+    _mm_store_ps(out.sv, sv);
+    _mm_store_ps(out.inv_det, inv_det);
+}
+
+// The clamped weights (b1, b2) of a `sure` lane, as intersect_triangle
+// computes them.
+inline void finish_barycentrics(const BlockHits& h, int lane, float& b1, float& b2) {
+    float u = h.su[lane] * h.inv_det[lane], v = h.sv[lane] * h.inv_det[lane];
+    u = u > 0.0f ? (u < 1.0f ? u : 1.0f) : 0.0f;
+    v = v > 0.0f ? v : 0.0f;
+    if (u + v > 1.0f) v = 1.0f - u;
+    b1 = u;
+    b2 = v;
+}
+
+}  // namespace sombra
