@@ -54,7 +54,8 @@ inline fs::path stage_input(Target target, std::string_view bytes, const fs::pat
             write_file(folder / "fuzz.obj", bytes.substr(0, split));
             std::error_code ec;
             fs::remove(folder / kMtlName, ec);
-            if (split != std::string_view::npos) write_file(folder / kMtlName, bytes.substr(split + kMtlSeparator.size()));
+            if (split != std::string_view::npos)
+                write_file(folder / kMtlName, bytes.substr(split + kMtlSeparator.size()));
             return folder / "fuzz.obj";
         }
         case Target::Ply: write_file(folder / "fuzz.ply", bytes); return folder / "fuzz.ply";

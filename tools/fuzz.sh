@@ -69,21 +69,34 @@ seed_obj() {
 }
 
 # PLY seeds: ascii and both binary byte orders, with and without normals,
-# faces before vertices, an extra element; plus the start of the dragon's header.
+# faces before vertices, extra elements and properties; plus the start of the
+# dragon's header. (printf formats: \n and \xHH are bytes.)
 seed_ply() {
-  local corpus="$1" xyz='property float x\nproperty float y\nproperty float z\n'
-  local faces='element face 2\nproperty list uchar int vertex_indices\n'
-  printf "ply\nformat ascii 1.0\ncomment quad\nelement vertex 4\n${xyz}${faces}end_header\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n3 0 1 2\n3 0 2 3\n" |
-    add_seed "$corpus" ascii-quad
-  printf "ply\nformat ascii 1.0\nelement vertex 3\n${xyz}property float nx\nproperty float ny\nproperty float nz\nproperty uchar red\nelement face 1\nproperty list uchar uint vertex_index\nproperty int flags\nelement edge 1\nproperty int a\nproperty list ushort float b\nend_header\n0 0 0 0 0 1 255\n1 0 0 0 0 1 0\n0 1 0 0 0 1 9\n3 0 1 2 7\n5 2 1.5 -2\n" |
+  local corpus="$1"
+  local ascii='ply\nformat ascii 1.0\n' le='ply\nformat binary_little_endian 1.0\n'
+  local be='ply\nformat binary_big_endian 1.0\n'
+  local xyz='property float x\nproperty float y\nproperty float z\n'
+  local nxyz='property float nx\nproperty float ny\nproperty float nz\n'
+  local faces='property list uchar int vertex_indices\n'
+  local zero='\x00\x00\x00\x00' one_le='\x00\x00\x80\x3f' one_be='\x3f\x80\x00\x00'
+  { printf "${ascii}comment quad\nelement vertex 4\n${xyz}element face 2\n${faces}end_header\n"
+    printf '0 0 0\n1 0 0\n1 1 0\n0 1 0\n3 0 1 2\n3 0 2 3\n'; } | add_seed "$corpus" ascii-quad
+  { printf "${ascii}element vertex 3\n${xyz}${nxyz}property uchar red\n"
+    printf 'element face 1\nproperty list uchar uint vertex_index\nproperty int flags\n'
+    printf 'element edge 1\nproperty int a\nproperty list ushort float b\nend_header\n'
+    printf '0 0 0 0 0 1 255\n1 0 0 0 0 1 0\n0 1 0 0 0 1 9\n3 0 1 2 7\n5 2 1.5 -2\n'; } |
     add_seed "$corpus" ascii-normals-extra
-  printf "ply\r\nformat ascii 1.0\r\nelement face 1\r\nproperty list uchar int vertex_indices\r\nelement vertex 5\r\n${xyz//\\n/\\r\\n}end_header\r\n5 0 1 2 3 4\r\n0 0 0\r\n2 0 0\r\n2 2 0\r\n1 0.5 0\r\n0 2 0\r\n" |
+  { printf "ply\r\nformat ascii 1.0\r\nelement face 1\r\n${faces//\\n/\\r\\n}element vertex 5\r\n"
+    printf "${xyz//\\n/\\r\\n}end_header\r\n5 0 1 2 3 4\r\n0 0 0\r\n2 0 0\r\n2 2 0\r\n1 0.5 0\r\n0 2 0\r\n"; } |
     add_seed "$corpus" ascii-crlf-faces-first
-  local le_one='\x00\x00\x80\x3f' be_one='\x3f\x80\x00\x00' zero='\x00\x00\x00\x00'
-  printf "ply\nformat binary_little_endian 1.0\nelement vertex 3\n${xyz}element face 1\nproperty list uchar int vertex_indices\nend_header\n${zero}${zero}${zero}${le_one}${zero}${zero}${zero}${le_one}${zero}\x03\x00\x00\x00\x00\x01\x00\x00\x00\x02\x00\x00\x00" |
-    add_seed "$corpus" binary-le-triangle
-  printf "ply\nformat binary_big_endian 1.0\nelement vertex 3\n${xyz}property float nx\nproperty float ny\nproperty float nz\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n${zero}${zero}${zero}${zero}${zero}${be_one}${be_one}${zero}${zero}${zero}${zero}${be_one}${zero}${be_one}${zero}${zero}${zero}${be_one}\x03\x00\x00\x00\x00\x00\x00\x00\x01\x00\x00\x00\x02" |
-    add_seed "$corpus" binary-be-normals
+  { printf "${le}element vertex 3\n${xyz}element face 1\n${faces}end_header\n"
+    printf "${zero}${zero}${zero}${one_le}${zero}${zero}${zero}${one_le}${zero}"
+    printf '\x03\x00\x00\x00\x00\x01\x00\x00\x00\x02\x00\x00\x00'; } | add_seed "$corpus" binary-le-triangle
+  { printf "${be}element vertex 3\n${xyz}${nxyz}element face 1\n${faces}end_header\n"
+    printf "${zero}${zero}${zero}${zero}${zero}${one_be}"
+    printf "${one_be}${zero}${zero}${zero}${zero}${one_be}"
+    printf "${zero}${one_be}${zero}${zero}${zero}${one_be}"
+    printf '\x03\x00\x00\x00\x00\x00\x00\x00\x01\x00\x00\x00\x02'; } | add_seed "$corpus" binary-be-normals
   [ -f "$shared/models/dragon.ply" ] && head -c 4096 "$shared/models/dragon.ply" | add_seed "$corpus" dragon-start
   return 0
 }
