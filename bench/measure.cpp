@@ -3,7 +3,6 @@
 #include <utility>
 
 #include "core/error.h"
-#include "render/camera.h"
 #include "render/render.h"
 
 namespace sombra::bench {
@@ -24,11 +23,7 @@ Round build_and_render(const Scene& scene, const RenderSettings& settings, Accel
     round.build_seconds = seconds_since(build_start);
     round.accel_bytes = accel_memory_bytes(accel);
 
-    RenderJob job;
-    job.scene = &scene;
-    job.accel = &accel;
-    job.camera = make_camera(scene.camera, settings.width, settings.height);
-    job.settings = settings;
+    const RenderJob job = make_render_job(scene, accel, settings);
     RenderProgress progress;
     const auto render_start = Clock::now();
     round.output = render_image(job, progress);

@@ -13,7 +13,6 @@
 #include "app/stats.h"
 #include "core/error.h"
 #include "image/image_io.h"
-#include "render/camera.h"
 #include "render/render.h"
 #include "scene/quicklook.h"
 #include "scene/scene_file.h"
@@ -98,12 +97,7 @@ int run_render(const CliOptions& o) {
         const Accel accel = make_accel(scene.geometry, kind);
         stats.build_seconds = seconds_since(build_start);
 
-        RenderJob job;
-        job.scene = &scene;
-        job.accel = &accel;
-        job.camera = make_camera(scene.camera, settings.width, settings.height);
-        job.settings = settings;
-        job.threads = o.threads;
+        const RenderJob job = make_render_job(scene, accel, settings, o.threads);
 
         interrupt.set_phase(InterruptWatcher::Phase::Rendering);
         const auto render_start = Clock::now();

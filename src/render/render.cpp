@@ -36,6 +36,16 @@ Vec3 render_pixel(const RenderJob& job, int i, int j, RayCounters& counters) {
 
 }  // namespace
 
+RenderJob make_render_job(const Scene& scene, const Accel& accel, const RenderSettings& settings, int threads) {
+    RenderJob job;
+    job.scene = &scene;
+    job.accel = &accel;
+    job.camera = make_camera(scene.camera, settings.width, settings.height);
+    job.settings = settings;
+    job.threads = threads;
+    return job;
+}
+
 RenderOutput render_image(const RenderJob& job, RenderProgress& progress) {
     RenderOutput out;
     out.film = Film(job.settings.width, job.settings.height);

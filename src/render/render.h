@@ -29,6 +29,10 @@ struct RenderJob {
     int threads = 0;          // worker threads; 0 = all hardware threads
 };
 
+// The job for rendering `scene` with `accel` at `settings`, with the scene's
+// camera resolved for that image size.
+RenderJob make_render_job(const Scene& scene, const Accel& accel, const RenderSettings& settings, int threads = 0);
+
 struct RenderOutput {
     Film film;
     RayCounters counters;

@@ -19,12 +19,7 @@ struct Rendered {
 
 Rendered render_scene(const Scene& scene, AccelKind kind, RenderSettings settings, int threads) {
     const Accel accel = make_accel(scene.geometry, kind);
-    RenderJob job;
-    job.scene = &scene;
-    job.accel = &accel;
-    job.camera = make_camera(scene.camera, settings.width, settings.height);
-    job.settings = settings;
-    job.threads = threads;
+    const RenderJob job = make_render_job(scene, accel, settings, threads);
     RenderProgress progress;
     RenderOutput out = render_image(job, progress);
     EXPECT_FALSE(out.cancelled);
@@ -103,11 +98,7 @@ TEST(Render, CancelStopsEarly) {
     scene.geometry.material_ids = {0};
     scene.camera.look_at = CameraLookAt{{0, 0, 0}, {0, 0, -1}, {0, 1, 0}, 45};
     const Accel accel = make_accel(scene.geometry, AccelKind::Bvh);
-    RenderJob job;
-    job.scene = &scene;
-    job.accel = &accel;
-    job.camera = make_camera(scene.camera, 256, 256);
-    job.settings = RenderSettings{256, 256, 1, 0};
+    const RenderJob job = make_render_job(scene, accel, RenderSettings{256, 256, 1, 0});
     RenderProgress progress;
     progress.cancel = true;
     const RenderOutput out = render_image(job, progress);
