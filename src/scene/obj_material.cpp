@@ -73,8 +73,7 @@ Material material_from_mtl(const tinyobj::material_t& mtl, const std::string& wh
             diag.warn(where, "material '" + mtl.name + "': Ns " + format_number(mtl.shininess) + " clamped to [0, " +
                                  format_number(kMaxMtlShininess) + "]");
         }
-        // The same check as for scene materials (spec §5).
-        if (max_component(m.kd + m.ks) > 1)
+        if (breaks_energy_conservation(m))
             diag.warn(where, "material '" + mtl.name +
                                  "': Kd + Ks exceeds 1 in some channel: the material reflects more light than it receives");
     }

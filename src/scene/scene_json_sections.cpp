@@ -115,7 +115,7 @@ Material read_material(const SceneJson& s, const std::string& name, const Json& 
         const std::string p = json_child(pointer, "shininess");
         m.shininess = read_float(s, require_member(s, v, pointer, "shininess"), p);
         if (m.shininess < 0) json_fail(s, p, "shininess must be non-negative");
-        if (max_component(m.kd + m.ks) > 1)
+        if (breaks_energy_conservation(m))
             json_warn(s, pointer,
                       "kd + ks exceeds 1 in some channel: the material reflects more light than it receives");
     }
