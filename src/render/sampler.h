@@ -1,6 +1,7 @@
-// Where in a pixel each sample goes. The positions are a pure function of
-// (seed, pixel, sample index), never of thread or order, so images are the
-// same for any thread count.
+// Where in a pixel each sample goes, and the random numbers each sample's
+// path draws. Every value is a pure function of (seed, pixel, sample index,
+// dimension), never of thread or order, so images are the same for any
+// thread count.
 #pragma once
 
 #include <cmath>
@@ -25,6 +26,8 @@ inline float hash_to_unit(std::uint32_t index, std::uint64_t key) {
 // A pseudo-random permutation of [0, n): a bijective hash on the smallest
 // power-of-two range holding n, applied until the value falls inside
 // ("cycle walking"), as in Kensler's correlated multi-jittered sampling.
+// Kept for pixel positions only, so that version-1 images stay bit for bit
+// as they were; its permutations of small n are few (see shuffle_index).
 inline std::uint32_t permute_index(std::uint32_t i, std::uint32_t n, std::uint32_t key) {
     std::uint32_t mask = n - 1;
     mask |= mask >> 1;
@@ -68,6 +71,79 @@ inline PixelSample pixel_sample(std::uint32_t index, std::uint32_t count, std::u
     // Float rounding can reach 1.0 exactly; stay inside the pixel.
     return {x < 1.0f ? x : 0x1.fffffep-1f, y < 1.0f ? y : 0x1.fffffep-1f};
 }
+
+// A pseudo-random permutation of [0, n) chosen by `key`: an eight-round
+// Feistel network (Luby–Rackoff) whose round function is mix64, on the
+// smallest even number of bits (at least 2) that holds n, cycle-walked into
+// [0, n). Eight rounds, because fewer leave the permutations of n = 3 and 4
+// measurably non-uniform (sampler_test.cpp). Unlike permute_index, whose few fixed operations yield only 8
+// distinct permutations of 4 elements, its permutations of small n are close
+// to uniformly distributed, so dimensions drawn with different keys do not
+// correlate.
+inline std::uint32_t shuffle_index(std::uint32_t i, std::uint32_t n, std::uint64_t key) {
+    int bits = 2;
+    while (bits < 32 && (std::uint64_t{1} << bits) < n) bits += 2;
+    const int half = bits / 2;
+    const std::uint32_t half_mask = (std::uint32_t{1} << half) - 1;
+    do {
+        std::uint32_t left = i >> half, right = i & half_mask;
+        for (std::uint64_t round = 0; round < 8; ++round) {
+            const auto f = static_cast<std::uint32_t>(mix64(key ^ (round << 56) ^ right)) & half_mask;
+            const std::uint32_t next = left ^ f;
+            left = right;
+            right = next;
+        }
+        i = (left << half) | right;
+    } while (i >= n);
+    return i;
+}
+
+// The random numbers of one sample (pixel, sample index) beyond its position
+// in the pixel: each call draws a new dimension. Dimension d of the `count`
+// samples of a pixel is stratified across those samples (one value per
+// 1/count stratum; in 2-D a correlated multi-jittered pattern), and
+// different dimensions are shuffled with independent keys so that they do
+// not correlate. With count = 1 the values are independent uniform hashes.
+// The path integrator draws, per bounce: light choice (1-D), light point
+// (2-D), BSDF lobe (1-D), BSDF direction (2-D), Russian roulette (1-D).
+struct SampleStream {
+    std::uint64_t pixel_key = 0;
+    std::uint32_t index = 0;  // this sample's index among the pixel's
+    std::uint32_t count = 1;  // the pixel's samples
+    std::uint32_t dimension = 0;
+
+    float next_1d() {
+        const std::uint64_t key = dimension_key();
+        if (count <= 1) return hash_to_unit(0, key);
+        const std::uint32_t s = shuffle_index(index, count, key);
+        const float x = (static_cast<float>(s) + hash_to_unit(s, key ^ 0x5bd1e995ull)) / static_cast<float>(count);
+        return x < 1.0f ? x : 0x1.fffffep-1f;
+    }
+
+    struct Pair {
+        float u1, u2;
+    };
+    Pair next_2d() {
+        const std::uint64_t key = dimension_key();
+        if (count <= 1) return {hash_to_unit(0, key), hash_to_unit(1, key)};
+        const auto m = static_cast<std::uint32_t>(std::sqrt(static_cast<double>(count)));
+        const std::uint32_t n = (count + m - 1) / m;
+        const std::uint32_t s = shuffle_index(index, count, key);
+        const std::uint32_t sx = shuffle_index(s % m, m, mix64(key ^ 0x68bc21ebull));
+        const std::uint32_t sy = shuffle_index(s / m, n, mix64(key ^ 0x02e5be93ull));
+        const float jx = hash_to_unit(s, key ^ 0x967a889b00000000ull);
+        const float jy = hash_to_unit(s, key ^ 0x368cc8b700000000ull);
+        const float x = (static_cast<float>(sx) + (static_cast<float>(sy) + jx) / static_cast<float>(n)) / static_cast<float>(m);
+        const float y = (static_cast<float>(s) + jy) / static_cast<float>(count);
+        return {x < 1.0f ? x : 0x1.fffffep-1f, y < 1.0f ? y : 0x1.fffffep-1f};
+    }
+
+private:
+    std::uint64_t dimension_key() {
+        ++dimension;
+        return mix64(pixel_key ^ (static_cast<std::uint64_t>(dimension) * 0x9e3779b97f4a7c15ull));
+    }
+};
 
 // The key that seeds pixel (i, j)'s samples for a render seed.
 inline std::uint64_t pixel_key(std::uint64_t seed, int i, int j, int width) {

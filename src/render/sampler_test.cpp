@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
+#include <map>
 #include <set>
 #include <vector>
 
@@ -76,6 +78,113 @@ TEST(Sampler, AveragesToThePixelCentre) {
         }
     EXPECT_NEAR(sx / total, 0.5, 0.01);
     EXPECT_NEAR(sy / total, 0.5, 0.01);
+}
+
+}  // namespace
+}  // namespace sombra
+
+namespace sombra {
+namespace {
+
+// The χ² statistic's upper-tail critical value for `dof` degrees of freedom
+// at significance 1e-3 (Wilson–Hilferty approximation, good for dof ≥ 3).
+double chi2_critical_1e3(int dof) {
+    const double z = 3.0902;  // standard normal upper 1e-3 quantile
+    const double k = dof;
+    const double c = 1.0 - 2.0 / (9.0 * k) + z * std::sqrt(2.0 / (9.0 * k));
+    return k * c * c * c;
+}
+
+TEST(SampleStream, ShuffleIndexIsAPermutation) {
+    for (std::uint32_t n : {1u, 2u, 3u, 4u, 7u, 16u, 17u, 100u, 1000u, 65536u}) {
+        for (std::uint64_t key : {0ull, 1ull, 0xdeadbeefcafeull}) {
+            std::vector<bool> seen(n, false);
+            for (std::uint32_t i = 0; i < n; ++i) {
+                const std::uint32_t p = shuffle_index(i, n, key);
+                ASSERT_LT(p, n);
+                EXPECT_FALSE(seen[p]);
+                seen[p] = true;
+            }
+        }
+    }
+}
+
+TEST(SampleStream, ShufflesOfFourAreUniformOverAll24Permutations) {
+    // The old permute_index reaches only 8 of the 24; a proper keyed
+    // permutation reaches all, each about equally often (χ² test).
+    std::map<std::array<std::uint32_t, 4>, int> counts;
+    const int keys = 24000;
+    for (int k = 0; k < keys; ++k) {
+        std::array<std::uint32_t, 4> perm{};
+        for (std::uint32_t i = 0; i < 4; ++i) perm[i] = shuffle_index(i, 4, mix64(static_cast<std::uint64_t>(k)));
+        ++counts[perm];
+    }
+    ASSERT_EQ(counts.size(), 24u);
+    double chi2 = 0;
+    const double expected = keys / 24.0;
+    for (const auto& [perm, c] : counts) chi2 += (c - expected) * (c - expected) / expected;
+    EXPECT_LT(chi2, chi2_critical_1e3(23));
+}
+
+TEST(SampleStream, EachDimensionIsStratifiedOverThePixelsSamples) {
+    for (std::uint32_t count : {4u, 7u, 16u, 64u}) {
+        std::vector<std::set<std::uint32_t>> strata1(3), strata2x(3), strata2y(3);
+        for (std::uint32_t k = 0; k < count; ++k) {
+            SampleStream stream{pixel_key(3, 1, 2, 10), k, count};
+            for (int d = 0; d < 3; ++d) {
+                const float u = stream.next_1d();
+                const SampleStream::Pair p = stream.next_2d();
+                ASSERT_GE(u, 0.0f);
+                ASSERT_LT(u, 1.0f);
+                ASSERT_LT(p.u1, 1.0f);
+                ASSERT_LT(p.u2, 1.0f);
+                strata1[d].insert(static_cast<std::uint32_t>(u * static_cast<float>(count)));
+                strata2y[d].insert(static_cast<std::uint32_t>(p.u2 * static_cast<float>(count)));
+                const auto m = static_cast<std::uint32_t>(std::sqrt(static_cast<double>(count)));
+                const std::uint32_t n = (count + m - 1) / m;
+                strata2x[d].insert(static_cast<std::uint32_t>(p.u1 * static_cast<float>(m * n)));
+            }
+        }
+        for (int d = 0; d < 3; ++d) {
+            EXPECT_EQ(strata1[d].size(), count);
+            EXPECT_EQ(strata2x[d].size(), count);
+            EXPECT_EQ(strata2y[d].size(), count);
+        }
+    }
+}
+
+TEST(SampleStream, DimensionsDoNotCorrelate) {
+    // Pairs (dimension a, dimension b) of the same sample, over many pixels
+    // and samples, fill an 8×8 grid uniformly; correlated dimensions (the
+    // same permutation for both) would pile up on the diagonal.
+    const int cells = 8;
+    for (std::uint32_t count : {1u, 4u, 16u}) {
+        std::vector<int> grid(cells * cells, 0);
+        int total = 0;
+        for (int pixel = 0; pixel < 4000 / static_cast<int>(count) + 1; ++pixel)
+            for (std::uint32_t k = 0; k < count; ++k) {
+                SampleStream stream{pixel_key(9, pixel, 0, 100000), k, count};
+                const float a = stream.next_1d();
+                const float b = stream.next_1d();
+                const SampleStream::Pair c = stream.next_2d();
+                ++grid[static_cast<int>(a * cells) * cells + static_cast<int>(b * cells)];
+                ++grid[static_cast<int>(c.u1 * cells) * cells + static_cast<int>(a * cells)];
+                total += 2;
+            }
+        double chi2 = 0;
+        const double expected = static_cast<double>(total) / (cells * cells);
+        for (int g : grid) chi2 += (g - expected) * (g - expected) / expected;
+        EXPECT_LT(chi2, chi2_critical_1e3(cells * cells - 1)) << "count " << count;
+    }
+}
+
+TEST(SampleStream, DeterministicAndDifferentPerSample) {
+    SampleStream a{pixel_key(1, 2, 3, 10), 5, 16};
+    SampleStream b{pixel_key(1, 2, 3, 10), 5, 16};
+    SampleStream c{pixel_key(1, 2, 3, 10), 6, 16};
+    const float a1 = a.next_1d(), b1 = b.next_1d(), c1 = c.next_1d();
+    EXPECT_EQ(a1, b1);
+    EXPECT_NE(a1, c1);
 }
 
 }  // namespace
