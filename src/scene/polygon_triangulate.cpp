@@ -8,12 +8,10 @@
 #include <limits>
 #include <numbers>
 
+#include "core/vec3d.h"
+
 namespace sombra {
 namespace {
-
-struct Vec3d {
-    double x, y, z;
-};
 
 Vec3d to_local(Vec3 p, Vec3 origin) {
     return {double(p.x) - double(origin.x), double(p.y) - double(origin.y), double(p.z) - double(origin.z)};
