@@ -2,18 +2,13 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <fstream>
 #include <limits>
 
+#include "core/format.h"
+
 namespace sombra {
 namespace {
-
-std::string format_number(double x) {
-    char text[32];
-    std::snprintf(text, sizeof text, "%g", x);
-    return text;
-}
 
 std::string format_rgb(const tinyobj::real_t c[3]) {
     return format_number(c[0]) + " " + format_number(c[1]) + " " + format_number(c[2]);

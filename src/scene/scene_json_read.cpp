@@ -264,10 +264,4 @@ const std::string& read_string(const SceneJson& s, const Json& v, std::string_vi
     return v.get_ref<const std::string&>();
 }
 
-std::string format_number(double v) {
-    char buf[32];
-    const auto [end, ec] = std::to_chars(buf, buf + sizeof buf, v);
-    return ec == std::errc{} ? std::string(buf, end) : std::to_string(v);
-}
-
 }  // namespace sombra

@@ -61,7 +61,5 @@ Vec3 read_vec3(const SceneJson& s, const Json& v, std::string_view pointer);
 Vec3 read_rgb(const SceneJson& s, const Json& v, std::string_view pointer);
 const std::string& read_string(const SceneJson& s, const Json& v, std::string_view pointer);
 
-// A float for messages: shortest form that reads back ("0.5", "1e+30").
-std::string format_number(double v);
 
 }  // namespace sombra

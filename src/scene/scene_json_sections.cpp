@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "core/format.h"
 #include "core/vec3d.h"
 
 namespace sombra {
