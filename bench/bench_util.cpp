@@ -1,7 +1,5 @@
 #include "bench_util.h"
 
-#include <sys/resource.h>
-
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -27,16 +25,6 @@ std::string seconds(double s) {
     if (s >= 0.1) return fixed(s, 3);
     if (s >= 0.01) return fixed(s, 4);
     return fixed(s, 5);
-}
-
-std::string thousands(std::uint64_t n) {
-    const std::string digits = std::to_string(n);
-    std::string out;
-    for (std::size_t i = 0; i < digits.size(); ++i) {
-        if (i > 0 && (digits.size() - i) % 3 == 0) out += ',';
-        out += digits[i];
-    }
-    return out;
 }
 
 std::string ratio(double a, double b) { return b > 0 ? fixed(a / b, 2) : "–"; }
@@ -78,12 +66,6 @@ ImageAgreement compare_films(const Film& a, const Film& b) {
         agreement.equal += same;
     }
     return agreement;
-}
-
-std::uint64_t peak_rss_bytes() {
-    rusage usage{};
-    getrusage(RUSAGE_SELF, &usage);
-    return static_cast<std::uint64_t>(usage.ru_maxrss) * 1024u;  // Linux reports KiB
 }
 
 }  // namespace sombra::bench

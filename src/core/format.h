@@ -21,4 +21,15 @@ inline std::string format_number(float v) {
     return ec == std::errc{} ? std::string(buf, end) : std::to_string(v);
 }
 
+// An integer with thousands separators: 871414 → "871,414".
+inline std::string thousands(std::uint64_t n) {
+    const std::string digits = std::to_string(n);
+    std::string out;
+    for (std::size_t i = 0; i < digits.size(); ++i) {
+        if (i > 0 && (digits.size() - i) % 3 == 0) out += ',';
+        out += digits[i];
+    }
+    return out;
+}
+
 }  // namespace sombra
