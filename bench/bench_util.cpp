@@ -58,14 +58,18 @@ ImageAgreement compare_films(const Film& a, const Film& b) {
     if (a.rgb.size() != b.rgb.size()) return agreement;
     agreement.pixels = a.rgb.size() / 3;
     for (std::size_t p = 0; p < agreement.pixels; ++p) {
-        bool same = true;
-        for (std::size_t c = 3 * p; c < 3 * p + 3; ++c) {
-            const float scale = std::max({std::fabs(a.rgb[c]), std::fabs(b.rgb[c]), 1e-2f});
-            same = same && std::fabs(a.rgb[c] - b.rgb[c]) <= 1e-3f * scale;
-        }
-        agreement.equal += same;
+        agreement.equal += same_colour(&a.rgb[3 * p], &b.rgb[3 * p]);
     }
     return agreement;
+}
+
+bool same_colour(const float* a, const float* b) {
+    bool same = true;
+    for (int c = 0; c < 3; ++c) {
+        const float scale = std::max({std::fabs(a[c]), std::fabs(b[c]), 1e-2f});
+        same = same && std::fabs(a[c] - b[c]) <= 1e-3f * scale;
+    }
+    return same;
 }
 
 }  // namespace sombra::bench

@@ -51,6 +51,8 @@ struct ImageAgreement {
     double fraction() const { return pixels == 0 ? 1.0 : double(equal) / double(pixels); }
 };
 ImageAgreement compare_films(const Film& a, const Film& b);
+// Whether two RGB pixels agree as compare_films counts them.
+bool same_colour(const float* a, const float* b);
 
 // The benchmark refuses to time backends whose images agree in fewer pixels.
 inline constexpr double kMinEqualFraction = 0.999;
