@@ -15,7 +15,6 @@
 #include "core/peak_rss.h"
 #include "image/image_io.h"
 #include "render/render.h"
-#include "scene/quicklook.h"
 #include "scene/scene_file.h"
 
 namespace sombra {

@@ -1,6 +1,6 @@
 // The sections of a scene file: render settings, camera, materials, lights
 // and transforms, validated as spec §2–§8 ask.
-#include "scene/scene_json_sections.h"
+#include "scene/scene_json.h"
 
 #include <cmath>
 #include <cstdio>

@@ -1,6 +1,6 @@
 // JSON text → nlohmann::json with positioned syntax errors, and typed readers
 // that name the JSON pointer of whatever is wrong.
-#include "scene/scene_json_read.h"
+#include "scene/scene_json.h"
 
 #include <algorithm>
 #include <charconv>
