@@ -1,7 +1,5 @@
 #include "bench_util.h"
 
-#include <sys/resource.h>
-
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -27,16 +25,6 @@ std::string seconds(double s) {
     if (s >= 0.1) return fixed(s, 3);
     if (s >= 0.01) return fixed(s, 4);
     return fixed(s, 5);
-}
-
-std::string thousands(std::uint64_t n) {
-    const std::string digits = std::to_string(n);
-    std::string out;
-    for (std::size_t i = 0; i < digits.size(); ++i) {
-        if (i > 0 && (digits.size() - i) % 3 == 0) out += ',';
-        out += digits[i];
-    }
-    return out;
 }
 
 std::string ratio(double a, double b) { return b > 0 ? fixed(a / b, 2) : "–"; }
@@ -70,20 +58,18 @@ ImageAgreement compare_films(const Film& a, const Film& b) {
     if (a.rgb.size() != b.rgb.size()) return agreement;
     agreement.pixels = a.rgb.size() / 3;
     for (std::size_t p = 0; p < agreement.pixels; ++p) {
-        bool same = true;
-        for (std::size_t c = 3 * p; c < 3 * p + 3; ++c) {
-            const float scale = std::max({std::fabs(a.rgb[c]), std::fabs(b.rgb[c]), 1e-2f});
-            same = same && std::fabs(a.rgb[c] - b.rgb[c]) <= 1e-3f * scale;
-        }
-        agreement.equal += same;
+        agreement.equal += same_colour(&a.rgb[3 * p], &b.rgb[3 * p]);
     }
     return agreement;
 }
 
-std::uint64_t peak_rss_bytes() {
-    rusage usage{};
-    getrusage(RUSAGE_SELF, &usage);
-    return static_cast<std::uint64_t>(usage.ru_maxrss) * 1024u;  // Linux reports KiB
+bool same_colour(const float* a, const float* b) {
+    bool same = true;
+    for (int c = 0; c < 3; ++c) {
+        const float scale = std::max({std::fabs(a[c]), std::fabs(b[c]), 1e-2f});
+        same = same && std::fabs(a[c] - b[c]) <= 1e-3f * scale;
+    }
+    return same;
 }
 
 }  // namespace sombra::bench

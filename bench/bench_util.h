@@ -9,6 +9,8 @@
 #include <vector>
 
 #include "accel/accel.h"
+#include "core/format.h"
+#include "core/peak_rss.h"
 #include "render/film.h"
 
 namespace sombra::bench {
@@ -26,8 +28,6 @@ double median(std::vector<double> values);
 std::string fixed(double value, int digits);
 // Seconds with three significant digits at least (0.00123, 0.0456, 1.23, 12.3).
 std::string seconds(double s);
-// An integer with thousands separators: 871414 → "871,414".
-std::string thousands(std::uint64_t n);
 // a / b as "1.23" (two decimals), or "–" when b is zero.
 std::string ratio(double a, double b);
 
@@ -51,11 +51,10 @@ struct ImageAgreement {
     double fraction() const { return pixels == 0 ? 1.0 : double(equal) / double(pixels); }
 };
 ImageAgreement compare_films(const Film& a, const Film& b);
+// Whether two RGB pixels agree as compare_films counts them.
+bool same_colour(const float* a, const float* b);
 
 // The benchmark refuses to time backends whose images agree in fewer pixels.
 inline constexpr double kMinEqualFraction = 0.999;
-
-// The process's peak resident set size so far, in bytes.
-std::uint64_t peak_rss_bytes();
 
 }  // namespace sombra::bench

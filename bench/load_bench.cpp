@@ -45,6 +45,10 @@ void run_load_bench(const std::string& file, int reps, std::ostream& out) {
     std::cerr << "sombra-bench: " << file << ": one untimed load each, then " << reps << " rounds\n";
     const std::uint64_t sombra_triangles = load_with_sombra(file);
     const std::uint64_t tinyobj_triangles = load_with_tinyobj(file);
+    if (sombra_triangles != tinyobj_triangles) {
+        throw Error(file, "sombra reads " + thousands(sombra_triangles) + " triangles, tinyobjloader's faces give " +
+                              thousands(tinyobj_triangles) + ": not timing loaders that disagree");
+    }
 
     std::vector<double> sombra_times, tinyobj_times;
     for (int rep = 0; rep < reps; ++rep) {

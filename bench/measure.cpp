@@ -1,8 +1,13 @@
 #include "measure.h"
 
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
 #include <utility>
 
 #include "core/error.h"
+#include "render/camera.h"
+#include "render/integrator.h"
 #include "render/render.h"
 
 namespace sombra::bench {
@@ -29,6 +34,39 @@ Round build_and_render(const Scene& scene, const RenderSettings& settings, Accel
     round.output = render_image(job, progress);
     round.render_seconds = seconds_since(render_start);
     return round;
+}
+
+// Triangle tests the brute-force check may spend: a few seconds at most.
+constexpr double kBruteBudget = 2e9;
+
+// The radiance at the centres of every `stride`-th pixel (every 37th, fewer on
+// big scenes), traced through the BVH and through the brute-force loop: they
+// must agree to the last bit in theory, and within compare_films' tolerance here.
+ImageAgreement bvh_against_brute(const Scene& scene, const RenderSettings& settings) {
+    const Accel bvh = make_accel(scene.geometry, AccelKind::Bvh);
+    const Accel brute = make_accel(scene.geometry, AccelKind::Brute);
+    const Camera camera = make_camera(scene.camera, settings.width, settings.height);
+    const std::size_t pixels = std::size_t(settings.width) * std::size_t(settings.height);
+    const double rays_per_pixel = 1.0 + double(scene.lights.size());
+    const double affordable = kBruteBudget / (std::max<double>(double(scene.geometry.triangle_count()), 1) * rays_per_pixel);
+    const std::size_t samples = std::clamp<std::size_t>(std::size_t(affordable), 64, std::max<std::size_t>(pixels / 37, 1));
+    const std::size_t stride = std::max<std::size_t>(pixels / samples, 1);
+    std::vector<char> same((pixels + stride - 1) / stride);
+    tbb::parallel_for(std::size_t(0), same.size(), [&](std::size_t k) {
+        const std::size_t p = k * stride;
+        const float x = float(p % std::size_t(settings.width)) + 0.5f;
+        const float y = float(p / std::size_t(settings.width)) + 0.5f;
+        const Ray ray = camera_ray(camera, image_plane_s(x, settings.width), image_plane_t(y, settings.height));
+        RayCounters counters;
+        const Vec3 a = trace_direct(scene, bvh, ray, counters);
+        const Vec3 b = trace_direct(scene, brute, ray, counters);
+        const float fa[3] = {a.x, a.y, a.z}, fb[3] = {b.x, b.y, b.z};
+        same[k] = same_colour(fa, fb);
+    });
+    ImageAgreement agreement;
+    agreement.pixels = same.size();
+    agreement.equal = std::size_t(std::count(same.begin(), same.end(), char(1)));
+    return agreement;
 }
 
 }  // namespace
@@ -61,6 +99,13 @@ SceneMeasurement measure_scene(const Scene& scene, const RenderSettings& setting
         }
     }
     films.clear();
+
+    m.brute_agreement = bvh_against_brute(scene, settings);
+    if (m.brute_agreement.equal != m.brute_agreement.pixels) {
+        const ImageAgreement& a = m.brute_agreement;
+        throw Error(name, "bvh and brute disagree at " + thousands(a.pixels - a.equal) + " of " + thousands(a.pixels) +
+                              " sampled pixel centres: not timing a wrong result");
+    }
 
     std::vector<std::vector<double>> builds(kinds.size()), renders(kinds.size());
     for (int rep = 0; rep < reps; ++rep) {

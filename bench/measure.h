@@ -31,11 +31,15 @@ struct SceneMeasurement {
     // The first backend's image against each other one's (the worst); all
     // pixels equal when there is only one backend.
     ImageAgreement agreement;
+    // The BVH against the brute-force loop on a sample of pixel centres (the
+    // check that still compares two implementations when Embree is absent).
+    ImageAgreement brute_agreement;
 };
 
 // Measures `scene` rendered with `settings`, all hardware threads. Throws
 // Error(name, ...) when the backends' images agree in fewer than
-// kMinEqualFraction of the pixels: no numbers for a wrong result.
+// kMinEqualFraction of the pixels, or the BVH and the brute-force loop
+// disagree on a sampled pixel centre: no numbers for a wrong result.
 SceneMeasurement measure_scene(const Scene& scene, const RenderSettings& settings, int reps, const std::string& name);
 
 }  // namespace sombra::bench

@@ -7,19 +7,6 @@
 namespace sombra {
 namespace {
 
-// The triangle's corners prepared for intersect_triangle, exactly as make_bvh
-// prepares them; a triangle with an out-of-range index gets n = 0 (no hits).
-TriangleEdges edges_of(const TriangleMesh& mesh, const Index3& tri) {
-    const std::size_t vertex_count = mesh.positions.size();
-    if (tri[0] >= vertex_count || tri[1] >= vertex_count || tri[2] >= vertex_count) return {};
-    return make_triangle_edges(mesh.positions[tri[0]], mesh.positions[tri[1]], mesh.positions[tri[2]]);
-}
-
-// Same rule as intersect_bvh: such rays hit nothing in any backend.
-bool is_traceable(const Ray& ray) {
-    return is_finite(ray.origin) && is_finite(ray.dir) && ray.dir != Vec3{};
-}
-
 bool intersect_brute(const TriangleMesh& mesh, const Ray& ray, Hit& hit) {
     Hit best;
     best.t = ray.tmax;
@@ -27,7 +14,7 @@ bool intersect_brute(const TriangleMesh& mesh, const Ray& ray, Hit& hit) {
         float t, b1, b2;
         // Passing the closest t so far as tmax keeps the first (lowest
         // index) of several hits at exactly the same t.
-        if (intersect_triangle(ray.origin, ray.dir, edges_of(mesh, mesh.triangles[i]), best.t, t, b1, b2)) {
+        if (intersect_triangle(ray.origin, ray.dir, prepare_triangle(mesh, mesh.triangles[i]), best.t, t, b1, b2)) {
             best = Hit{t, b1, b2, static_cast<std::uint32_t>(i)};
         }
     }
@@ -39,7 +26,7 @@ bool intersect_brute(const TriangleMesh& mesh, const Ray& ray, Hit& hit) {
 bool occluded_brute(const TriangleMesh& mesh, const Ray& ray) {
     for (const Index3& tri : mesh.triangles) {
         float t, b1, b2;
-        if (intersect_triangle(ray.origin, ray.dir, edges_of(mesh, tri), ray.tmax, t, b1, b2)) return true;
+        if (intersect_triangle(ray.origin, ray.dir, prepare_triangle(mesh, tri), ray.tmax, t, b1, b2)) return true;
     }
     return false;
 }
@@ -86,8 +73,10 @@ Accel make_accel(const TriangleMesh& mesh, AccelKind kind) {
 }
 
 bool intersect(const Accel& accel, const Ray& ray, Hit& hit) {
-    if (accel.mesh == nullptr || !is_traceable(ray)) return false;
+    if (accel.mesh == nullptr) return false;
+    // intersect_bvh and occluded_bvh check the ray themselves (is_traceable).
     if (accel.kind == AccelKind::Bvh) return intersect_bvh(accel.bvh, *accel.mesh, ray, hit);
+    if (!is_traceable(ray)) return false;
 #ifdef SOMBRA_HAVE_EMBREE
     if (accel.kind == AccelKind::Embree) return accel.embree != nullptr && intersect_embree(*accel.embree, ray, hit);
 #endif
@@ -95,8 +84,9 @@ bool intersect(const Accel& accel, const Ray& ray, Hit& hit) {
 }
 
 bool occluded(const Accel& accel, const Ray& ray) {
-    if (accel.mesh == nullptr || !is_traceable(ray)) return false;
+    if (accel.mesh == nullptr) return false;
     if (accel.kind == AccelKind::Bvh) return occluded_bvh(accel.bvh, *accel.mesh, ray);
+    if (!is_traceable(ray)) return false;
 #ifdef SOMBRA_HAVE_EMBREE
     if (accel.kind == AccelKind::Embree) return accel.embree != nullptr && occluded_embree(*accel.embree, ray);
 #endif

@@ -70,7 +70,7 @@ Accel make_accel(const TriangleMesh& mesh, AccelKind kind);
 // an edge or corner count as inside, and the test is watertight: a ray never
 // slips between triangles that share an edge or corner (accel/triangle.h),
 // so a ray from inside a closed mesh always hits it. Triangles that can never
-// be hit: degenerate ones (see make_triangle_edges in accel/triangle.h), ones
+// be hit: degenerate ones (see prepare_triangle in accel/triangle.h), ones
 // with a non-finite corner or an out-of-range index. Rays with a non-finite
 // origin or direction, or a zero direction, hit nothing.
 //

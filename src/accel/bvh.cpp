@@ -90,19 +90,6 @@ inline int enter_children(const BvhWideNode& node, const BoxRay& r, float tmax, 
     return mask;
 }
 
-// Rays that could only produce NaN or visit every box hit nothing.
-bool is_traceable(const Ray& ray) {
-    return is_finite(ray.origin) && is_finite(ray.dir) && ray.dir != Vec3{};
-}
-
-// The triangle prepared for the scalar test from the mesh's own corners,
-// exactly as the brute-force loop prepares it (its indices are in range:
-// make_bvh checked them).
-TriangleEdges edges_of(const TriangleMesh& mesh, std::uint32_t triangle) {
-    const Index3& tri = mesh.triangles[triangle];
-    return make_triangle_edges(mesh.positions[tri[0]], mesh.positions[tri[1]], mesh.positions[tri[2]]);
-}
-
 // A child to visit: an inner node (count 0) or a leaf.
 struct StackEntry {
     std::uint32_t child;
@@ -165,7 +152,8 @@ bool intersect_bvh(const Bvh& bvh, const TriangleMesh& mesh, const Ray& ray, Hit
                 for (int near = found.near; near != 0; near &= near - 1) {
                     const std::uint32_t triangle = block.triangle[__builtin_ctz(static_cast<unsigned>(near))];
                     float t, b1, b2;
-                    if (!intersect_triangle(ray.origin, ray.dir, edges_of(mesh, triangle), ray.tmax, t, b1, b2)) continue;
+                    const PreparedTriangle tri = prepare_triangle(mesh, mesh.triangles[triangle]);
+                    if (!intersect_triangle(ray.origin, ray.dir, tri, ray.tmax, t, b1, b2)) continue;
                     if (t < best.t || (t == best.t && triangle < best.triangle)) best = Hit{t, b1, b2, triangle};
                 }
             }
@@ -214,7 +202,8 @@ bool occluded_bvh(const Bvh& bvh, const TriangleMesh& mesh, const Ray& ray) {
                 for (int near = found.near; near != 0; near &= near - 1) {
                     const std::uint32_t triangle = blocks[k].triangle[__builtin_ctz(static_cast<unsigned>(near))];
                     float t, b1, b2;
-                    if (intersect_triangle(ray.origin, ray.dir, edges_of(mesh, triangle), ray.tmax, t, b1, b2)) return true;
+                    const PreparedTriangle tri = prepare_triangle(mesh, mesh.triangles[triangle]);
+                    if (intersect_triangle(ray.origin, ray.dir, tri, ray.tmax, t, b1, b2)) return true;
                 }
             }
         } else {

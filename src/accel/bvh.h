@@ -51,7 +51,7 @@ inline constexpr std::uint32_t kBvhEmptyLane = 0xffffffffu;
 // it, e1 = p1 − p0 and e2 = p2 − p0 computed in float exactly as
 // intersect_triangle computes them, so each lane repeats the scalar test's
 // arithmetic. An empty lane is all zeros (a zero normal: never hit). 176
-// bytes, against 48 + 4 for a TriangleEdges and an index.
+// bytes, against 48 + 4 for a PreparedTriangle and an index.
 struct alignas(16) TriangleBlock {
     float p0[3][4];
     float e1[3][4];

@@ -305,7 +305,7 @@ std::vector<PrimRef> make_prim_refs(const TriangleMesh& mesh) {
             const Index3& tri = mesh.triangles[i];
             if (tri[0] >= vertex_count || tri[1] >= vertex_count || tri[2] >= vertex_count) continue;
             const Vec3 p0 = mesh.positions[tri[0]], p1 = mesh.positions[tri[1]], p2 = mesh.positions[tri[2]];
-            if (!is_hittable(make_triangle_edges(p0, p1, p2))) continue;
+            if (!is_hittable(prepare_triangle(p0, p1, p2))) continue;
             all[i].bmin = min(p0, min(p1, p2));
             all[i].bmax = max(p0, max(p1, p2));
             all[i].triangle = static_cast<std::uint32_t>(i);

@@ -106,7 +106,7 @@ TEST(Bvh, UnhittableTrianglesMixedIn) {
             case 3: p[1]->y = nan; break;                            // NaN corner
             default: tri[2] = 1u << 30; break;                       // index out of range
         }
-        if (!is_hittable(make_triangle_edges(*p[0], *p[1], *p[2])) || i % 5 == 4) bad.push_back(i);
+        if (!is_hittable(prepare_triangle(*p[0], *p[1], *p[2])) || i % 5 == 4) bad.push_back(i);
     }
     ASSERT_GT(bad.size(), 400u);
 
@@ -266,9 +266,10 @@ TEST(Bvh, TmaxIsExclusive) {
     limited.tmax = first.t;
     Hit hit;
     hit.triangle = 12345;
-    if (intersect(bvh, limited, hit)) {
-        EXPECT_LT(hit.t, first.t);
-    }
+    // `first` is the closest hit: with tmax = first.t (exclusive) nothing is
+    // left to hit, and `hit` stays untouched.
+    EXPECT_FALSE(intersect(bvh, limited, hit));
+    EXPECT_EQ(hit.triangle, 12345u);
     limited.tmax = std::nextafter(first.t, kInf);
     ASSERT_TRUE(intersect(bvh, limited, hit));
     EXPECT_EQ(hit.triangle, first.triangle);

@@ -51,7 +51,7 @@ inline void intersect_block(const TriangleBlock& b, const RayLanes& r, float tma
     const __m128 sign = _mm_set1_ps(-0.0f);
     const __m128 e1x = _mm_load_ps(b.e1[0]), e1y = _mm_load_ps(b.e1[1]), e1z = _mm_load_ps(b.e1[2]);
     const __m128 e2x = _mm_load_ps(b.e2[0]), e2y = _mm_load_ps(b.e2[1]), e2z = _mm_load_ps(b.e2[2]);
-    // n = cross(e1, e2), as make_triangle_edges computes it.
+    // n = cross(e1, e2), as prepare_triangle computes it.
     const __m128 nx = _mm_sub_ps(_mm_mul_ps(e1y, e2z), _mm_mul_ps(e1z, e2y));
     const __m128 ny = _mm_sub_ps(_mm_mul_ps(e1z, e2x), _mm_mul_ps(e1x, e2z));
     const __m128 nz = _mm_sub_ps(_mm_mul_ps(e1x, e2y), _mm_mul_ps(e1y, e2x));

@@ -105,7 +105,7 @@ std::shared_ptr<const EmbreeScene> make_embree_scene(const TriangleMesh& mesh) {
     for (std::size_t i = 0; i < mesh.triangles.size(); ++i) {
         const Index3& t = mesh.triangles[i];
         const bool hittable = t[0] < vertex_count && t[1] < vertex_count && t[2] < vertex_count &&
-                              is_hittable(make_triangle_edges(mesh.positions[t[0]], mesh.positions[t[1]],
+                              is_hittable(prepare_triangle(mesh.positions[t[0]], mesh.positions[t[1]],
                                                               mesh.positions[t[2]]));
         if (hittable) kept.push_back(static_cast<std::uint32_t>(i));
         all_kept = all_kept && hittable;

@@ -27,6 +27,7 @@
 #include <cmath>
 
 #include "core/vec3.h"
+#include "scene/mesh.h"
 
 namespace sombra {
 
@@ -38,12 +39,12 @@ namespace sombra {
 // (collinear or repeated corners, or an area under ~1e-19) or overflows (an
 // area over ~1e19). So a triangle that can be hit always has a normal that
 // normalize() turns into a unit vector, never NaN or zero.
-struct TriangleEdges {
+struct PreparedTriangle {
     Vec3 p0, p1, p2, n;
 };
 
-inline TriangleEdges make_triangle_edges(Vec3 p0, Vec3 p1, Vec3 p2) {
-    TriangleEdges tri{p0, p1, p2, {}};
+inline PreparedTriangle prepare_triangle(Vec3 p0, Vec3 p1, Vec3 p2) {
+    PreparedTriangle tri{p0, p1, p2, {}};
     if (!is_finite(p0) || !is_finite(p1) || !is_finite(p2)) return tri;
     const Vec3 n = cross(p1 - p0, p2 - p0);
     const float n2 = dot(n, n);
@@ -53,8 +54,17 @@ inline TriangleEdges make_triangle_edges(Vec3 p0, Vec3 p1, Vec3 p2) {
     return tri;
 }
 
-// True when make_triangle_edges found the triangle hittable.
-inline bool is_hittable(const TriangleEdges& tri) { return tri.n != Vec3{}; }
+// True when prepare_triangle found the triangle hittable.
+inline bool is_hittable(const PreparedTriangle& tri) { return tri.n != Vec3{}; }
+
+// The mesh's triangle `tri` prepared from the mesh's own corners: what the
+// brute-force loop tests and what the BVH re-tests near an edge. A triangle
+// with an out-of-range index gets n = 0 (never hit).
+inline PreparedTriangle prepare_triangle(const TriangleMesh& mesh, const Index3& tri) {
+    const std::size_t vertex_count = mesh.positions.size();
+    if (tri[0] >= vertex_count || tri[1] >= vertex_count || tri[2] >= vertex_count) return {};
+    return prepare_triangle(mesh.positions[tri[0]], mesh.positions[tri[1]], mesh.positions[tri[2]]);
+}
 
 namespace detail {
 
@@ -101,7 +111,7 @@ inline bool edge_inside(Vec3 o, Vec3 d, Vec3 a, Vec3 b, bool flip) {
 // above 1); b1, b2 are clamped so that b1, b2 ≥ 0 and b1 + b2 ≤ 1. Rays
 // parallel to the plane and degenerate triangles never hit. Every value
 // written is finite.
-inline bool intersect_triangle(Vec3 o, Vec3 d, const TriangleEdges& tri, float tmax,
+inline bool intersect_triangle(Vec3 o, Vec3 d, const PreparedTriangle& tri, float tmax,
                                float& t, float& b1, float& b2) {
     // det = e1 · (d × e2) of the textbook form, = −d · (e1 × e2).
     const float det = -dot(d, tri.n);
@@ -155,7 +165,7 @@ inline bool intersect_triangle(Vec3 o, Vec3 d, const TriangleEdges& tri, float t
 // The same test for a triangle given by its corners.
 inline bool intersect_triangle(Vec3 o, Vec3 d, Vec3 p0, Vec3 p1, Vec3 p2, float tmax,
                                float& t, float& b1, float& b2) {
-    return intersect_triangle(o, d, make_triangle_edges(p0, p1, p2), tmax, t, b1, b2);
+    return intersect_triangle(o, d, prepare_triangle(p0, p1, p2), tmax, t, b1, b2);
 }
 
 }  // namespace sombra

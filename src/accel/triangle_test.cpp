@@ -126,7 +126,7 @@ TEST(Triangle, DegenerateTrianglesNeverHitAndGiveNoNaN) {
     std::mt19937 rng(7);
     std::uniform_real_distribution<float> unit(-1.0f, 1.0f), along(0.0f, 1.0f);
     for (const auto& tri : degenerate) {
-        EXPECT_FALSE(is_hittable(make_triangle_edges(tri[0], tri[1], tri[2])));
+        EXPECT_FALSE(is_hittable(prepare_triangle(tri[0], tri[1], tri[2])));
         for (int i = 0; i < 2000; ++i) {
             // Rays through points of the segment (or point) the triangle collapses to.
             const float s = along(rng);
@@ -143,7 +143,7 @@ TEST(Triangle, NonFiniteCornersNeverHit) {
     const float nan = std::nanf("");
     const Vec3 bad[] = {{nan, 0, 0}, {kInf, 0, 0}, {0, -kInf, 0}};
     for (const Vec3 p : bad) {
-        EXPECT_FALSE(is_hittable(make_triangle_edges(p, kP1, kP2)));
+        EXPECT_FALSE(is_hittable(prepare_triangle(p, kP1, kP2)));
         EXPECT_FALSE(trace({0.2f, 0.2f, 1}, {0, 0, -1}, p, kP1, kP2).hit);
         EXPECT_FALSE(trace({0.2f, 0.2f, 1}, {0, 0, -1}, kP0, p, kP2).hit);
         EXPECT_FALSE(trace({0.2f, 0.2f, 1}, {0, 0, -1}, kP0, kP1, p).hit);

@@ -12,9 +12,9 @@
 #include "app/progress.h"
 #include "app/stats.h"
 #include "core/error.h"
+#include "core/peak_rss.h"
 #include "image/image_io.h"
 #include "render/render.h"
-#include "scene/quicklook.h"
 #include "scene/scene_file.h"
 
 namespace sombra {

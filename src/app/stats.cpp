@@ -1,22 +1,15 @@
 #include "app/stats.h"
 
-#include <sys/resource.h>
-
 #include <cerrno>
 #include <cstdio>
 #include <fstream>
 #include <nlohmann/json.hpp>
 
 #include "core/error.h"
+#include "core/format.h"
 #include "image/atomic_file.h"
 
 namespace sombra {
-
-std::uint64_t peak_rss_bytes() {
-    rusage usage{};
-    getrusage(RUSAGE_SELF, &usage);
-    return static_cast<std::uint64_t>(usage.ru_maxrss) * 1024u;  // Linux reports KiB
-}
 
 void write_stats_json(const std::filesystem::path& path, const RunStats& s) {
     const nlohmann::ordered_json j = {
@@ -48,15 +41,6 @@ void write_stats_json(const std::filesystem::path& path, const RunStats& s) {
 
 namespace {
 
-std::string with_thousands(std::uint64_t n) {
-    std::string digits = std::to_string(n), out;
-    for (std::size_t i = 0; i < digits.size(); ++i) {
-        if (i > 0 && (digits.size() - i) % 3 == 0) out += ',';
-        out += digits[i];
-    }
-    return out;
-}
-
 std::string seconds(double s) {
     char buf[32];
     std::snprintf(buf, sizeof buf, "%.2f s", s);
@@ -70,7 +54,7 @@ std::string summary_line(const RunStats& s, const std::string& output) {
     const double mrays = s.render_seconds > 0 ? rays / s.render_seconds * 1e-6 : 0.0;
     char rate[48];
     std::snprintf(rate, sizeof rate, "%.1f Mrays/s", mrays);
-    return "sombra: " + with_thousands(s.triangles) + " triangles, " + std::to_string(s.width) + "x" +
+    return "sombra: " + thousands(s.triangles) + " triangles, " + std::to_string(s.width) + "x" +
            std::to_string(s.height) + " at " + std::to_string(s.spp) + " spp | load " + seconds(s.load_seconds) +
            ", build " + seconds(s.build_seconds) + ", render " + seconds(s.render_seconds) + " (" + rate + ", " +
            std::to_string(s.threads) + (s.threads == 1 ? " thread), write " : " threads), write ") + seconds(s.write_seconds) + " | wrote " + output;

@@ -25,9 +25,6 @@ struct RunStats {
     std::uint64_t peak_rss_bytes = 0;
 };
 
-// The process's peak resident set size so far, in bytes.
-std::uint64_t peak_rss_bytes();
-
 // Writes the statistics as one JSON object, atomically (temporary file, then
 // rename); throws Error(path, ...) on failure.
 void write_stats_json(const std::filesystem::path& path, const RunStats& stats);

@@ -15,4 +15,8 @@ struct Ray {
     float tmax = std::numeric_limits<float>::infinity();
 };
 
+// False for rays that could only produce NaN or visit every box: a non-finite
+// origin or direction, or a zero direction. Every backend lets them hit nothing.
+inline bool is_traceable(const Ray& ray) { return is_finite(ray.origin) && is_finite(ray.dir) && ray.dir != Vec3{}; }
+
 }  // namespace sombra

@@ -3,16 +3,12 @@
 #include <cmath>
 #include <numbers>
 
+#include "core/vec3d.h"
+
 namespace sombra {
 
 namespace {
 
-struct Vec3d {
-    double x, y, z;
-};
-Vec3d to_double(Vec3 v) { return {v.x, v.y, v.z}; }
-Vec3 to_float(Vec3d v) { return {static_cast<float>(v.x), static_cast<float>(v.y), static_cast<float>(v.z)}; }
-Vec3d cross(Vec3d a, Vec3d b) { return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x}; }
 Vec3d scaled_unit(Vec3d a, double length) {
     const double s = length / std::sqrt(a.x * a.x + a.y * a.y + a.z * a.z);
     return {a.x * s, a.y * s, a.z * s};

@@ -1,23 +1,128 @@
 // OBJ (+MTL) → LoadedMesh (spec §5, §9). sombra's own parser (obj_parse.h)
 // reads the geometry; tinyobjloader's LoadMtl reads the MTL files it names
-// (obj_material.h); PolygonMeshBuilder splits polygons and drops what would
+// (MtlBesideObj below), whose parameters become sombra's diffuse and Phong
+// materials; MeshBuilder (mesh_builder.h) splits polygons and drops what would
 // poison the renderer. tinyobjloader's LoadObj was replaced because parsing
 // was most of a run's time (docs/performance.md, "OBJ parser").
+#include "scene/mesh_file.h"
+
 #include <tiny_obj_loader.h>
 
+#include <algorithm>
 #include <cctype>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <limits>
 #include <map>
 #include <set>
+#include <string>
 #include <string_view>
 #include <unordered_map>
+#include <vector>
 
-#include "scene/mesh_file.h"
-#include "scene/obj_material.h"
+#include "core/error.h"
+#include "core/format.h"
+#include "scene/material.h"
+#include "scene/mesh_builder.h"
 #include "scene/obj_parse.h"
-#include "scene/polygon_file.h"
-#include "scene/polygon_mesh_builder.h"
 
 namespace sombra {
+
+// Opens the files named by `mtllib` relative to the OBJ's folder and records
+// which file each material came from. A missing file is a warning (in
+// tinyobjloader's warning text); its materials are then unknown names.
+class MtlBesideObj final : public tinyobj::MaterialReader {
+public:
+    explicit MtlBesideObj(std::filesystem::path obj_folder) : folder_(std::move(obj_folder)) {}
+
+    bool operator()(const std::string& name, std::vector<tinyobj::material_t>* materials,
+                    std::map<std::string, int>* name_to_index, std::string* warn, std::string* err) override;
+
+    // The MTL path material i came from, as a WHERE for messages; `fallback` if unknown.
+    const std::string& source(std::size_t i, const std::string& fallback) const {
+        return i < sources_.size() ? sources_[i] : fallback;
+    }
+
+private:
+    std::filesystem::path folder_;
+    std::vector<std::string> sources_;
+};
+
+// Kd → kd; Ks > 0 in any channel → Phong with ks and shininess Ns, else
+// diffuse; Ke → ke. Colours are clamped to [0, 1] (Ke only to >= 0, it is a
+// radiance) and Ns to [0, kMaxMtlShininess], each with a warning at `where`.
+Material material_from_mtl(const tinyobj::material_t& mtl, const std::string& where, Diagnostics& diag);
+
+inline constexpr float kMaxMtlShininess = 1e6f;
+
+namespace {
+
+std::string format_rgb(const tinyobj::real_t c[3]) {
+    return format_number(c[0]) + " " + format_number(c[1]) + " " + format_number(c[2]);
+}
+
+// Clamps each channel to [0, hi]; NaN (and, for an unbounded `hi`, infinity)
+// becomes 0. Warns once when anything changed.
+Vec3 clamp_rgb(const tinyobj::real_t c[3], float hi, const char* key, const tinyobj::material_t& mtl,
+               const std::string& where, Diagnostics& diag) {
+    Vec3 out;
+    bool changed = false;
+    for (int k = 0; k < 3; ++k) {
+        const float value = static_cast<float>(c[k]);
+        float clamped = std::clamp(value, 0.0f, hi);
+        if (std::isnan(value) || std::isinf(clamped)) clamped = 0;  // not a colour, not a radiance
+        changed |= !(clamped == value);
+        out[k] = clamped;
+    }
+    if (changed) {
+        const std::string range = std::isinf(hi) ? "finite values >= 0" : "[0, 1]";
+        diag.warn(where, "material '" + mtl.name + "': " + key + " " + format_rgb(c) + " clamped to " + range);
+    }
+    return out;
+}
+
+}  // namespace
+
+bool MtlBesideObj::operator()(const std::string& name, std::vector<tinyobj::material_t>* materials,
+                              std::map<std::string, int>* name_to_index, std::string* warn, std::string* err) {
+    const std::filesystem::path path = folder_ / name;
+    std::error_code ec;
+    // Only regular files: a folder or a device named by mtllib must not block or fail oddly.
+    std::ifstream in;
+    if (std::filesystem::is_regular_file(path, ec)) in.open(path);
+    if (!in.is_open()) {
+        if (warn) *warn += "material file '" + name + "' not found beside the OBJ (" + path.string() + ")\n";
+        return false;
+    }
+    tinyobj::LoadMtl(name_to_index, materials, &in, warn, err);
+    sources_.resize(materials->size(), path.string());
+    return true;
+}
+
+Material material_from_mtl(const tinyobj::material_t& mtl, const std::string& where, Diagnostics& diag) {
+    Material m;
+    m.name = mtl.name;
+    m.kd = clamp_rgb(mtl.diffuse, 1, "Kd", mtl, where, diag);
+    const Vec3 ks = clamp_rgb(mtl.specular, 1, "Ks", mtl, where, diag);
+    // Emission is a radiance: unbounded above, but it must stay finite.
+    m.ke = clamp_rgb(mtl.emission, std::numeric_limits<float>::infinity(), "Ke", mtl, where, diag);
+    if (max_component(ks) > 0) {
+        m.type = MaterialType::Phong;
+        m.ks = ks;
+        const float ns = static_cast<float>(mtl.shininess);
+        m.shininess = std::isnan(ns) ? 1.0f : std::clamp(ns, 0.0f, kMaxMtlShininess);
+        if (!(m.shininess == ns)) {
+            diag.warn(where, "material '" + mtl.name + "': Ns " + format_number(mtl.shininess) + " clamped to [0, " +
+                                 format_number(kMaxMtlShininess) + "]");
+        }
+        if (breaks_energy_conservation(m))
+            diag.warn(where, "material '" + mtl.name +
+                                 "': Kd + Ks exceeds 1 in some channel: the material reflects more light than it receives");
+    }
+    return m;
+}
+
 namespace {
 
 std::string_view trim(std::string_view s) {
@@ -125,7 +230,7 @@ struct ObjMaterials {
 
 LoadedMesh load_obj(const std::filesystem::path& path, Diagnostics& diag) {
     const std::string where = path.string();
-    const std::string bytes = read_polygon_file(path);
+    const std::string bytes = read_mesh_file(path);
     std::string_view text = bytes;
     if (text.starts_with("\xFE\xFF") || text.starts_with("\xFF\xFE")) {
         throw Error(where, "no triangles: the file is UTF-16 text; save it as UTF-8 or ASCII");
@@ -133,7 +238,7 @@ LoadedMesh load_obj(const std::filesystem::path& path, Diagnostics& diag) {
     if (text.starts_with("\xEF\xBB\xBF")) text.remove_prefix(3);  // UTF-8 byte order mark
     ObjGeometry geometry = parse_obj(text, where);
 
-    PolygonMeshBuilder builder(where);
+    MeshBuilder builder(where);
     builder.skipped_small_faces = geometry.small_faces;
     builder.positions = std::move(geometry.positions);
     builder.normals = std::move(geometry.normals);

@@ -12,8 +12,6 @@
 
 #include "core/error.h"
 #include "scene/mesh.h"
-#include "scene/obj_parse_face.h"
-#include "scene/obj_parse_number.h"
 
 namespace sombra {
 namespace {

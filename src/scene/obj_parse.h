@@ -3,6 +3,13 @@
 // what tinyobjloader did for sombra before (objsuite/README.md), except that
 // every error names its line and `usemtl` takes the rest of its line as the
 // name; the numbers are rounded correctly. MTL files are not read here.
+// One `f`, `l` or `p` line of an OBJ (obj_parse.cpp's per-line part): the
+// corner indices as tinyobjloader resolved them, and the index problems
+// sombra reports before anything else (0, beyond 32 bits, before the first
+// vertex, not a number).
+// The numbers of an OBJ line, read the way tinyobjloader decides what a
+// number is (so that sombra keeps its outcome on malformed files), with the
+// value rounded correctly (std::from_chars, the same float strtof gives).
 #pragma once
 
 #include <cstdint>
@@ -46,5 +53,55 @@ struct ObjGeometry {
 // could not read. `chunk_bytes` only sets the parallel split: the result is
 // the same for any value and any thread count.
 ObjGeometry parse_obj(std::string_view text, const std::string& where, std::size_t chunk_bytes = 1 << 19);
+
+// A corner's indices, 0-based and resolved (negative ones relative to what
+// came before); normal -1 when the corner names none. Either may lie
+// outside the file's arrays: the caller checks them against the totals.
+struct ObjCorner {
+    std::int64_t position;
+    std::int64_t normal;
+};
+
+struct ObjIndexCounts {
+    std::int64_t positions = 0;  // `v` lines before this line
+    std::int64_t normals = 0;    // `vn` lines before this line
+};
+
+enum class ObjLineStatus {
+    Ok,            // `corners` holds the face's corners (maybe fewer than 3)
+    IndexProblem,  // `problem` says which index, as the error message
+    Unreadable,    // tinyobjloader would stop here: `problem` says why
+};
+
+struct ObjLineProblem {
+    std::string what;
+    int part = 0;             // 0 position, 1 texture coordinate, 2 normal
+    bool needs_total = false; // the message ends with the file's count of that part
+};
+
+// Reads the corners of a face line: `args` is the text after "f" and its
+// blank, `end` the end of the line's content.
+ObjLineStatus read_obj_face(const char* args, const char* end, const ObjIndexCounts& before,
+                            std::vector<ObjCorner>& corners, ObjLineProblem& problem);
+
+// Checks an `l` or `p` line as tinyobjloader reads it (indices, none 0);
+// `args` is the text after the keyword and its blank. False where it fails.
+bool obj_index_line_readable(const char* args, const char* end);
+
+// "face index 0 is not allowed ..."'s tail for a too large index: " (the file has N vertices)".
+std::string obj_total_suffix(int part, std::int64_t total);
+
+// Reads the longest prefix of [first, last) that tinyobjloader's
+// tryParseDouble accepts: [sign] (digits | '.') [. digits] [e|E [sign] digits]
+// ("3.1+e2" reads as 3.1, "1.#IND" as 1, "-." as -0). Returns the end of that
+// prefix with `value` set to strtof's float for it (±inf beyond the float
+// range), or nullptr where tinyobjloader fails ("nan", "1e", an exponent of
+// more than 9 digits), leaving `value` unchanged.
+const char* read_obj_real(const char* first, const char* last, float& value);
+
+// C's atoi on [first, last) as glibc computes it: leading white space, a
+// sign, digits; strtol saturates at 64 bits and the result is cut to int.
+// tinyobjloader reads every face index this way.
+int obj_atoi(const char* first, const char* last);
 
 }  // namespace sombra

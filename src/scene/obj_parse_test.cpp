@@ -16,7 +16,6 @@
 
 #include "core/error.h"
 #include "scene/mesh.h"
-#include "scene/obj_parse_number.h"
 #include "scene/polygon_test_files.h"
 
 namespace sombra {

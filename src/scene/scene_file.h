@@ -1,4 +1,6 @@
-// Scene JSON (spec §2, §3, §5, §8) → loaded Scene in world space.
+// Scenes for the renderer: a scene JSON file (spec §2, §3, §5, §8) loaded
+// into world space, or the quick look of spec §7, a scene made on the fly
+// for a lone model file.
 #pragma once
 
 #include <filesystem>
@@ -19,5 +21,12 @@ Scene load_scene_file(const std::filesystem::path& path, Diagnostics& diag);
 // The same from JSON text already in memory; `path` names it in messages and
 // anchors relative mesh paths.
 Scene load_scene_text(const std::string& text, const std::filesystem::path& path, Diagnostics& diag);
+
+// Loads the model and frames it: a look-at camera with a 40° vertical field
+// of view, in front of the model (+z) and a little above, at the distance
+// where the bounding sphere fits the frame; a key, a fill and a rim light
+// scaled to the model's size so the lit side shows mid-grey to light tones;
+// the model's own MTL materials, or neutral grey. Assumes +y is up.
+Scene make_quicklook_scene(const std::filesystem::path& model, Diagnostics& diag);
 
 }  // namespace sombra

@@ -1,9 +1,12 @@
 // The sections of a scene file: render settings, camera, materials, lights
 // and transforms, validated as spec §2–§8 ask.
-#include "scene/scene_json_sections.h"
+#include "scene/scene_json.h"
 
 #include <cmath>
 #include <cstdio>
+
+#include "core/format.h"
+#include "core/vec3d.h"
 
 namespace sombra {
 namespace {
@@ -14,14 +17,6 @@ constexpr double kAngleTolerance = 1e-3;
 // |det| / (product of column lengths) below this counts as singular: 0 for a
 // flattening matrix, 1 for any rotation or scale, whatever its size.
 constexpr double kSingularRatio = 1e-6;
-
-struct Vec3d {
-    double x, y, z;
-};
-Vec3d to_double(Vec3 v) { return {v.x, v.y, v.z}; }
-double dot(Vec3d a, Vec3d b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
-double length(Vec3d a) { return std::sqrt(dot(a, a)); }
-Vec3d cross(Vec3d a, Vec3d b) { return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x}; }
 
 std::string degrees_text(double degrees) {
     char buf[32];

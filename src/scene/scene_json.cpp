@@ -1,6 +1,6 @@
 // JSON text → nlohmann::json with positioned syntax errors, and typed readers
 // that name the JSON pointer of whatever is wrong.
-#include "scene/scene_json_read.h"
+#include "scene/scene_json.h"
 
 #include <algorithm>
 #include <charconv>
@@ -262,12 +262,6 @@ Vec3 read_rgb(const SceneJson& s, const Json& v, std::string_view pointer) {
 const std::string& read_string(const SceneJson& s, const Json& v, std::string_view pointer) {
     if (!v.is_string()) json_fail(s, pointer, "expected a string");
     return v.get_ref<const std::string&>();
-}
-
-std::string format_number(double v) {
-    char buf[32];
-    const auto [end, ec] = std::to_chars(buf, buf + sizeof buf, v);
-    return ec == std::errc{} ? std::string(buf, end) : std::to_string(v);
 }
 
 }  // namespace sombra

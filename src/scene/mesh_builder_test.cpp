@@ -1,6 +1,6 @@
 // Polygon splitting (spec §9): fans where a fan is right, ear clipping where
 // it would overlap, always n - 2 triangles.
-#include "scene/polygon_triangulate.h"
+#include "scene/mesh_builder.h"
 
 #include <gtest/gtest.h>
 

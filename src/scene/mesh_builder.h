@@ -1,26 +1,60 @@
-// Polygon faces → LoadedMesh: what the OBJ and PLY loaders share once they
-// have checked a face's indices: splitting polygons into triangles, dropping
-// data that would poison the renderer (non-finite positions, unusable
-// normals), the default material, and the "no triangles" error.
+// What the OBJ and PLY loaders share, private to src/scene: reading the
+// file whole with the file-level errors both report the same way; splitting
+// one polygon into triangles; and MeshBuilder, which turns checked faces
+// into a LoadedMesh, dropping data that would poison the renderer
+// (non-finite positions, unusable normals), adding the default material,
+// and reporting "no triangles".
 #pragma once
 
+#include <array>
 #include <cstdint>
+#include <filesystem>
 #include <span>
 #include <string>
 #include <vector>
 
 #include "core/error.h"
+#include "core/vec3.h"
 #include "scene/mesh.h"
-#include "scene/polygon_triangulate.h"
 
 namespace sombra {
+
+// The file's bytes. Throws Error(path, "no such file"), Error(path, "is a
+// folder, not a mesh file"), or Error(path, ...) when it cannot be read.
+std::string read_mesh_file(const std::filesystem::path& path);
+
+// Corner numbers (0 … n-1 within one polygon) of one output triangle.
+using PolygonTriangle = std::array<std::uint32_t, 3>;
+
+// How a polygon was split.
+enum class PolygonSplit {
+    Fan,         // (0,1,2), (0,2,3), …: triangles, quads, convex or star-shaped polygons
+    EarClipped,  // the fan would overlap: ear clipping in the Newell plane
+    OverlapFan,  // the fan overlaps but the polygon is too large to clip: fan kept
+};
+
+// Scratch memory reused across polygons, so that splitting allocates only
+// while the largest polygon seen so far grows.
+struct PolygonScratch {
+    std::vector<double> u, v;  // corners projected onto the best-fit plane
+    std::vector<std::uint32_t> prev, next;
+};
+
+// Polygons with more corners than this are never ear-clipped (clipping is
+// quadratic or worse in the corner count): a fan is kept and reported.
+inline constexpr std::size_t kMaxEarClipCorners = 256;
+
+// Appends exactly corners.size() - 2 triangles to `out` (nothing when fewer
+// than 3 corners), each wound like the polygon. Non-finite corners give a fan.
+PolygonSplit triangulate_polygon(std::span<const Vec3> corners, PolygonScratch& scratch,
+                                 std::vector<PolygonTriangle>& out);
 
 // The material index of a face that names none: it gets default_material().
 inline constexpr std::uint32_t kNoMaterial = 0xffffffffu;
 
-struct PolygonMeshBuilder {
+struct MeshBuilder {
     // `where` (the file's path) names the file in warnings and errors.
-    explicit PolygonMeshBuilder(std::string where) : where_(std::move(where)) {}
+    explicit MeshBuilder(std::string where) : where_(std::move(where)) {}
 
     // The file's vertices and normals, in file order; the loader fills these.
     std::vector<Vec3> positions;

@@ -1,17 +1,22 @@
 // Private to the scene loader: parsing a scene file's JSON text and reading
 // typed values out of it, each failure naming its place as
 // "scene.json:line:col" (syntax) or "scene.json: /json/pointer" (meaning).
+// Private to the scene loader: the sections of a scene file (spec §2, §3, §5,
+// §8), each read and validated on its own. Every function throws Error naming
+// the JSON pointer of the offending value.
 #pragma once
 
 #include <cstdint>
 #include <initializer_list>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <string_view>
-
-#include <nlohmann/json.hpp>
+#include <vector>
 
 #include "core/error.h"
 #include "core/vec3.h"
+#include "scene/scene.h"
+#include "scene/transform.h"
 
 namespace sombra {
 
@@ -61,7 +66,23 @@ Vec3 read_vec3(const SceneJson& s, const Json& v, std::string_view pointer);
 Vec3 read_rgb(const SceneJson& s, const Json& v, std::string_view pointer);
 const std::string& read_string(const SceneJson& s, const Json& v, std::string_view pointer);
 
-// A float for messages: shortest form that reads back ("0.5", "1e+30").
-std::string format_number(double v);
+// "render": {width, height, spp, seed}; absent members keep their defaults.
+RenderSettings read_render(const SceneJson& s, const Json& v, std::string_view pointer);
+
+// "camera": exactly one of the basis form (origin, left, up, forward: non-zero,
+// mutually perpendicular) and the look-at form (origin, look_at, up, fov).
+CameraSpec read_camera(const SceneJson& s, const Json& v, std::string_view pointer);
+
+// "materials": {name: {type, kd, ks, shininess, ke}}, in name order. Warns
+// when kd + ks exceeds 1 in a channel (not energy conserving).
+std::vector<Material> read_materials(const SceneJson& s, const Json& v, std::string_view pointer);
+
+// "lights": [{type, position, intensity}]; "type" may be left out ("point" is
+// the only kind).
+std::vector<PointLight> read_lights(const SceneJson& s, const Json& v, std::string_view pointer);
+
+// "transform": a list of steps, the first listed acting first. The result is
+// finite and invertible.
+Transform read_transform(const SceneJson& s, const Json& v, std::string_view pointer);
 
 }  // namespace sombra
