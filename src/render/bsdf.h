@@ -1,0 +1,86 @@
+// The BSDFs of spec §5 and §11 as the path tracer sees them: evaluate
+// f(ωo, ωi), its sampling density, and draw ωi (spec §10–§11).
+//
+// Conventions. All directions are unit vectors in world space pointing away
+// from the surface: wo towards the viewer (the camera path), wi towards the
+// light. Lobes are computed in the local shading frame p.frame, where n_s is
+// +z (cos θ = local z). The geometric normal decides which side a direction is
+// on (spec §10 "No light leaks"): reflection needs wi on wo's side of n_g
+// (n_g·wi > 0, n_g being on wo's side), transmission the other side
+// (n_g·wi < 0); anything else has f = 0 and pdf = 0, and sample_bsdf returns
+// false rather than produce it.
+//
+// The materials:
+//  - Diffuse: f = kd/π. Sampled cosine-weighted around n_s: pdf = max(0, cos θ_i)/π.
+//  - Phong (§5): f = kd/π + ks·(n+2)/(2π)·max(0, r·ωo)^n, r = ωi mirrored about n_s;
+//    eval_bsdf returns exactly eval_brdf (render/brdf.h) where wi is on wo's side.
+//    Sampled by a mixture: the cosine lobe with probability P_d = mean(kd)/(mean(kd)+mean(ks)),
+//    else ωi around r_o = ωo mirrored about n_s with density (n+1)/(2π)·max(0, ωi·r_o)^n
+//    (ωi·r_o = r·ωo); pdf = P_d·cos⁺θ_i/π + (1 − P_d)·(n+1)/(2π)·max(0, ωi·r_o)^n.
+//  - Mirror: delta; ωi = ωo mirrored about n_s, weight kr.
+//  - Dielectric (§11): delta; exact unpolarised Fresnel F (1 under total internal
+//    reflection) between η_i (wo's side: 1 if p.outside, else ior) and η_t (the other).
+//    Reflection with probability F (weight 1), refraction by Snell's law with
+//    probability 1 − F (weight kt·(η_i/η_t)², radiance transport).
+//  - Conductor (§11): GGX with α = roughness², f = D(h)·G1(ωi)·G1(ωo)·F(ωo·h) / (4 cos θ_i cos θ_o),
+//    h = normalize(ωi + ωo), Schlick F = ks + (1 − ks)(1 − ωo·h)⁵ (render/microfacet.h).
+//    Sampled by visible normals (Heitz 2018): pdf = D(h)·G1(ωo) / (4 cos θ_o), weight
+//    F·G1(ωi). Directions drawn below n_s are failures, so the pdf integrates to ≤ 1.
+//    α < 1e-3 is a delta mirror with weight F(cos θ_o) (as pbrt-v4).
+// Non-delta lobes need cos θ_o > 0 and cos θ_i > 0 in the shading frame,
+// except Diffuse and Phong, whose f is eval_brdf's wherever wi is on wo's side of n_g.
+// Delta lobes need cos θ_o > 0 (a bumpy n_s facing away from wo gives false).
+#pragma once
+
+#include "core/frame.h"
+#include "core/vec3.h"
+#include "scene/material.h"
+
+namespace sombra {
+
+// The surface as a BSDF sees it at a hit.
+struct BsdfPoint {
+    Vec3 n_g;      // unit geometric normal, on the side of wo (surfaces are two-sided)
+    Vec3 n_s;      // unit shading normal, in n_g's hemisphere
+    Frame frame;   // Frame::from_normal(n_s)
+    bool outside;  // wo is on the side of the triangle's winding normal n_w (a dielectric ray from outside enters the medium)
+};
+
+// A BsdfPoint with its frame built around n_s. n_g, n_s unit, n_g·n_s ≥ 0.
+BsdfPoint make_bsdf_point(Vec3 n_g, Vec3 n_s, bool outside);
+
+struct BsdfSample {
+    Vec3 wi;             // sampled unit direction, world space, pointing away from the surface
+    Vec3 weight;         // f(wo, wi)·|n_s·wi| / pdf; for a delta lobe the lobe's factor / its selection probability
+    float pdf = 0;       // solid-angle density of wi (for MIS); for a delta lobe: the probability of having chosen that lobe
+    bool delta = false;  // wi came from a delta (specular) lobe: eval/pdf of it are 0, no MIS against lights
+    bool transmission = false;
+};
+
+// f(wo, wi) in 1/sr of the non-delta lobes (0 for Mirror, Dielectric and
+// smooth Conductor); 0 where the no-light-leak rule says so.
+Vec3 eval_bsdf(const Material& m, const BsdfPoint& p, Vec3 wo, Vec3 wi);
+
+// Solid-angle density (1/sr) with which sample_bsdf draws wi: non-delta lobes
+// only, 0 for a delta material and wherever sample_bsdf never succeeds.
+float pdf_bsdf(const Material& m, const BsdfPoint& p, Vec3 wo, Vec3 wi);
+
+// Draws wi. u_lobe in [0,1) picks a lobe, (u1, u2) in [0,1)² place the
+// direction. Returns false, leaving out unspecified, when no direction was
+// produced (below the surface or on the wrong side of n_g, cos θ_o ≤ 0 for a
+// lobe that needs it, zero weight).
+bool sample_bsdf(const Material& m, const BsdfPoint& p, Vec3 wo, float u_lobe, float u1, float u2, BsdfSample& out);
+
+// True when every lobe of m is a delta (Mirror, Dielectric, Conductor with
+// α = roughness² < 1e-3): lights cannot be sampled for it.
+bool is_delta_bsdf(const Material& m);
+
+// The roughness α below which a Conductor is a delta mirror.
+inline constexpr float kDeltaAlpha = 1e-3f;
+
+// Exact unpolarised Fresnel reflectance of a smooth dielectric interface for
+// light arriving at cos_i (> 0) in a medium of index eta_i onto one of index
+// eta_t: (R_s + R_p)/2, 1 under total internal reflection.
+float fresnel_dielectric(float cos_i, float eta_i, float eta_t);
+
+}  // namespace sombra
