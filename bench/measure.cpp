@@ -51,6 +51,8 @@ ImageAgreement bvh_against_brute(const Scene& scene, const RenderSettings& setti
     const double affordable = kBruteBudget / (std::max<double>(double(scene.geometry.triangle_count()), 1) * rays_per_pixel);
     const std::size_t samples = std::clamp<std::size_t>(std::size_t(affordable), 64, std::max<std::size_t>(pixels / 37, 1));
     const std::size_t stride = std::max<std::size_t>(pixels / samples, 1);
+    const LightSet lights = make_light_set(scene, make_constant_environment(scene.background), false);
+    const IntegratorContext with_bvh{&scene, &bvh, &lights}, with_brute{&scene, &brute, &lights};
     std::vector<char> same((pixels + stride - 1) / stride);
     tbb::parallel_for(std::size_t(0), same.size(), [&](std::size_t k) {
         const std::size_t p = k * stride;
@@ -58,8 +60,8 @@ ImageAgreement bvh_against_brute(const Scene& scene, const RenderSettings& setti
         const float y = float(p / std::size_t(settings.width)) + 0.5f;
         const Ray ray = camera_ray(camera, image_plane_s(x, settings.width), image_plane_t(y, settings.height));
         RayCounters counters;
-        const Vec3 a = trace_direct(scene, bvh, ray, counters);
-        const Vec3 b = trace_direct(scene, brute, ray, counters);
+        const Vec3 a = trace_direct(with_bvh, ray, counters);
+        const Vec3 b = trace_direct(with_brute, ray, counters);
         const float fa[3] = {a.x, a.y, a.z}, fb[3] = {b.x, b.y, b.z};
         same[k] = same_colour(fa, fb);
     });

@@ -54,6 +54,9 @@ CliParse parse_command_line(int argc, const char* const* argv) {
             return parse_accel_kind(name) ? std::string{} : "unknown accelerator '" + name + "' (available: " + accel_list() + ")";
         })
         ->capture_default_str();
+    render->add_option("--integrator", o.integrator, "direct (point lights, spec §4) or path (path tracing; overrides the scene)")
+        ->check(CLI::IsMember({"direct", "path"}));
+    render->add_option("--max-depth", o.max_depth, "Most scattering events on a path, 0 to 1024 (path; overrides the scene)");
     render->add_option("--stats-json", o.stats_json, "Write the run's statistics as JSON to FILE");
     render->add_flag("-q,--quiet", o.quiet, "No progress bar, no summary");
 

@@ -15,6 +15,8 @@ struct CliOptions {
     int threads = 0;                   // 0 = all hardware threads
     float exposure = 0;                // PNG only: radiance × 2^exposure
     std::string accel = "bvh";
+    std::optional<std::string> integrator;  // "direct" or "path", overrides the scene
+    std::optional<int> max_depth;           // overrides the scene; checked against kMaxDepth
     std::string stats_json;            // empty = none
     bool quiet = false;
 };

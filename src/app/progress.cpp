@@ -4,9 +4,9 @@
 
 namespace sombra {
 
-ProgressBar::ProgressBar(const RenderProgress& progress, std::uint64_t total_pixels, bool enabled)
-    : progress_(progress), total_pixels_(total_pixels), start_(std::chrono::steady_clock::now()) {
-    if (enabled && total_pixels_ > 0) thread_ = std::thread([this] { run(); });
+ProgressBar::ProgressBar(const RenderProgress& progress, std::uint64_t total_samples, bool enabled)
+    : progress_(progress), total_samples_(total_samples), start_(std::chrono::steady_clock::now()) {
+    if (enabled && total_samples_ > 0) thread_ = std::thread([this] { run(); });
 }
 
 ProgressBar::~ProgressBar() {
@@ -32,8 +32,8 @@ void ProgressBar::run() {
 
 void ProgressBar::draw(double elapsed) const {
     constexpr int kWidth = 30;
-    const double done = static_cast<double>(progress_.pixels_done.load(std::memory_order_relaxed)) /
-                        static_cast<double>(total_pixels_);
+    const auto samples = progress_.samples_done.load(std::memory_order_relaxed);
+    const double done = static_cast<double>(samples) / static_cast<double>(total_samples_);
     const double mrays = elapsed > 0 ? static_cast<double>(progress_.rays_traced.load(std::memory_order_relaxed)) / elapsed * 1e-6 : 0;
     char bar[kWidth + 1];
     const int filled = static_cast<int>(done * kWidth);
@@ -44,7 +44,15 @@ void ProgressBar::draw(double elapsed) const {
         const auto left = static_cast<long>(elapsed * (1.0 - done) / done + 0.5);
         std::snprintf(eta, sizeof eta, "%ld:%02ld", left / 60, left % 60);
     }
-    std::fprintf(stderr, "\r\033[Ksombra: [%s] %3d%%  %.1f Mrays/s  ETA %s", bar, static_cast<int>(done * 100), mrays, eta);
+    char count[64];
+    if (total_samples_ >= 10'000'000)
+        std::snprintf(count, sizeof count, "%.1f/%.1f M samples", static_cast<double>(samples) * 1e-6,
+                      static_cast<double>(total_samples_) * 1e-6);
+    else
+        std::snprintf(count, sizeof count, "%llu/%llu samples", static_cast<unsigned long long>(samples),
+                      static_cast<unsigned long long>(total_samples_));
+    std::fprintf(stderr, "\r\033[Ksombra: [%s] %3d%%  %s  %.1f Mrays/s  ETA %s", bar, static_cast<int>(done * 100), count,
+                 mrays, eta);
     std::fflush(stderr);
 }
 

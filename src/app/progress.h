@@ -1,5 +1,6 @@
 // The progress bar: while a render runs, a watcher thread redraws one
-// terminal line with the share done, the ray rate and the time left.
+// terminal line with the share done, the samples done, the ray rate and
+// the time left.
 #pragma once
 
 #include <chrono>
@@ -16,7 +17,7 @@ class ProgressBar {
 public:
     // Starts drawing on stderr when `enabled` (a terminal and not --quiet);
     // otherwise does nothing at all.
-    ProgressBar(const RenderProgress& progress, std::uint64_t total_pixels, bool enabled);
+    ProgressBar(const RenderProgress& progress, std::uint64_t total_samples, bool enabled);
     // Stops the watcher and clears the line.
     ~ProgressBar();
     ProgressBar(const ProgressBar&) = delete;
@@ -27,7 +28,7 @@ private:
     void draw(double elapsed_seconds) const;
 
     const RenderProgress& progress_;
-    std::uint64_t total_pixels_;
+    std::uint64_t total_samples_;  // width · height · spp
     std::chrono::steady_clock::time_point start_;
     std::mutex mutex_;
     std::condition_variable wake_;

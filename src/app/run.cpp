@@ -60,6 +60,8 @@ RenderSettings resolve_settings(const RenderSettings& scene_settings, const CliO
     if (o.height) { s.height = *o.height; check("--height"); }
     if (o.spp) { s.spp = *o.spp; check("--spp"); }
     if (o.seed) s.seed = *o.seed;
+    if (o.integrator) s.integrator = *o.integrator == "path" ? IntegratorKind::Path : IntegratorKind::Direct;
+    if (o.max_depth) { s.max_depth = *o.max_depth; check("--max-depth"); }
     return s;
 }
 
@@ -104,7 +106,10 @@ int run_render(const CliOptions& o) {
         RenderOutput rendered;
         {
             const bool show = !o.quiet && isatty(STDERR_FILENO);
-            ProgressBar bar(progress, static_cast<std::uint64_t>(settings.width) * static_cast<std::uint64_t>(settings.height), show);
+            ProgressBar bar(progress,
+                            static_cast<std::uint64_t>(settings.width) * static_cast<std::uint64_t>(settings.height) *
+                                static_cast<std::uint64_t>(settings.spp),
+                            show);
             rendered = render_image(job, progress);
         }
         stats.render_seconds = seconds_since(render_start);
@@ -126,6 +131,9 @@ int run_render(const CliOptions& o) {
         stats.threads = o.threads > 0 ? o.threads : tbb::info::default_concurrency();
         stats.accel = std::string(accel_name(kind));
         stats.accel_bytes = accel_memory_bytes(accel);
+        stats.integrator = settings.integrator == IntegratorKind::Path ? "path" : "direct";
+        stats.max_depth = settings.max_depth;
+        stats.bounce_rays = rendered.counters.bounce_rays;
         stats.camera_rays = rendered.counters.camera_rays;
         stats.shadow_rays = rendered.counters.shadow_rays;
         stats.nonfinite_samples = rendered.counters.nonfinite_samples;

@@ -19,6 +19,8 @@ void write_stats_json(const std::filesystem::path& path, const RunStats& s) {
         {"spp", s.spp},
         {"threads", s.threads},
         {"accel", s.accel},
+        {"integrator", s.integrator},
+        {"max_depth", s.max_depth},
         {"accel_bytes", s.accel_bytes},
         {"load_seconds", s.load_seconds},
         {"build_seconds", s.build_seconds},
@@ -27,6 +29,7 @@ void write_stats_json(const std::filesystem::path& path, const RunStats& s) {
         {"total_seconds", s.total_seconds},
         {"camera_rays", s.camera_rays},
         {"shadow_rays", s.shadow_rays},
+        {"bounce_rays", s.bounce_rays},
         {"nonfinite_samples", s.nonfinite_samples},
         {"peak_rss_bytes", s.peak_rss_bytes},
     };
@@ -50,12 +53,12 @@ std::string seconds(double s) {
 }  // namespace
 
 std::string summary_line(const RunStats& s, const std::string& output) {
-    const double rays = static_cast<double>(s.camera_rays + s.shadow_rays);
+    const double rays = static_cast<double>(s.camera_rays + s.shadow_rays + s.bounce_rays);
     const double mrays = s.render_seconds > 0 ? rays / s.render_seconds * 1e-6 : 0.0;
     char rate[48];
     std::snprintf(rate, sizeof rate, "%.1f Mrays/s", mrays);
     return "sombra: " + thousands(s.triangles) + " triangles, " + std::to_string(s.width) + "x" +
-           std::to_string(s.height) + " at " + std::to_string(s.spp) + " spp | load " + seconds(s.load_seconds) +
+           std::to_string(s.height) + " at " + std::to_string(s.spp) + " spp, " + s.integrator + " | load " + seconds(s.load_seconds) +
            ", build " + seconds(s.build_seconds) + ", render " + seconds(s.render_seconds) + " (" + rate + ", " +
            std::to_string(s.threads) + (s.threads == 1 ? " thread), write " : " threads), write ") + seconds(s.write_seconds) + " | wrote " + output;
 }

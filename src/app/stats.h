@@ -13,6 +13,8 @@ struct RunStats {
     int width = 0, height = 0, spp = 0;
     int threads = 0;  // worker threads actually used
     std::string accel;
+    std::string integrator;  // "direct" or "path"
+    int max_depth = 0;
     std::size_t accel_bytes = 0;
     double load_seconds = 0;    // parsing the scene and mesh files
     double build_seconds = 0;   // building the acceleration structure
@@ -20,7 +22,8 @@ struct RunStats {
     double write_seconds = 0;
     double total_seconds = 0;
     std::uint64_t camera_rays = 0;
-    std::uint64_t shadow_rays = 0;
+    std::uint64_t shadow_rays = 0;  // every next-event ray (point lights, and under path sampled lights)
+    std::uint64_t bounce_rays = 0;  // rays traced by BSDF sampling
     std::uint64_t nonfinite_samples = 0;
     std::uint64_t peak_rss_bytes = 0;
 };
@@ -29,7 +32,7 @@ struct RunStats {
 // rename); throws Error(path, ...) on failure.
 void write_stats_json(const std::filesystem::path& path, const RunStats& stats);
 
-// One line for the terminal, e.g. "sombra: 69,453 triangles, 1280x720 at 1 spp |
+// One line for the terminal, e.g. "sombra: 69,453 triangles, 1280x720 at 1 spp, direct |
 // load 0.21 s, build 0.03 s, render 0.52 s (4.6 Mrays/s, 2 threads), write 0.05 s | wrote out.png".
 std::string summary_line(const RunStats& stats, const std::string& output);
 

@@ -43,6 +43,8 @@ constexpr Vec3 min(Vec3 a, Vec3 b) { return {std::min(a.x, b.x), std::min(a.y, b
 constexpr Vec3 max(Vec3 a, Vec3 b) { return {std::max(a.x, b.x), std::max(a.y, b.y), std::max(a.z, b.z)}; }
 constexpr float max_component(Vec3 a) { return std::max(a.x, std::max(a.y, a.z)); }
 constexpr float min_component(Vec3 a) { return std::min(a.x, std::min(a.y, a.z)); }
+// Relative luminance of linear Rec. 709 RGB: how bright a colour looks.
+constexpr float luminance(Vec3 c) { return 0.2126f * c.x + 0.7152f * c.y + 0.0722f * c.z; }
 inline bool is_finite(Vec3 a) { return std::isfinite(a.x) && std::isfinite(a.y) && std::isfinite(a.z); }
 
 }  // namespace sombra

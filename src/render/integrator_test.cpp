@@ -13,6 +13,12 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 
+// The direct integrator for one ray of `scene`, its lights gathered as a render would.
+Vec3 trace_direct(const Scene& scene, const Accel& accel, const Ray& ray, RayCounters& counters) {
+    const LightSet lights = make_light_set(scene, make_constant_environment(scene.background), false);
+    return sombra::trace_direct(IntegratorContext{&scene, &accel, &lights}, ray, counters);
+}
+
 // Appends the quad (a, b, c, d) as two triangles with material `material`.
 void add_quad(TriangleMesh& mesh, Vec3 a, Vec3 b, Vec3 c, Vec3 d, std::uint32_t material) {
     const auto base = static_cast<std::uint32_t>(mesh.positions.size());
@@ -35,6 +41,7 @@ RenderOutput render(const Scene& scene, AccelKind kind, const Camera& camera, in
     job.camera = camera;
     job.settings = RenderSettings{w, h, spp, 0};
     job.threads = threads;
+    job.lights = make_light_set(scene, make_constant_environment(scene.background), false);
     RenderProgress progress;
     return render_image(job, progress);
 }

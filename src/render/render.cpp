@@ -19,7 +19,7 @@ namespace {
 // and are large enough that scheduling costs nothing.
 constexpr int kTileSize = 16;
 
-Vec3 render_pixel(const RenderJob& job, int i, int j, RayCounters& counters) {
+Vec3 render_pixel(const RenderJob& job, const IntegratorContext& ctx, int i, int j, RayCounters& counters) {
     const RenderSettings& s = job.settings;
     const auto spp = static_cast<std::uint32_t>(s.spp);
     const std::uint64_t key = pixel_key(s.seed, i, j, s.width);
@@ -29,7 +29,12 @@ Vec3 render_pixel(const RenderJob& job, int i, int j, RayCounters& counters) {
         const float x = static_cast<float>(i) + offset.x;
         const float y = static_cast<float>(j) + offset.y;
         const Ray ray = camera_ray(job.camera, image_plane_s(x, s.width), image_plane_t(y, s.height));
-        sum += trace_direct(*job.scene, *job.accel, ray, counters);
+        if (s.integrator == IntegratorKind::Path) {
+            SampleStream samples{key, k, spp};
+            sum += trace_path(ctx, ray, samples, counters);
+        } else {
+            sum += trace_direct(ctx, ray, counters);
+        }
     }
     return sum / static_cast<float>(spp);
 }
@@ -43,6 +48,8 @@ RenderJob make_render_job(const Scene& scene, const Accel& accel, const RenderSe
     job.camera = make_camera(scene.camera, settings.width, settings.height);
     job.settings = settings;
     job.threads = threads;
+    const bool path = settings.integrator == IntegratorKind::Path;
+    job.lights = make_light_set(scene, make_constant_environment(scene.background), path);
     return job;
 }
 
@@ -50,6 +57,8 @@ RenderOutput render_image(const RenderJob& job, RenderProgress& progress) {
     RenderOutput out;
     out.film = Film(job.settings.width, job.settings.height);
     tbb::combinable<RayCounters> per_thread;
+    const IntegratorContext ctx{job.scene, job.accel, &job.lights, job.settings.max_depth};
+    const auto spp = static_cast<std::uint64_t>(job.settings.spp);
 
     const int threads = job.threads > 0 ? job.threads : tbb::task_arena::automatic;
     // oneTBB caps its workers at the hardware's thread count (and says so on
@@ -64,16 +73,18 @@ RenderOutput render_image(const RenderJob& job, RenderProgress& progress) {
         tbb::parallel_for(image, [&](const tbb::blocked_range2d<int>& tile) {
             if (progress.cancel.load(std::memory_order_relaxed)) return;
             RayCounters& counters = per_thread.local();
-            const std::uint64_t rays_before = counters.camera_rays + counters.shadow_rays;
-            for (int j = tile.rows().begin(); j < tile.rows().end(); ++j)
+            for (int j = tile.rows().begin(); j < tile.rows().end(); ++j) {
+                const std::uint64_t rays_before = counters.rays();
                 for (int i = tile.cols().begin(); i < tile.cols().end(); ++i) {
                     // Checked per pixel too: at thousands of samples a tile can take seconds.
                     if (progress.cancel.load(std::memory_order_relaxed)) return;
-                    out.film.set(i, j, render_pixel(job, i, j, counters));
+                    out.film.set(i, j, render_pixel(job, ctx, i, j, counters));
                 }
-            const auto pixels = static_cast<std::uint64_t>(tile.rows().size()) * static_cast<std::uint64_t>(tile.cols().size());
-            progress.pixels_done.fetch_add(pixels, std::memory_order_relaxed);
-            progress.rays_traced.fetch_add(counters.camera_rays + counters.shadow_rays - rays_before, std::memory_order_relaxed);
+                // Reported per tile row, so that the progress bar moves
+                // smoothly even when a tile takes seconds.
+                progress.samples_done.fetch_add(static_cast<std::uint64_t>(tile.cols().size()) * spp, std::memory_order_relaxed);
+                progress.rays_traced.fetch_add(counters.rays() - rays_before, std::memory_order_relaxed);
+            }
         });
     });
 

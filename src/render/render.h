@@ -9,6 +9,7 @@
 #include "render/camera.h"
 #include "render/film.h"
 #include "render/integrator.h"
+#include "render/lights.h"
 #include "scene/scene.h"
 
 namespace sombra {
@@ -16,8 +17,8 @@ namespace sombra {
 // Shared with whoever watches the render (the progress bar): the loop adds
 // to the counts after each tile and stops early once `cancel` is set.
 struct RenderProgress {
-    std::atomic<std::uint64_t> pixels_done{0};
-    std::atomic<std::uint64_t> rays_traced{0};  // camera + shadow rays so far
+    std::atomic<std::uint64_t> samples_done{0};  // pixel samples finished so far (of width · height · spp)
+    std::atomic<std::uint64_t> rays_traced{0};   // camera, shadow and bounce rays so far
     std::atomic<bool> cancel{false};
 };
 
@@ -25,12 +26,14 @@ struct RenderJob {
     const Scene* scene = nullptr;  // geometry must be the mesh `accel` was built over
     const Accel* accel = nullptr;
     Camera camera;
-    RenderSettings settings;  // image size, spp and seed actually used
+    LightSet lights;          // the scene's lights as the integrator samples them
+    RenderSettings settings;  // image size, spp, seed, integrator and depth actually used
     int threads = 0;          // worker threads; 0 = all hardware threads
 };
 
 // The job for rendering `scene` with `accel` at `settings`, with the scene's
-// camera resolved for that image size.
+// camera resolved for that image size and its lights gathered for the
+// integrator (under `path` the background is a constant environment light).
 RenderJob make_render_job(const Scene& scene, const Accel& accel, const RenderSettings& settings, int threads = 0);
 
 struct RenderOutput {

@@ -23,7 +23,7 @@ Rendered render_scene(const Scene& scene, AccelKind kind, RenderSettings setting
     RenderProgress progress;
     RenderOutput out = render_image(job, progress);
     EXPECT_FALSE(out.cancelled);
-    EXPECT_EQ(progress.pixels_done.load(), static_cast<std::uint64_t>(settings.width * settings.height));
+    EXPECT_EQ(progress.samples_done.load(), static_cast<std::uint64_t>(settings.width * settings.height * settings.spp));
     return {std::move(out.film), out.counters};
 }
 
@@ -103,7 +103,7 @@ TEST(Render, CancelStopsEarly) {
     progress.cancel = true;
     const RenderOutput out = render_image(job, progress);
     EXPECT_TRUE(out.cancelled);
-    EXPECT_EQ(progress.pixels_done.load(), 0u);
+    EXPECT_EQ(progress.samples_done.load(), 0u);
 }
 
 }  // namespace

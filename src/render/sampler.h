@@ -72,24 +72,35 @@ inline PixelSample pixel_sample(std::uint32_t index, std::uint32_t count, std::u
     return {x < 1.0f ? x : 0x1.fffffep-1f, y < 1.0f ? y : 0x1.fffffep-1f};
 }
 
-// A pseudo-random permutation of [0, n) chosen by `key`: an eight-round
-// Feistel network (Luby–Rackoff) whose round function is mix64, on the
+// A 32-bit integer hash with good avalanche (Wellons' "lowbias32").
+constexpr std::uint32_t hash32(std::uint32_t x) {
+    x ^= x >> 16;
+    x *= 0x7feb352du;
+    x ^= x >> 15;
+    x *= 0x846ca68bu;
+    x ^= x >> 16;
+    return x;
+}
+
+// A pseudo-random permutation of [0, n) chosen by `key`: a ten-round
+// Feistel network (Luby–Rackoff) with hash32 as round function, on the
 // smallest even number of bits (at least 2) that holds n, cycle-walked into
-// [0, n). Eight rounds, because fewer leave the permutations of n = 3 and 4
-// measurably non-uniform (sampler_test.cpp). Unlike permute_index, whose few fixed operations yield only 8
-// distinct permutations of 4 elements, its permutations of small n are close
-// to uniformly distributed, so dimensions drawn with different keys do not
+// [0, n). Unlike permute_index, whose few fixed operations yield only 8
+// distinct permutations of 4 elements, its permutations of small n are
+// close to uniformly distributed (fewer rounds are measurably not: see
+// sampler_test.cpp), so dimensions shuffled with different keys do not
 // correlate.
 inline std::uint32_t shuffle_index(std::uint32_t i, std::uint32_t n, std::uint64_t key) {
     int bits = 2;
     while (bits < 32 && (std::uint64_t{1} << bits) < n) bits += 2;
     const int half = bits / 2;
     const std::uint32_t half_mask = (std::uint32_t{1} << half) - 1;
+    const std::uint64_t k = mix64(key);
+    const auto k0 = static_cast<std::uint32_t>(k), k1 = static_cast<std::uint32_t>(k >> 32) | 1u;
     do {
         std::uint32_t left = i >> half, right = i & half_mask;
-        for (std::uint64_t round = 0; round < 8; ++round) {
-            const auto f = static_cast<std::uint32_t>(mix64(key ^ (round << 56) ^ right)) & half_mask;
-            const std::uint32_t next = left ^ f;
+        for (std::uint32_t round = 0; round < 10; ++round) {
+            const std::uint32_t next = left ^ (hash32(right ^ (k0 + round * k1)) & half_mask);
             left = right;
             right = next;
         }
@@ -99,43 +110,44 @@ inline std::uint32_t shuffle_index(std::uint32_t i, std::uint32_t n, std::uint64
 }
 
 // The random numbers of one sample (pixel, sample index) beyond its position
-// in the pixel: each call draws a new dimension. Dimension d of the `count`
-// samples of a pixel is stratified across those samples (one value per
-// 1/count stratum; in 2-D a correlated multi-jittered pattern), and
-// different dimensions are shuffled with independent keys so that they do
-// not correlate. With count = 1 the values are independent uniform hashes.
-// The path integrator draws, per bounce: light choice (1-D), light point
-// (2-D), BSDF lobe (1-D), BSDF direction (2-D), Russian roulette (1-D).
+// in the pixel: each call draws a new dimension. The first
+// kStratifiedDimensions draws (a path's first vertex: light choice, light
+// point, BSDF lobe, BSDF direction, roulette) are stratified over the
+// pixel's `count` samples: in 1-D one value per 1/count stratum, in 2-D one
+// per cell of a jittered m×n grid, the strata visited in an order shuffled
+// with an independent key per dimension, so that dimensions do not
+// correlate. Later draws, where stratification no longer pays for its cost,
+// and every draw when count = 1, are independent uniform hashes.
 struct SampleStream {
+    static constexpr std::uint32_t kStratifiedDimensions = 5;
+
     std::uint64_t pixel_key = 0;
     std::uint32_t index = 0;  // this sample's index among the pixel's
     std::uint32_t count = 1;  // the pixel's samples
     std::uint32_t dimension = 0;
 
     float next_1d() {
+        const bool stratified = count > 1 && dimension < kStratifiedDimensions;
         const std::uint64_t key = dimension_key();
-        if (count <= 1) return hash_to_unit(0, key);
+        if (!stratified) return hash_to_unit(index, key);
         const std::uint32_t s = shuffle_index(index, count, key);
-        const float x = (static_cast<float>(s) + hash_to_unit(s, key ^ 0x5bd1e995ull)) / static_cast<float>(count);
-        return x < 1.0f ? x : 0x1.fffffep-1f;
+        return to_unit((static_cast<float>(s) + hash_to_unit(s, key ^ 0x5bd1e995ull)) / static_cast<float>(count));
     }
 
     struct Pair {
         float u1, u2;
     };
     Pair next_2d() {
+        const bool stratified = count > 1 && dimension < kStratifiedDimensions;
         const std::uint64_t key = dimension_key();
-        if (count <= 1) return {hash_to_unit(0, key), hash_to_unit(1, key)};
+        if (!stratified) return {hash_to_unit(index, key), hash_to_unit(index, key ^ 0x368cc8b700000000ull)};
         const auto m = static_cast<std::uint32_t>(std::sqrt(static_cast<double>(count)));
         const std::uint32_t n = (count + m - 1) / m;
         const std::uint32_t s = shuffle_index(index, count, key);
-        const std::uint32_t sx = shuffle_index(s % m, m, mix64(key ^ 0x68bc21ebull));
-        const std::uint32_t sy = shuffle_index(s / m, n, mix64(key ^ 0x02e5be93ull));
         const float jx = hash_to_unit(s, key ^ 0x967a889b00000000ull);
         const float jy = hash_to_unit(s, key ^ 0x368cc8b700000000ull);
-        const float x = (static_cast<float>(sx) + (static_cast<float>(sy) + jx) / static_cast<float>(n)) / static_cast<float>(m);
-        const float y = (static_cast<float>(s) + jy) / static_cast<float>(count);
-        return {x < 1.0f ? x : 0x1.fffffep-1f, y < 1.0f ? y : 0x1.fffffep-1f};
+        return {to_unit((static_cast<float>(s % m) + jx) / static_cast<float>(m)),
+                to_unit((static_cast<float>(s / m) + jy) / static_cast<float>(n))};
     }
 
 private:
@@ -143,6 +155,8 @@ private:
         ++dimension;
         return mix64(pixel_key ^ (static_cast<std::uint64_t>(dimension) * 0x9e3779b97f4a7c15ull));
     }
+    // Float rounding can reach 1.0 exactly; stay below it.
+    static float to_unit(float x) { return x < 1.0f ? x : 0x1.fffffep-1f; }
 };
 
 // The key that seeds pixel (i, j)'s samples for a render seed.

@@ -126,30 +126,30 @@ TEST(SampleStream, ShufflesOfFourAreUniformOverAll24Permutations) {
     EXPECT_LT(chi2, chi2_critical_1e3(23));
 }
 
-TEST(SampleStream, EachDimensionIsStratifiedOverThePixelsSamples) {
+TEST(SampleStream, FirstDimensionsAreStratifiedOverThePixelsSamples) {
+    // The path integrator's first vertex draws 1-D, 2-D, 1-D, 2-D, 1-D.
     for (std::uint32_t count : {4u, 7u, 16u, 64u}) {
-        std::vector<std::set<std::uint32_t>> strata1(3), strata2x(3), strata2y(3);
+        const auto m = static_cast<std::uint32_t>(std::sqrt(static_cast<double>(count)));
+        const std::uint32_t n = (count + m - 1) / m;
+        std::vector<std::set<std::uint32_t>> strata1(3), cells(2);
         for (std::uint32_t k = 0; k < count; ++k) {
             SampleStream stream{pixel_key(3, 1, 2, 10), k, count};
             for (int d = 0; d < 3; ++d) {
                 const float u = stream.next_1d();
-                const SampleStream::Pair p = stream.next_2d();
                 ASSERT_GE(u, 0.0f);
                 ASSERT_LT(u, 1.0f);
+                strata1[d].insert(static_cast<std::uint32_t>(u * static_cast<float>(count)));
+                if (d == 2) break;
+                const SampleStream::Pair p = stream.next_2d();
                 ASSERT_LT(p.u1, 1.0f);
                 ASSERT_LT(p.u2, 1.0f);
-                strata1[d].insert(static_cast<std::uint32_t>(u * static_cast<float>(count)));
-                strata2y[d].insert(static_cast<std::uint32_t>(p.u2 * static_cast<float>(count)));
-                const auto m = static_cast<std::uint32_t>(std::sqrt(static_cast<double>(count)));
-                const std::uint32_t n = (count + m - 1) / m;
-                strata2x[d].insert(static_cast<std::uint32_t>(p.u1 * static_cast<float>(m * n)));
+                const auto cx = static_cast<std::uint32_t>(p.u1 * static_cast<float>(m));
+                const auto cy = static_cast<std::uint32_t>(p.u2 * static_cast<float>(n));
+                cells[d].insert(cy * m + cx);
             }
         }
-        for (int d = 0; d < 3; ++d) {
-            EXPECT_EQ(strata1[d].size(), count);
-            EXPECT_EQ(strata2x[d].size(), count);
-            EXPECT_EQ(strata2y[d].size(), count);
-        }
+        for (int d = 0; d < 3; ++d) EXPECT_EQ(strata1[d].size(), count) << "1-D draw " << d;
+        for (int d = 0; d < 2; ++d) EXPECT_EQ(cells[d].size(), count) << "2-D draw " << d;
     }
 }
 

@@ -12,11 +12,19 @@
 
 namespace sombra {
 
+// Which estimator computes each sample (spec §10).
+enum class IntegratorKind {
+    Direct,  // point lights' direct light, emission and background seen (spec §4)
+    Path,    // the whole rendering equation by path tracing
+};
+
 struct RenderSettings {
     int width = 640;
     int height = 480;
     int spp = 1;
     std::uint64_t seed = 0;
+    IntegratorKind integrator = IntegratorKind::Direct;
+    int max_depth = 8;  // path: the most scattering events on a path, 0 … kMaxDepth
 };
 
 // Limits on what a render may ask for: anything beyond is a mistake, not a
@@ -25,6 +33,7 @@ struct RenderSettings {
 inline constexpr int kMaxImageSide = 32768;
 inline constexpr std::int64_t kMaxPixels = std::int64_t{1} << 28;
 inline constexpr int kMaxSpp = 65536;
+inline constexpr int kMaxDepth = 1024;
 
 // "" when the settings lie within the limits above, else a short message
 // naming the offending field, e.g. "width must be between 1 and 32768".

@@ -1,0 +1,43 @@
+// What the integrators know about a point where a ray met a surface: both
+// normals, the side the ray came from, and a bound on the point's rounding
+// error for spawning rays that cannot re-hit the surface they leave.
+#pragma once
+
+#include <cstdint>
+
+#include "accel/accel.h"
+#include "core/ray.h"
+#include "scene/mesh.h"
+
+namespace sombra {
+
+struct SurfaceInteraction {
+    Vec3 position;
+    Vec3 position_error;  // per-axis bound on |position − exact point|
+    Vec3 n_g;             // unit geometric normal, facing the ray's origin (surfaces are two-sided)
+    Vec3 n_s;             // unit shading normal (blended vertex normals, else n_g), same hemisphere as n_g
+    // True when the ray arrived from the side the triangle's winding normal
+    // n_w = (p1 − p0) × (p2 − p0) points to: into a dielectric's medium, and
+    // the side a quad light emits toward (spec §10, §11).
+    bool outside = true;
+    std::uint32_t triangle = 0;
+    std::uint32_t material = 0;
+};
+
+// The interaction for `hit` (from intersect()) of `ray` on `mesh`.
+SurfaceInteraction make_surface_interaction(const TriangleMesh& mesh, const Ray& ray, const Hit& hit);
+
+// Where a ray leaving surface point x should start so that it cannot hit the
+// surface it leaves: x moved along the geometric normal n_g (pointing to the
+// side the ray leaves towards) by a bound on x's floating-point error.
+inline Vec3 offset_ray_origin(Vec3 x, Vec3 error, Vec3 n_g) {
+    const float d = dot(abs(n_g), error);
+    return x + d * n_g;
+}
+
+// The origin of a ray leaving `si` in direction `dir`: offset to dir's side.
+inline Vec3 spawn_origin(const SurfaceInteraction& si, Vec3 dir) {
+    return offset_ray_origin(si.position, si.position_error, dot(si.n_g, dir) > 0.0f ? si.n_g : -si.n_g);
+}
+
+}  // namespace sombra

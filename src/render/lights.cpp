@@ -1,0 +1,144 @@
+#include "render/lights.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+namespace sombra {
+
+namespace {
+
+constexpr float kPi = std::numbers::pi_v<float>;
+
+struct TriangleCorners {
+    Vec3 p0, p1, p2;
+};
+
+TriangleCorners corners(const TriangleMesh& mesh, std::uint32_t triangle) {
+    const Index3& t = mesh.triangles[triangle];
+    return {mesh.positions[t[0]], mesh.positions[t[1]], mesh.positions[t[2]]};
+}
+
+// The radius of a sphere around the scene's bounding box.
+float bounding_radius(const TriangleMesh& mesh) {
+    if (mesh.positions.empty()) return 1.0f;
+    Vec3 lo{std::numeric_limits<float>::max()}, hi{-std::numeric_limits<float>::max()};
+    for (const Vec3& p : mesh.positions)
+        if (is_finite(p)) {
+            lo = min(lo, p);
+            hi = max(hi, p);
+        }
+    const float r = 0.5f * length(hi - lo);
+    return r > 0.0f && std::isfinite(r) ? r : 1.0f;
+}
+
+// Solid-angle density of area-uniform sampling of a triangle of `area` at
+// point y, seen from x: pdf_area · |x − y|² / |cos θ_y|; 0 edge-on.
+float area_to_solid_angle(Vec3 x, Vec3 y, Vec3 unit_normal, float area) {
+    const Vec3 d = x - y;
+    const float dist2 = dot(d, d);
+    if (!(dist2 > 0.0f)) return 0.0f;
+    const float cos_y = std::fabs(dot(unit_normal, d)) / std::sqrt(dist2);
+    if (!(cos_y > 0.0f)) return 0.0f;
+    return dist2 / (cos_y * area);
+}
+
+}  // namespace
+
+LightSet make_light_set(const Scene& scene, Environment environment, bool sample_environment_light) {
+    LightSet lights;
+    const TriangleMesh& mesh = scene.geometry;
+    std::vector<float> power;
+    for (std::uint32_t t = 0; t < mesh.triangle_count(); ++t) {
+        const Material& m = scene.materials[mesh.material_ids[t]];
+        if (!is_emissive(m)) continue;
+        const TriangleCorners c = corners(mesh, t);
+        const float area = 0.5f * length(cross(c.p1 - c.p0, c.p2 - c.p0));
+        // Degenerate or non-finite triangles are never hit, so never lights.
+        if (!(area > 0.0f) || !std::isfinite(area)) continue;
+        lights.emitters.push_back(t);
+        lights.emitter_areas.push_back(area);
+        const float sides = m.emits_front_only ? 1.0f : 2.0f;
+        power.push_back(std::max(luminance(m.ke), 1e-6f * max_component(m.ke)) * area * kPi * sides);
+    }
+    lights.environment = std::move(environment);
+    lights.environment_lights = sample_environment_light && !is_black(lights.environment);
+    if (lights.environment_lights) {
+        const float r = bounding_radius(mesh);
+        power.push_back(std::max(environment_power_proxy(lights.environment), 1e-12f) * kPi * r * r);
+    }
+
+    double total = 0;
+    for (float p : power) total += p;
+    if (!(total > 0.0) || !std::isfinite(total)) {
+        // Powers too small or too large to weigh: choose uniformly.
+        std::fill(power.begin(), power.end(), 1.0f);
+        total = static_cast<double>(power.size());
+    }
+    double running = 0;
+    for (float p : power) {
+        lights.choice_probability.push_back(static_cast<float>(p / total));
+        running += p;
+        lights.choice_cdf.push_back(static_cast<float>(running / total));
+    }
+    if (!lights.choice_cdf.empty()) lights.choice_cdf.back() = 1.0f;
+    return lights;
+}
+
+bool sample_light(const LightSet& lights, const Scene& scene, Vec3 x, float u_choice, float u1, float u2, LightSample& out) {
+    if (!lights.has_sampled_lights()) return false;
+    const auto it = std::upper_bound(lights.choice_cdf.begin(), lights.choice_cdf.end(), u_choice);
+    const auto chosen = static_cast<std::size_t>(std::min<std::ptrdiff_t>(it - lights.choice_cdf.begin(),
+                                                                          static_cast<std::ptrdiff_t>(lights.choice_cdf.size()) - 1));
+    const float choice = lights.choice_probability[chosen];
+    if (!(choice > 0.0f)) return false;
+
+    if (chosen == lights.emitters.size()) {
+        EnvironmentSample es;
+        if (!sample_environment(lights.environment, u1, u2, es) || !(es.pdf > 0.0f)) return false;
+        out.radiance = es.radiance;
+        out.wi = es.direction;
+        out.at_infinity = true;
+        out.pdf = choice * es.pdf;
+        return max_component(out.radiance) > 0.0f;
+    }
+
+    const std::uint32_t triangle = lights.emitters[chosen];
+    const TriangleCorners c = corners(scene.geometry, triangle);
+    // Uniform by area: the square-root parameterisation of the triangle.
+    const float su = std::sqrt(u1);
+    const float b1 = 1.0f - su, b2 = u2 * su;
+    const Vec3 y = (1.0f - b1 - b2) * c.p0 + b1 * c.p1 + b2 * c.p2;
+    const Vec3 to_light = y - x;
+    const float dist2 = dot(to_light, to_light);
+    if (!(dist2 > 0.0f)) return false;
+    const Vec3 wi = to_light / std::sqrt(dist2);
+    const Vec3 n_w = normalize(cross(c.p1 - c.p0, c.p2 - c.p0));
+    const Material& m = scene.materials[scene.geometry.material_ids[triangle]];
+    // One-sided emitters shine only toward their winding normal's side.
+    if (m.emits_front_only && dot(n_w, wi) >= 0.0f) return false;
+    const float pdf = area_to_solid_angle(x, y, n_w, lights.emitter_areas[chosen]);
+    if (!(pdf > 0.0f) || !std::isfinite(pdf)) return false;
+    out.radiance = m.ke;
+    out.wi = wi;
+    out.target = y;
+    out.at_infinity = false;
+    out.pdf = choice * pdf;
+    return true;
+}
+
+float pdf_light_triangle(const LightSet& lights, const Scene& scene, std::uint32_t triangle, Vec3 x, Vec3 y) {
+    const auto it = std::lower_bound(lights.emitters.begin(), lights.emitters.end(), triangle);
+    if (it == lights.emitters.end() || *it != triangle) return 0.0f;
+    const auto e = static_cast<std::size_t>(it - lights.emitters.begin());
+    const TriangleCorners c = corners(scene.geometry, triangle);
+    const Vec3 n_w = normalize(cross(c.p1 - c.p0, c.p2 - c.p0));
+    return lights.choice_probability[e] * area_to_solid_angle(x, y, n_w, lights.emitter_areas[e]);
+}
+
+float pdf_light_environment(const LightSet& lights, Vec3 dir) {
+    if (!lights.environment_lights) return 0.0f;
+    return lights.choice_probability.back() * pdf_environment(lights.environment, dir);
+}
+
+}  // namespace sombra

@@ -1,0 +1,82 @@
+// The lights of spec §4 and §10 as the integrators see them: they answer
+// "from x, where are you and how much arrives" and never trace rays
+// themselves (the integrator casts the shadow ray up to the returned
+// distance). Point lights are delta lights, each visited at every vertex;
+// emissive triangles and the environment are sampled one at a time, chosen
+// in proportion to their power.
+#pragma once
+
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <vector>
+
+#include "render/environment.h"
+#include "render/interaction.h"
+#include "scene/scene.h"
+
+namespace sombra {
+
+struct LightSet {
+    // Emissive triangles (material ke > 0), in increasing triangle order
+    // (so that a hit triangle is found by binary search), with their areas.
+    std::vector<std::uint32_t> emitters;
+    std::vector<float> emitter_areas;
+    Environment environment;
+    bool environment_lights = false;  // the environment is sampled (path integrator, not black)
+    // Probabilities of choosing each emitter, then (last, when
+    // environment_lights) the environment, in proportion to power; their
+    // running sums for sampling.
+    std::vector<float> choice_probability;
+    std::vector<float> choice_cdf;
+
+    bool has_sampled_lights() const { return !choice_probability.empty(); }
+};
+
+// The lights of `scene` for one render. `environment` lights the scene when
+// `sample_environment_light` (under path tracing) and is otherwise only seen.
+// Emitter power = luminance(ke) · area · π (twice for two-sided emitters);
+// the environment's = its power proxy · π R², R the scene's bounding radius.
+LightSet make_light_set(const Scene& scene, Environment environment, bool sample_environment_light);
+
+// What arrives at a point from one sampled light.
+struct LightSample {
+    Vec3 radiance;   // L arriving along -wi (before the cosine and the BSDF)
+    Vec3 wi;         // unit direction from the point towards the light
+    Vec3 target;     // the sampled point on an emitter (for the shadow ray); unused for the environment
+    bool at_infinity = false;  // environment: the shadow ray has no end
+    float pdf = 0;   // solid-angle density, including the probability of choosing this light
+};
+
+// Samples one emitter or the environment for the point x: u_choice picks
+// the light, (u1, u2) a point on it (uniform by area on a triangle).
+// Returns false when nothing can be sampled or the sample carries nothing
+// (the emitter is seen edge-on or from its dark side).
+bool sample_light(const LightSet& lights, const Scene& scene, Vec3 x, float u_choice, float u1, float u2, LightSample& out);
+
+// The solid-angle density with which sample_light, called at x, picks
+// point y on emitter triangle `triangle` (0 when it is not a light).
+float pdf_light_triangle(const LightSet& lights, const Scene& scene, std::uint32_t triangle, Vec3 x, Vec3 y);
+
+// The solid-angle density with which sample_light picks direction `dir` on
+// the environment (0 when the environment is not sampled).
+float pdf_light_environment(const LightSet& lights, Vec3 dir);
+
+// Radiance the surface at `si` emits back along the ray that hit it:
+// ke, two-sided (spec §9), or only toward the winding normal's side for
+// one-sided (quad light) emitters.
+inline Vec3 emitted_radiance(const Material& material, const SurfaceInteraction& si) {
+    if (material.emits_front_only && !si.outside) return Vec3{0.0f};
+    return material.ke;
+}
+
+// The multiple-importance weight of a strategy with density `pdf_a` against
+// one with `pdf_b` (Veach's power heuristic, β = 2).
+inline float power_heuristic(float pdf_a, float pdf_b) {
+    const float a = pdf_a * pdf_a, b = pdf_b * pdf_b;
+    if (!(a > 0.0f)) return 0.0f;
+    if (!std::isfinite(a)) return 1.0f;
+    return a / (a + b);
+}
+
+}  // namespace sombra

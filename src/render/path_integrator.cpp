@@ -1,0 +1,138 @@
+// The path integrator of spec §10: L = L_e + ∫ f L_i |n_s·ω_i| dω_i by
+// unidirectional path tracing. At each vertex, next-event estimation (every
+// point light, plus one sampled emitter or environment point), then a new
+// direction from the BSDF. Emitters and the environment are reached by both
+// strategies and weighted by the power heuristic, so each is counted once.
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "render/bsdf.h"
+#include "render/integrator.h"
+#include "render/interaction.h"
+#include "render/point_lights.h"
+
+namespace sombra {
+
+namespace {
+
+// Russian roulette may end a path only after this many scattering events.
+constexpr int kRouletteStart = 3;
+
+// One sampled emitter or environment direction, MIS-weighted against the
+// BSDF's density for the same direction (spec §10's next-event estimation).
+Vec3 sample_one_light(const IntegratorContext& ctx, const SurfaceInteraction& si, const Material& material,
+                      const BsdfPoint& bsdf_point, Vec3 wo, float u_choice, SampleStream::Pair u, RayCounters& counters) {
+    LightSample ls;
+    if (!sample_light(*ctx.lights, *ctx.scene, si.position, u_choice, u.u1, u.u2, ls)) return Vec3{0.0f};
+    const Vec3 f = eval_bsdf(material, bsdf_point, wo, ls.wi) * std::fabs(dot(si.n_s, ls.wi));
+    if (!(max_component(f) > 0.0f)) return Vec3{0.0f};
+
+    const Vec3 origin = spawn_origin(si, ls.wi);
+    ++counters.shadow_rays;
+    // Toward an emitter the ray stops just short of the sampled point, so
+    // that the emitter itself does not count as its own occluder.
+    const Ray shadow = ls.at_infinity ? Ray{origin, ls.wi} : Ray{origin, ls.target - origin, 1.0f - 1e-4f};
+    if (occluded(*ctx.accel, shadow)) return Vec3{0.0f};
+    const float weight = ctx.strategy == LightStrategy::Mis
+                             ? power_heuristic(ls.pdf, pdf_bsdf(material, bsdf_point, wo, ls.wi))
+                             : 1.0f;
+    return f * ls.radiance * (weight / ls.pdf);
+}
+
+}  // namespace
+
+Vec3 trace_path(const IntegratorContext& ctx, const Ray& camera_ray, SampleStream& samples, RayCounters& counters) {
+    const Scene& scene = *ctx.scene;
+    const LightSet& lights = *ctx.lights;
+    ++counters.camera_rays;
+
+    Vec3 radiance{0.0f};
+    Vec3 beta{1.0f};           // the path's throughput: product of f·|cos|/pdf so far
+    float eta_scale = 1.0f;    // undoes refraction's (η_i/η_t)² in beta for Russian roulette
+    bool previous_delta = true;  // the camera "vertex" counts as delta: no MIS for what it sees
+    float previous_pdf = 0.0f;   // the BSDF's solid-angle density of the last bounce
+    Vec3 previous_position{0.0f};
+    Ray ray = camera_ray;
+    // The weight of an emitter or the environment reached by a BSDF-sampled
+    // bounce whose density was bsdf_pdf, where next-event estimation would
+    // have picked the same direction with light_pdf.
+    auto bounce_weight = [&ctx](float bsdf_pdf, float light_pdf) {
+        switch (ctx.strategy) {
+            case LightStrategy::LightOnly: return light_pdf > 0.0f ? 0.0f : 1.0f;
+            case LightStrategy::BsdfOnly: return 1.0f;
+            case LightStrategy::Mis: break;
+        }
+        return power_heuristic(bsdf_pdf, light_pdf);
+    };
+
+    for (int depth = 0;; ++depth) {
+        Hit hit;
+        if (!intersect(*ctx.accel, ray, hit)) {
+            const Vec3 dir = normalize(ray.dir);
+            const Vec3 le = eval_environment(lights.environment, dir);
+            if (max_component(le) > 0.0f) {
+                const float w = previous_delta ? 1.0f : bounce_weight(previous_pdf, pdf_light_environment(lights, dir));
+                radiance += beta * le * w;
+            }
+            break;
+        }
+
+        const SurfaceInteraction si = make_surface_interaction(scene.geometry, ray, hit);
+        const Material& material = scene.materials[si.material];
+        const Vec3 wo = -normalize(ray.dir);
+
+        const Vec3 le = emitted_radiance(material, si);
+        if (max_component(le) > 0.0f) {
+            const float w = previous_delta ? 1.0f
+                                           : bounce_weight(previous_pdf, pdf_light_triangle(lights, scene, si.triangle,
+                                                                                            previous_position, si.position));
+            radiance += beta * le * w;
+        }
+        if (depth >= ctx.max_depth) break;
+
+        const BsdfPoint bsdf_point = make_bsdf_point(si.n_g, si.n_s, si.outside);
+        // Every vertex draws the same dimensions whether it uses them or
+        // not, so that dimension k means the same thing on every path.
+        const float u_choice = samples.next_1d();
+        const SampleStream::Pair u_light = samples.next_2d();
+        const float u_lobe = samples.next_1d();
+        const SampleStream::Pair u_bsdf = samples.next_2d();
+        const float u_roulette = samples.next_1d();
+
+        if (!is_delta_bsdf(material)) {
+            add_point_lights(scene, *ctx.accel, si, material, bsdf_point, wo, beta, radiance, counters);
+            if (lights.has_sampled_lights() && ctx.strategy != LightStrategy::BsdfOnly)
+                radiance += beta * sample_one_light(ctx, si, material, bsdf_point, wo, u_choice, u_light, counters);
+        }
+
+        BsdfSample bs;
+        if (!sample_bsdf(material, bsdf_point, wo, u_lobe, u_bsdf.u1, u_bsdf.u2, bs)) break;
+        beta = beta * bs.weight;
+        if (!(max_component(beta) > 0.0f)) break;
+        if (bs.transmission && material.type == MaterialType::Dielectric)
+            eta_scale *= si.outside ? material.ior * material.ior : 1.0f / (material.ior * material.ior);
+        previous_delta = bs.delta;
+        previous_pdf = bs.pdf;
+        previous_position = si.position;
+        ray = Ray{spawn_origin(si, bs.wi), bs.wi};
+        ++counters.bounce_rays;
+
+        // Russian roulette, unbiased: survivors are re-weighted by 1/q.
+        if (depth + 1 > kRouletteStart) {
+            const float q = std::min(1.0f, max_component(beta) * eta_scale);
+            if (q < 1.0f) {
+                if (u_roulette >= q) break;
+                beta = beta / q;
+            }
+        }
+    }
+
+    if (!is_finite(radiance)) {
+        ++counters.nonfinite_samples;
+        return Vec3{0.0f};
+    }
+    return radiance;
+}
+
+}  // namespace sombra

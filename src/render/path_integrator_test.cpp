@@ -1,0 +1,340 @@
+// The path integrator against closed forms, statistically: every estimate is
+// compared with its expected value in units of its own standard error,
+// computed from the sample variance (fixed seeds, so the tests are
+// repeatable; the bounds are z-scores, not tuned tolerances).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <numbers>
+#include <vector>
+
+#include "render/integrator.h"
+#include "render/render.h"
+#include "scene/scene_file.h"
+
+namespace sombra {
+namespace {
+
+constexpr double kPi = std::numbers::pi;
+// |z| beyond this fails: about 1 in 10^6 for a correct estimator, so the
+// whole file (a few dozen z-tests) passes by chance failure ~never.
+constexpr double kZ = 5.0;
+
+// Mean and standard error of a stream of per-sample estimates.
+struct Estimate {
+    double sum = 0, sum2 = 0;
+    long n = 0;
+    void add(double x) {
+        sum += x;
+        sum2 += x * x;
+        ++n;
+    }
+    double mean() const { return sum / static_cast<double>(n); }
+    double standard_error() const {
+        const double m = mean();
+        const double var = std::max(0.0, sum2 / static_cast<double>(n) - m * m) * static_cast<double>(n) / static_cast<double>(n - 1);
+        return std::sqrt(var / static_cast<double>(n));
+    }
+};
+
+// z of `e` against `expected`; a zero-variance estimate must equal it to float rounding.
+void expect_agrees(const Estimate& e, double expected, const char* what) {
+    const double se = e.standard_error();
+    if (se < 1e-9) {
+        EXPECT_NEAR(e.mean(), expected, 1e-5 * std::max(1.0, std::fabs(expected))) << what;
+        return;
+    }
+    const double z = (e.mean() - expected) / se;
+    EXPECT_LT(std::fabs(z), kZ) << what << ": mean " << e.mean() << " ± " << se << ", expected " << expected;
+}
+
+void add_triangle(TriangleMesh& mesh, Vec3 a, Vec3 b, Vec3 c, std::uint32_t material) {
+    const auto base = static_cast<std::uint32_t>(mesh.positions.size());
+    mesh.positions.insert(mesh.positions.end(), {a, b, c});
+    mesh.triangles.push_back({base, base + 1, base + 2});
+    mesh.material_ids.push_back(material);
+}
+
+// Quad (a, b, c, d) as two triangles, wound a → b → c.
+void add_quad(TriangleMesh& mesh, Vec3 a, Vec3 b, Vec3 c, Vec3 d, std::uint32_t material) {
+    add_triangle(mesh, a, b, c, material);
+    add_triangle(mesh, a, c, d, material);
+}
+
+// A flat-shaded sphere (subdivided octahedron, corners pushed onto the
+// sphere), wound counter-clockwise seen from outside.
+void add_sphere(TriangleMesh& mesh, Vec3 centre, float radius, int levels, std::uint32_t material) {
+    struct Tri {
+        Vec3 a, b, c;
+    };
+    std::vector<Tri> tris;
+    const Vec3 px{1, 0, 0}, nx{-1, 0, 0}, py{0, 1, 0}, ny{0, -1, 0}, pz{0, 0, 1}, nz{0, 0, -1};
+    tris = {{px, py, pz}, {py, nx, pz}, {nx, ny, pz}, {ny, px, pz}, {py, px, nz}, {nx, py, nz}, {ny, nx, nz}, {px, ny, nz}};
+    for (int l = 0; l < levels; ++l) {
+        std::vector<Tri> finer;
+        for (const Tri& t : tris) {
+            const Vec3 ab = normalize(t.a + t.b), bc = normalize(t.b + t.c), ca = normalize(t.c + t.a);
+            finer.push_back({t.a, ab, ca});
+            finer.push_back({ab, t.b, bc});
+            finer.push_back({ca, bc, t.c});
+            finer.push_back({ab, bc, ca});
+        }
+        tris = std::move(finer);
+    }
+    for (const Tri& t : tris) add_triangle(mesh, centre + radius * t.a, centre + radius * t.b, centre + radius * t.c, material);
+}
+
+Material diffuse(Vec3 kd) {
+    Material m;
+    m.type = MaterialType::Diffuse;
+    m.kd = kd;
+    return m;
+}
+
+// Samples of trace_path for rays from `origin` towards random points of
+// the unit square around `target` (a small pixel footprint), red channel.
+struct PathRun {
+    const Scene& scene;
+    int max_depth = 8;
+    LightStrategy strategy = LightStrategy::Mis;
+
+    Estimate estimate(Vec3 origin, Vec3 target, int samples, std::uint64_t seed, int channel = 0) const {
+        const Accel accel = make_accel(scene.geometry, AccelKind::Bvh);
+        const bool path = true;
+        const LightSet lights = make_light_set(scene, make_constant_environment(scene.background), path);
+        const IntegratorContext ctx{&scene, &accel, &lights, max_depth, strategy};
+        Estimate e;
+        RayCounters counters;
+        for (int k = 0; k < samples; ++k) {
+            SampleStream stream{mix64(seed + static_cast<std::uint64_t>(k)), 0, 1};
+            const Vec3 l = trace_path(ctx, Ray{origin, target - origin}, stream, counters);
+            e.add(l[channel]);
+        }
+        EXPECT_EQ(counters.nonfinite_samples, 0u);
+        return e;
+    }
+};
+
+TEST(PathIntegrator, WhiteFurnaceDiffuseSphere) {
+    // Albedo 1 inside a uniform environment of radiance 1: every path
+    // carries 1, so every pixel is 1 (up to MIS noise).
+    Scene scene;
+    scene.background = Vec3{1.0f};
+    scene.materials.push_back(diffuse(Vec3{1.0f}));
+    add_sphere(scene.geometry, {0, 0, 0}, 1.0f, 3, 0);
+    const PathRun run{scene, 64};
+    for (const Vec3 target : {Vec3{0, 0, 0}, Vec3{0.6f, 0.5f, 0}, Vec3{0.95f, 0, 0.2f}}) {
+        const Estimate e = run.estimate({0.1f, 0.2f, 5}, target, 4000, 11);
+        expect_agrees(e, 1.0, "diffuse furnace");
+    }
+}
+
+TEST(PathIntegrator, WhiteFurnaceMirrorAndGlassSpheres) {
+    for (const MaterialType type : {MaterialType::Mirror, MaterialType::Dielectric}) {
+        Scene scene;
+        scene.background = Vec3{1.0f};
+        Material m;
+        m.type = type;
+        m.kr = Vec3{1.0f};
+        m.kt = Vec3{1.0f};
+        m.ior = 1.5f;
+        scene.materials.push_back(m);
+        add_sphere(scene.geometry, {0, 0, 0}, 1.0f, 3, 0);
+        const PathRun run{scene, 1024};
+        for (const Vec3 target : {Vec3{0, 0, 0}, Vec3{0.5f, 0.3f, 0}, Vec3{0.9f, 0.1f, 0}}) {
+            const Estimate e = run.estimate({0.1f, 0.2f, 5}, target, 2000, 5);
+            expect_agrees(e, 1.0, type == MaterialType::Mirror ? "mirror furnace" : "glass furnace");
+        }
+    }
+}
+
+// A closed box, every wall diffuse with albedo a and emitting Le: the
+// radiance seen from inside at max_depth N is Le · (1 − a^(N+1)) / (1 − a)
+// (Nori's test): each scattering event adds one more generation of
+// emitted light, reduced by a.
+TEST(PathIntegrator, ClosedEmittingBoxSumsTheGeometricSeries) {
+    const float a = 0.5f, le = 0.7f;
+    Scene scene;
+    Material m = diffuse(Vec3{a});
+    m.ke = Vec3{le};
+    scene.materials.push_back(m);
+    const Vec3 p000{-1, -1, -1}, p100{1, -1, -1}, p110{1, 1, -1}, p010{-1, 1, -1};
+    const Vec3 p001{-1, -1, 1}, p101{1, -1, 1}, p111{1, 1, 1}, p011{-1, 1, 1};
+    TriangleMesh& g = scene.geometry;
+    add_quad(g, p000, p010, p110, p100, 0);
+    add_quad(g, p001, p101, p111, p011, 0);
+    add_quad(g, p000, p100, p101, p001, 0);
+    add_quad(g, p010, p011, p111, p110, 0);
+    add_quad(g, p000, p001, p011, p010, 0);
+    add_quad(g, p100, p110, p111, p101, 0);
+    for (const int depth : {0, 1, 2, 5, 12}) {
+        const PathRun run{scene, depth};
+        const Estimate e = run.estimate({0.1f, -0.2f, 0.3f}, {0.5f, 0.4f, -1}, 3000, 3 + static_cast<std::uint64_t>(depth));
+        const double expected = le * (1.0 - std::pow(a, depth + 1)) / (1.0 - a);
+        expect_agrees(e, expected, "closed box");
+    }
+}
+
+// Irradiance at x (normal n) from a uniformly emitting polygon of radiance
+// 1: Lambert's formula E = ½ Σ Θ_i (n · Γ_i), Θ_i the angle the i-th edge
+// subtends at x and Γ_i the unit normal of the plane through x and that edge.
+double polygon_irradiance(const std::vector<Vec3>& corners, Vec3 x, Vec3 n) {
+    double e = 0;
+    for (std::size_t i = 0; i < corners.size(); ++i) {
+        const Vec3 a = normalize(corners[i] - x), b = normalize(corners[(i + 1) % corners.size()] - x);
+        const double theta = std::acos(std::clamp(static_cast<double>(dot(a, b)), -1.0, 1.0));
+        e += theta * dot(normalize(cross(a, b)), n);
+    }
+    return 0.5 * std::fabs(e);
+}
+
+TEST(PathIntegrator, PlaneUnderTriangleLightMatchesLambertsPolygonFormula) {
+    // max_depth 1: only direct light. L = kd/π · Le · E/1 at each plane point.
+    const Vec3 kd{0.6f}, le{5, 3, 1};
+    const std::vector<Vec3> light = {{-0.5f, 1, -0.3f}, {0.4f, 1.2f, -0.4f}, {0.1f, 0.9f, 0.6f}};
+    for (const LightStrategy strategy : {LightStrategy::Mis, LightStrategy::LightOnly, LightStrategy::BsdfOnly}) {
+        Scene scene;
+        scene.materials.push_back(diffuse(kd));
+        Material emitter = diffuse(Vec3{0.0f});
+        emitter.ke = le;
+        scene.materials.push_back(emitter);
+        add_quad(scene.geometry, {-50, 0, -50}, {-50, 0, 50}, {50, 0, 50}, {50, 0, -50}, 0);
+        add_triangle(scene.geometry, light[0], light[1], light[2], 1);
+        const PathRun run{scene, 1, strategy};
+        for (const Vec3 x : {Vec3{0, 0, 0}, Vec3{0.7f, 0, 0.2f}, Vec3{-1.5f, 0, 1}}) {
+            const double expected = kd.x / kPi * le.x * polygon_irradiance(light, x, {0, 1, 0});
+            // Camera rays from just above the plane (below the light), straight down.
+            const Estimate e = run.estimate(x + Vec3{0.01f, 0.3f, 0.02f}, x, strategy == LightStrategy::BsdfOnly ? 40000 : 6000, 21);
+            expect_agrees(e, expected, "polygon irradiance");
+        }
+    }
+}
+
+TEST(PathIntegrator, PointLightInsideADiffuseSphereAtDepthOne) {
+    // Depth 1 under a point light is deterministic: L = kd/π · I/d² · cos θ
+    // at the hit point of a flat facet (no randomness, no tolerance but rounding).
+    Scene scene;
+    scene.materials.push_back(diffuse(Vec3{0.5f}));
+    add_sphere(scene.geometry, {0, 0, 0}, 2.0f, 4, 0);
+    scene.lights.push_back(PointLight{{0, 0, 0}, {3, 3, 3}});
+    const Accel accel = make_accel(scene.geometry, AccelKind::Bvh);
+    const LightSet lights = make_light_set(scene, make_constant_environment(scene.background), true);
+    const IntegratorContext ctx{&scene, &accel, &lights, 1};
+    RayCounters counters;
+    for (const Vec3 dir : {Vec3{1, 0.2f, 0.1f}, Vec3{-0.3f, 1, 0.5f}, Vec3{0.2f, -0.4f, -1}}) {
+        SampleStream stream{7, 0, 1};
+        const Ray ray{{0.1f, 0.05f, 0}, dir};
+        const Vec3 l = trace_path(ctx, ray, stream, counters);
+        Hit hit;
+        ASSERT_TRUE(intersect(accel, ray, hit));
+        const Index3 t = scene.geometry.triangles[hit.triangle];
+        const Vec3 p0 = scene.geometry.positions[t[0]], p1 = scene.geometry.positions[t[1]], p2 = scene.geometry.positions[t[2]];
+        const Vec3 x = ray.origin + hit.t * ray.dir;
+        const Vec3 n = normalize(cross(p1 - p0, p2 - p0));
+        const double d2 = dot(x, x);
+        const double expected = 0.5 / kPi * 3.0 / d2 * std::fabs(dot(n, normalize(-x)));
+        EXPECT_NEAR(l.x, expected, 1e-5 * expected);
+    }
+}
+
+TEST(PathIntegrator, StrategiesAgreeUnderAnEnvironment) {
+    // A diffuse and a glossy sphere on a plane under a coloured constant sky:
+    // light sampling alone, BSDF sampling alone and MIS estimate the same value.
+    Scene scene;
+    scene.background = Vec3{0.8f, 0.9f, 1.2f};
+    scene.materials.push_back(diffuse(Vec3{0.7f}));
+    Material phong;
+    phong.type = MaterialType::Phong;
+    phong.kd = Vec3{0.3f};
+    phong.ks = Vec3{0.5f};
+    phong.shininess = 20;
+    scene.materials.push_back(phong);
+    add_quad(scene.geometry, {-20, 0, -20}, {-20, 0, 20}, {20, 0, 20}, {20, 0, -20}, 0);
+    add_sphere(scene.geometry, {0, 1, 0}, 1.0f, 3, 1);
+    double means[3];
+    int k = 0;
+    for (const LightStrategy strategy : {LightStrategy::Mis, LightStrategy::LightOnly, LightStrategy::BsdfOnly}) {
+        const PathRun run{scene, 3, strategy};
+        const Estimate e = run.estimate({2, 1.5f, 3}, {0.3f, 0.1f, 1.5f}, 20000, 99);
+        means[k++] = e.mean();
+        if (strategy != LightStrategy::Mis) {
+            // Compare with MIS's estimate, both standard errors combined.
+            const PathRun mis{scene, 3, LightStrategy::Mis};
+            const Estimate m = mis.estimate({2, 1.5f, 3}, {0.3f, 0.1f, 1.5f}, 20000, 1234);
+            const double z = (e.mean() - m.mean()) / std::hypot(e.standard_error(), m.standard_error());
+            EXPECT_LT(std::fabs(z), kZ) << "strategy " << static_cast<int>(strategy) << ": " << e.mean() << " vs " << m.mean();
+        }
+    }
+    EXPECT_GT(means[0], 0.1);
+}
+
+const std::filesystem::path kShared = SOMBRA_SHARED_DIR;
+
+RenderOutput render_with(const Scene& scene, RenderSettings settings, int threads) {
+    const Accel accel = make_accel(scene.geometry, AccelKind::Bvh);
+    const RenderJob job = make_render_job(scene, accel, settings, threads);
+    RenderProgress progress;
+    return render_image(job, progress);
+}
+
+TEST(PathIntegrator, DepthOneEqualsDirectOnPointLightScenes) {
+    for (const char* name : {"bunny.json", "phong.json"}) {
+        if (!std::filesystem::exists(kShared / "scenes" / name)) GTEST_SKIP() << "shared/ not found at " << kShared;
+        Diagnostics diag;
+        Scene scene = load_scene_file(kShared / "scenes" / name, diag);
+        // Spec §10: with a black background (which path tracing would light with).
+        scene.background = Vec3{0.0f};
+        RenderSettings settings{80, 45, 2, 3};
+        const RenderOutput direct = render_with(scene, settings, 0);
+        settings.integrator = IntegratorKind::Path;
+        settings.max_depth = 1;
+        const RenderOutput path = render_with(scene, settings, 0);
+        // Same shading code, same order of operations: the very same floats.
+        EXPECT_EQ(direct.film.rgb, path.film.rgb) << name;
+        EXPECT_EQ(direct.counters.shadow_rays, path.counters.shadow_rays);
+        EXPECT_GT(path.counters.bounce_rays, 0u);
+    }
+}
+
+TEST(PathIntegrator, SameImageForAnyThreadCount) {
+    Scene scene;
+    scene.background = Vec3{0.2f, 0.3f, 0.5f};
+    scene.materials.push_back(diffuse(Vec3{0.6f, 0.5f, 0.4f}));
+    Material glass;
+    glass.type = MaterialType::Dielectric;
+    scene.materials.push_back(glass);
+    Material light = diffuse(Vec3{0.0f});
+    light.ke = Vec3{8.0f};
+    scene.materials.push_back(light);
+    add_quad(scene.geometry, {-5, 0, -5}, {-5, 0, 5}, {5, 0, 5}, {5, 0, -5}, 0);
+    add_sphere(scene.geometry, {0, 1, 0}, 1.0f, 2, 1);
+    add_quad(scene.geometry, {-1, 4, -1}, {1, 4, -1}, {1, 4, 1}, {-1, 4, 1}, 2);
+    scene.lights.push_back(PointLight{{2, 3, 2}, {5, 5, 5}});
+    scene.camera.look_at = CameraLookAt{{0, 2, 6}, {0, 1, 0}, {0, 1, 0}, 45};
+    RenderSettings settings{40, 30, 8, 5};
+    settings.integrator = IntegratorKind::Path;
+    const RenderOutput one = render_with(scene, settings, 1);
+    for (const int threads : {2, 8}) {
+        const RenderOutput many = render_with(scene, settings, threads);
+        EXPECT_EQ(one.film.rgb, many.film.rgb) << threads << " threads";
+        EXPECT_EQ(one.counters.bounce_rays, many.counters.bounce_rays);
+    }
+    EXPECT_EQ(one.counters.nonfinite_samples, 0u);
+}
+
+TEST(PathIntegrator, NoNonFiniteSamplesOnTheSharedScenes) {
+    for (const char* name : {"cornell.json", "phong.json", "bunny.json"}) {
+        if (!std::filesystem::exists(kShared / "scenes" / name)) GTEST_SKIP() << "shared/ not found at " << kShared;
+        Diagnostics diag;
+        const Scene scene = load_scene_file(kShared / "scenes" / name, diag);
+        RenderSettings settings{48, 27, 4, 1};
+        settings.integrator = IntegratorKind::Path;
+        const RenderOutput out = render_with(scene, settings, 0);
+        EXPECT_EQ(out.counters.nonfinite_samples, 0u) << name;
+        for (float v : out.film.rgb) ASSERT_TRUE(std::isfinite(v)) << name;
+    }
+}
+
+}  // namespace
+}  // namespace sombra
