@@ -18,8 +18,8 @@ namespace sombra::fuzz {
 // The parse as comparable data: the error, or every field with faces flattened.
 struct ObjParseOutcome {
     std::string error;
-    std::vector<std::uint32_t> position_bits, normal_bits;  // floats as bits: NaN equals NaN
-    std::vector<std::uint32_t> corner_positions, corner_normals, face_sizes;
+    std::vector<std::uint32_t> position_bits, normal_bits, texcoord_bits;  // floats as bits: NaN equals NaN
+    std::vector<std::uint32_t> corner_positions, corner_normals, corner_texcoords, face_sizes;
     std::vector<std::string> directives;  // "kind line face text"
     std::size_t small_faces = 0, bad_normal_refs = 0;
     bool operator==(const ObjParseOutcome&) const = default;
@@ -38,9 +38,14 @@ inline ObjParseOutcome parse_obj_outcome(std::string_view text, std::size_t chun
         for (int k = 0; k < 3; ++k) out.position_bits.push_back(std::bit_cast<std::uint32_t>(p[k]));
     for (const Vec3& n : g.normals)
         for (int k = 0; k < 3; ++k) out.normal_bits.push_back(std::bit_cast<std::uint32_t>(n[k]));
+    for (const Vec2& t : g.texcoords) {
+        out.texcoord_bits.push_back(std::bit_cast<std::uint32_t>(t.x));
+        out.texcoord_bits.push_back(std::bit_cast<std::uint32_t>(t.y));
+    }
     for (const ObjFaceBlock& block : g.faces) {
         out.corner_positions.insert(out.corner_positions.end(), block.positions.begin(), block.positions.end());
         out.corner_normals.insert(out.corner_normals.end(), block.normals.begin(), block.normals.end());
+        out.corner_texcoords.insert(out.corner_texcoords.end(), block.texcoords.begin(), block.texcoords.end());
         std::uint32_t begin = 0;
         for (std::uint32_t end : block.ends) {
             out.face_sizes.push_back(end - begin);

@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "core/vec2.h"
 #include "core/vec3.h"
 #include "scene/material.h"
 
@@ -16,6 +17,8 @@ using Index3 = std::array<std::uint32_t, 3>;
 
 // Marks a triangle corner without a vertex normal.
 inline constexpr std::uint32_t kNoNormal = 0xffffffffu;
+// Marks a triangle corner without a texture coordinate (the renderer uses (0, 0)).
+inline constexpr std::uint32_t kNoUv = 0xffffffffu;
 
 struct TriangleMesh {
     std::vector<Vec3> positions;
@@ -28,12 +31,20 @@ struct TriangleMesh {
     std::vector<Vec3> normals;
     std::vector<Index3> normal_indices;
 
+    // Texture coordinates, as the file gives them (OBJ `vt`, PLY u v / s t /
+    // texture_u texture_v; v = 0 is the image's bottom row), the same
+    // convention as normals: either both empty, or uv_indices.size() ==
+    // triangles.size() with each entry an index into uvs or kNoUv.
+    std::vector<Vec2> uvs;
+    std::vector<Index3> uv_indices;
+
     // One material index per triangle: into the loader's material list for a
     // loaded file, into Scene::materials for the scene's world geometry.
     std::vector<std::uint32_t> material_ids;
 
     std::size_t triangle_count() const { return triangles.size(); }
     bool has_normals() const { return !normal_indices.empty(); }
+    bool has_uvs() const { return !uv_indices.empty(); }
 };
 
 // A mesh file as read from disk: geometry in the file's own coordinates and

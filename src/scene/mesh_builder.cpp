@@ -171,6 +171,7 @@ PolygonSplit triangulate_polygon(std::span<const Vec3> corners, PolygonScratch& 
 namespace {
 
 constexpr Index3 kNoNormals{kNoNormal, kNoNormal, kNoNormal};
+constexpr Index3 kNoUvs{kNoUv, kNoUv, kNoUv};
 // Marks a vertex or normal removed from the compacted arrays.
 constexpr std::uint32_t kRemoved = 0xffffffffu;
 
@@ -187,7 +188,8 @@ void MeshBuilder::reserve_triangles(std::size_t count) {
 }
 
 void MeshBuilder::add_face(std::span<const std::uint32_t> position_corners,
-                                  std::span<const std::uint32_t> normal_corners, std::uint32_t material) {
+                           std::span<const std::uint32_t> normal_corners, std::uint32_t material,
+                           std::span<const std::uint32_t> uv_corners) {
     const std::size_t n = position_corners.size();
     if (n < 3) {
         ++skipped_small_faces;
@@ -199,11 +201,20 @@ void MeshBuilder::add_face(std::span<const std::uint32_t> position_corners,
         mesh_.normal_indices.assign(mesh_.triangles.size(), kNoNormals);
         has_normals_ = true;
     }
+    if (uv_corners.size() != n) uv_corners = {};
+    if (!uv_corners.empty() && !has_uvs_) {
+        mesh_.uv_indices.assign(mesh_.triangles.size(), kNoUvs);
+        has_uvs_ = true;
+    }
     auto emit = [&](std::uint32_t a, std::uint32_t b, std::uint32_t c) {
         mesh_.triangles.push_back({position_corners[a], position_corners[b], position_corners[c]});
         if (has_normals_) {
             mesh_.normal_indices.push_back(
                 normal_corners.empty() ? kNoNormals : Index3{normal_corners[a], normal_corners[b], normal_corners[c]});
+        }
+        if (has_uvs_) {
+            mesh_.uv_indices.push_back(uv_corners.empty() ? kNoUvs
+                                                          : Index3{uv_corners[a], uv_corners[b], uv_corners[c]});
         }
         mesh_.material_ids.push_back(material);
     };
@@ -268,6 +279,7 @@ void MeshBuilder::drop_non_finite_positions(Diagnostics& diag) {
     pos.resize(kept);
 
     const bool with_normals = mesh_.has_normals();
+    const bool with_uvs = mesh_.has_uvs();
     std::size_t out = 0;
     for (std::size_t t = 0; t < mesh_.triangles.size(); ++t) {
         const Index3& tri = mesh_.triangles[t];
@@ -275,12 +287,14 @@ void MeshBuilder::drop_non_finite_positions(Diagnostics& diag) {
         if (mapped[0] == kRemoved || mapped[1] == kRemoved || mapped[2] == kRemoved) continue;
         mesh_.triangles[out] = mapped;
         if (with_normals) mesh_.normal_indices[out] = mesh_.normal_indices[t];
+        if (with_uvs) mesh_.uv_indices[out] = mesh_.uv_indices[t];
         mesh_.material_ids[out] = mesh_.material_ids[t];
         ++out;
     }
     const std::size_t dropped = mesh_.triangles.size() - out;
     mesh_.triangles.resize(out);
     if (with_normals) mesh_.normal_indices.resize(out);
+    if (with_uvs) mesh_.uv_indices.resize(out);
     mesh_.material_ids.resize(out);
     diag.warn(where_, "dropped " + plural(dropped, "triangle") + " touching " +
                           plural(bad_vertices, "vertex", "vertices") + " with non-finite (nan/inf) coordinates");
@@ -297,6 +311,8 @@ LoadedMesh MeshBuilder::finish(std::vector<Material> materials, Diagnostics& dia
     const std::size_t vertex_count = positions.size();
     mesh_.positions = std::move(positions);
     mesh_.normals = std::move(normals);
+    mesh_.uvs = std::move(uvs);
+    if (!has_uvs_) mesh_.uvs.clear();
     const bool had_triangles = !mesh_.triangles.empty();
     clean_normals(diag);
     drop_non_finite_positions(diag);

@@ -59,6 +59,7 @@ struct MeshBuilder {
     // The file's vertices and normals, in file order; the loader fills these.
     std::vector<Vec3> positions;
     std::vector<Vec3> normals;
+    std::vector<Vec2> uvs;  // texture coordinates, in file order
 
     // Faces with fewer than 3 corners that the loader saw but could not add.
     std::size_t skipped_small_faces = 0;
@@ -69,8 +70,9 @@ struct MeshBuilder {
     // them, knowing where they came from); `normal_corners` empty when the
     // face has no normals, else one per corner, each < normals.size() or
     // kNoNormal; `material` an index into finish()'s list, or kNoMaterial.
+    // `uv_corners` likewise: empty, or one per corner, < uvs.size() or kNoUv.
     void add_face(std::span<const std::uint32_t> position_corners, std::span<const std::uint32_t> normal_corners,
-                  std::uint32_t material);
+                  std::uint32_t material, std::span<const std::uint32_t> uv_corners = {});
 
     // The finished mesh. Normals are unit length; zero or non-finite ones are
     // removed (their corners get kNoNormal). Vertices with a non-finite
@@ -87,6 +89,7 @@ private:
     std::string where_;
     TriangleMesh mesh_;
     bool has_normals_ = false;
+    bool has_uvs_ = false;
     std::size_t overlap_fans_ = 0;
     PolygonScratch scratch_;
     std::vector<Vec3> corner_positions_;

@@ -242,6 +242,7 @@ LoadedMesh load_obj(const std::filesystem::path& path, Diagnostics& diag) {
     builder.skipped_small_faces = geometry.small_faces;
     builder.positions = std::move(geometry.positions);
     builder.normals = std::move(geometry.normals);
+    builder.uvs = std::move(geometry.texcoords);
     std::size_t triangle_estimate = 0;
     for (const ObjFaceBlock& block : geometry.faces) {
         triangle_estimate += block.positions.size() - 2 * block.ends.size();
@@ -264,9 +265,13 @@ LoadedMesh load_obj(const std::filesystem::path& path, Diagnostics& diag) {
             apply_directives_before(face++);
             const std::span<const std::uint32_t> positions(block.positions.data() + begin, end - begin);
             std::span<const std::uint32_t> normals(block.normals.data() + begin, end - begin);
-            bool any_normal = false;
+            bool any_normal = false, any_uv = false;
             for (std::uint32_t n : normals) any_normal |= n != kNoNormal;
-            builder.add_face(positions, any_normal ? normals : std::span<const std::uint32_t>(), mtl.current_id());
+            std::span<const std::uint32_t> uvs;
+            if (!block.texcoords.empty()) uvs = {block.texcoords.data() + begin, end - begin};
+            for (std::uint32_t t : uvs) any_uv |= t != kNoUv;
+            builder.add_face(positions, any_normal ? normals : std::span<const std::uint32_t>(), mtl.current_id(),
+                             any_uv ? uvs : std::span<const std::uint32_t>());
             begin = end;
         }
     }

@@ -163,13 +163,14 @@ struct Chunk {
 };
 
 struct Totals {
-    std::int64_t positions, normals;
+    std::int64_t positions, normals, texcoords;
 };
 
-void parse_chunk(Chunk& chunk, const Totals& totals, std::vector<Vec3>& positions, std::vector<Vec3>& normals) {
+void parse_chunk(Chunk& chunk, const Totals& totals, std::vector<Vec3>& positions, std::vector<Vec3>& normals,
+                 std::vector<Vec2>& texcoords) {
     const char* const end = chunk.end;
     std::size_t line = chunk.before.lines;
-    ObjIndexCounts seen{chunk.before.positions, chunk.before.normals};
+    ObjIndexCounts seen{chunk.before.positions, chunk.before.normals, chunk.before.texcoords};
     std::vector<ObjCorner> corners;
     ObjLineProblem problem;
     ObjFaceBlock& out = chunk.faces;
@@ -177,6 +178,7 @@ void parse_chunk(Chunk& chunk, const Totals& totals, std::vector<Vec3>& position
     const std::size_t corner_guess = std::min<std::size_t>(std::size_t(end - chunk.begin) / 8, 1 << 17);
     out.positions.reserve(corner_guess);
     out.normals.reserve(corner_guess);
+    if (totals.texcoords > 0) out.texcoords.reserve(corner_guess);
     out.ends.reserve(corner_guess / 3);
     for (const char* p = chunk.begin; p != end;) {
         ++line;
@@ -194,7 +196,10 @@ void parse_chunk(Chunk& chunk, const Totals& totals, std::vector<Vec3>& position
                     non_finite ? Vec3(std::numeric_limits<float>::quiet_NaN()) : xyz;
             }
         } else if (kind == LineKind::TexCoord) {
-            // ignored (counted in the first pass, for messages)
+            Vec3 uvw;
+            bool non_finite = false;
+            stop = read_xyz(k + 3, end, uvw, non_finite);
+            texcoords[std::size_t(seen.texcoords++)] = Vec2{uvw.x, uvw.y};
         } else if (kind != LineKind::Other) {
             const char* content_end = find_content_end(k, end);
             stop = content_end;
@@ -220,6 +225,10 @@ void parse_chunk(Chunk& chunk, const Totals& totals, std::vector<Vec3>& position
                         const bool has_normal = c.normal >= 0 && c.normal < totals.normals;
                         chunk.bad_normal_refs += !has_normal && c.normal != -1;
                         out.normals.push_back(has_normal ? static_cast<std::uint32_t>(c.normal) : kNoNormal);
+                        // A texture coordinate the file does not define is dropped silently.
+                        const bool has_uv = c.texcoord >= 0 && c.texcoord < totals.texcoords;
+                        if (totals.texcoords > 0)
+                            out.texcoords.push_back(has_uv ? static_cast<std::uint32_t>(c.texcoord) : kNoUv);
                     }
                     out.ends.push_back(static_cast<std::uint32_t>(out.positions.size()));
                 }
@@ -264,9 +273,10 @@ ObjGeometry parse_obj(std::string_view text, const std::string& where, std::size
     ObjGeometry geometry;
     geometry.positions.resize(std::size_t(sum.positions));
     geometry.normals.resize(std::size_t(sum.normals));
-    const Totals totals{sum.positions, sum.normals};
+    geometry.texcoords.resize(std::size_t(sum.texcoords));
+    const Totals totals{sum.positions, sum.normals, sum.texcoords};
     tbb::parallel_for(std::size_t(0), chunks.size(), [&](std::size_t i) {
-        parse_chunk(chunks[i], totals, geometry.positions, geometry.normals);
+        parse_chunk(chunks[i], totals, geometry.positions, geometry.normals, geometry.texcoords);
     });
 
     const std::int64_t part_totals[3] = {sum.positions, sum.texcoords, sum.normals};

@@ -1,4 +1,4 @@
-// OBJ text → positions, normals, faces and the material directives, in
+// OBJ text → positions, normals, texture coordinates, faces and the material directives, in
 // parallel over chunks of lines (spec §5, §9). What it reads and rejects is
 // what tinyobjloader did for sombra before (objsuite/README.md), except that
 // every error names its line and `usemtl` takes the rest of its line as the
@@ -17,6 +17,7 @@
 #include <string_view>
 #include <vector>
 
+#include "core/vec2.h"
 #include "core/vec3.h"
 
 namespace sombra {
@@ -34,12 +35,14 @@ struct ObjDirective {
 struct ObjFaceBlock {
     std::vector<std::uint32_t> positions;  // per corner: 0-based position index, < ObjGeometry::positions.size()
     std::vector<std::uint32_t> normals;    // per corner: index into ObjGeometry::normals, or kNoNormal
+    std::vector<std::uint32_t> texcoords;  // per corner: index into ObjGeometry::texcoords, or kNoUv
     std::vector<std::uint32_t> ends;       // per face: one past its last corner
 };
 
 struct ObjGeometry {
     std::vector<Vec3> positions;  // every `v`, in file order; NaN where a coordinate is spelled nan/inf
     std::vector<Vec3> normals;    // every `vn`, in file order, as written
+    std::vector<Vec2> texcoords;  // every `vt` (u, v; a third value ignored), in file order, as written
     std::vector<ObjFaceBlock> faces;
     std::vector<ObjDirective> directives;  // views into the parsed text
     std::size_t small_faces = 0;           // `f` lines with fewer than 3 corners (skipped)
@@ -60,11 +63,13 @@ ObjGeometry parse_obj(std::string_view text, const std::string& where, std::size
 struct ObjCorner {
     std::int64_t position;
     std::int64_t normal;
+    std::int64_t texcoord;  // -1 when the corner names none
 };
 
 struct ObjIndexCounts {
     std::int64_t positions = 0;  // `v` lines before this line
     std::int64_t normals = 0;    // `vn` lines before this line
+    std::int64_t texcoords = 0;  // `vt` lines before this line
 };
 
 enum class ObjLineStatus {

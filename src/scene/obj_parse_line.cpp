@@ -188,7 +188,8 @@ bool read_plain_corners(const char* p, const char* end, const ObjIndexCounts& be
             return false;
         }
         const std::int64_t normal = vn > 0 ? vn - 1 : (vn < 0 ? before.normals + vn : -1);
-        corners.push_back({position, normal});
+        const std::int64_t texcoord = vt > 0 ? vt - 1 : (vt < 0 ? before.texcoords + vt : -1);
+        corners.push_back({position, normal, texcoord});
     }
 }
 
@@ -274,7 +275,8 @@ const char* skip_index(const char* p, const char* end) {
 
 // tinyobjloader's parseTriple: position, then "/vt", "//vn" or "/vt/vn", each
 // read with atoi (which skips white space, even past the corner). False on a 0.
-bool read_triple(const char*& p, const char* end, int& v, int& vn) {
+bool read_triple(const char*& p, const char* end, int& v, int& vt, int& vn) {
+    vt = 0;
     vn = 0;
     if ((v = obj_atoi(p, end)) == 0) return false;
     p = skip_index(p, end);
@@ -286,7 +288,7 @@ bool read_triple(const char*& p, const char* end, int& v, int& vn) {
         p = skip_index(p, end);
         return true;
     }
-    if (obj_atoi(p, end) == 0) return false;
+    if ((vt = obj_atoi(p, end)) == 0) return false;
     p = skip_index(p, end);
     if (p == end || *p != '/') return true;
     ++p;
@@ -307,8 +309,8 @@ ObjLineStatus read_obj_face(const char* args, const char* end, const ObjIndexCou
     while (p != end && is_blank(*p)) ++p;
     const char* corner = p;  // the blank-separated corner being read, for the message
     while (p != end) {
-        int v = 0, vn = 0;
-        if (!read_triple(p, end, v, vn)) {
+        int v = 0, vt = 0, vn = 0;
+        if (!read_triple(p, end, v, vt, vn)) {
             const char* stop = corner;
             while (stop != end && !is_blank(*stop)) ++stop;
             problem = {"face corner '" + quoted(std::string_view(corner, std::size_t(stop - corner))) +
@@ -318,7 +320,8 @@ ObjLineStatus read_obj_face(const char* args, const char* end, const ObjIndexCou
         // fixIndex: 1-based, or negative counting back from what came before.
         const std::int64_t position = v > 0 ? v - 1 : before.positions + v;
         const std::int64_t normal = vn > 0 ? vn - 1 : (vn < 0 ? before.normals + vn : -1);
-        corners.push_back({position, normal});
+        const std::int64_t texcoord = vt > 0 ? vt - 1 : (vt < 0 ? before.texcoords + vt : -1);
+        corners.push_back({position, normal, texcoord});
         const char* read = p;
         while (p != end && is_blank(*p)) ++p;
         if (p != read) corner = p;
@@ -329,8 +332,8 @@ ObjLineStatus read_obj_face(const char* args, const char* end, const ObjIndexCou
 bool obj_index_line_readable(const char* args, const char* end) {
     const char* p = args;  // no blanks skipped first: tinyobjloader's atoi skips them
     while (p != end) {
-        int v = 0, vn = 0;
-        if (!read_triple(p, end, v, vn)) return false;
+        int v = 0, vt = 0, vn = 0;
+        if (!read_triple(p, end, v, vt, vn)) return false;
         while (p != end && is_blank(*p)) ++p;
     }
     return true;

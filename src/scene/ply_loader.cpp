@@ -11,6 +11,7 @@
 #include <limits>
 #include <optional>
 #include <span>
+#include <utility>
 #include <vector>
 
 #include "core/error.h"
@@ -25,7 +26,9 @@ namespace {
 struct VertexLayout {
     int x = -1, y = -1, z = -1;
     int nx = -1, ny = -1, nz = -1;
+    int u = -1, v = -1;  // texture coordinates: u v, s t or texture_u texture_v
     bool has_normals() const { return nx >= 0 && ny >= 0 && nz >= 0; }
+    bool has_uvs() const { return u >= 0 && v >= 0; }
 };
 
 // Narrowing that stays defined for doubles beyond float's range.
@@ -69,6 +72,7 @@ void read_vertices(Cursor& cursor, const PlyElement& element, const VertexLayout
     const auto count = static_cast<std::size_t>(element.count);
     builder.positions.reserve(count);
     if (layout.has_normals()) builder.normals.reserve(count);
+    if (layout.has_uvs()) builder.uvs.reserve(count);
     std::vector<double> values(element.properties.size());
     for (std::size_t i = 0; i < count; ++i) {
         for (std::size_t j = 0; j < element.properties.size(); ++j) {
@@ -85,6 +89,7 @@ void read_vertices(Cursor& cursor, const PlyElement& element, const VertexLayout
             builder.normals.push_back(
                 {to_float(values[layout.nx]), to_float(values[layout.ny]), to_float(values[layout.nz])});
         }
+        if (layout.has_uvs()) builder.uvs.push_back({to_float(values[layout.u]), to_float(values[layout.v])});
     }
 }
 
@@ -149,6 +154,11 @@ PlyPlan plan_elements(const PlyHeader& header, const std::string& where) {
         return index;
     };
     plan.layout = {scalar("x"), scalar("y"), scalar("z"), scalar("nx"), scalar("ny"), scalar("nz")};
+    for (const auto& [u, v] : {std::pair{"u", "v"}, std::pair{"s", "t"}, std::pair{"texture_u", "texture_v"}}) {
+        if (plan.layout.has_uvs()) break;
+        plan.layout.u = scalar(u);
+        plan.layout.v = scalar(v);
+    }
     if (plan.layout.x < 0 || plan.layout.y < 0 || plan.layout.z < 0) {
         throw Error(vertex_at, "element vertex lacks one of the properties x, y, z");
     }
@@ -167,13 +177,15 @@ PlyPlan plan_elements(const PlyHeader& header, const std::string& where) {
 template <class Cursor>
 void read_body(Cursor& cursor, const PlyHeader& header, const PlyPlan& plan, MeshBuilder& builder) {
     const bool normals = plan.layout.has_normals();
+    const bool uvs = plan.layout.has_uvs();
     const std::uint64_t vertex_count = header.elements[plan.vertex_element].count;
     // Polygons are split on their positions, so faces that come before the
     // vertices in the file wait here until the vertices are read.
     bool have_vertices = false;
     std::vector<std::uint32_t> waiting_corners, waiting_sizes;
     auto add_face = [&](std::span<const std::uint32_t> corners) {
-        builder.add_face(corners, normals ? corners : std::span<const std::uint32_t>(), kNoMaterial);
+        builder.add_face(corners, normals ? corners : std::span<const std::uint32_t>(), kNoMaterial,
+                         uvs ? corners : std::span<const std::uint32_t>());
     };
     for (std::size_t e = 0; e < header.elements.size(); ++e) {
         const PlyElement& element = header.elements[e];

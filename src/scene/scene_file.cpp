@@ -68,7 +68,8 @@ ObjectSpec read_object(const SceneJson& s, const Json& v, std::string_view point
 }
 
 // Appends one loaded mesh to the world geometry (capacity already reserved):
-// positions and normals to world space, indices offset, materials remapped.
+// positions and normals to world space, texture coordinates as they are,
+// indices offset, materials remapped.
 void append_object(Scene& scene, const LoadedMesh& loaded, const ObjectSpec& spec, const SceneJson& s) {
     TriangleMesh& out = scene.geometry;
     const TriangleMesh& in = loaded.mesh;
@@ -115,6 +116,25 @@ void append_object(Scene& scene, const LoadedMesh& loaded, const ObjectSpec& spe
                     mapped[c] = n < usable.size() && usable[n] ? normal_base + n : kNoNormal;
                 }
                 out.normal_indices.push_back(mapped);
+            }
+        }
+    }
+
+    // Texture coordinates: unchanged by the transform; indices offset, kNoUv kept.
+    const bool in_has_uvs = in.has_uvs() && in.uv_indices.size() == in.triangles.size();
+    if (in_has_uvs || out.has_uvs()) {
+        constexpr Index3 kNoUvs{kNoUv, kNoUv, kNoUv};
+        const std::size_t triangles_before = out.triangles.size() - in.triangles.size();
+        if (!out.has_uvs()) out.uv_indices.assign(triangles_before, kNoUvs);
+        if (!in_has_uvs) {
+            out.uv_indices.insert(out.uv_indices.end(), in.triangles.size(), kNoUvs);
+        } else {
+            const auto uv_base = static_cast<std::uint32_t>(out.uvs.size());
+            out.uvs.insert(out.uvs.end(), in.uvs.begin(), in.uvs.end());
+            for (const Index3& corners : in.uv_indices) {
+                Index3 mapped;
+                for (int c = 0; c < 3; ++c) mapped[c] = corners[c] < in.uvs.size() ? uv_base + corners[c] : kNoUv;
+                out.uv_indices.push_back(mapped);
             }
         }
     }
@@ -208,8 +228,8 @@ Scene load_scene_text(const std::string& text, const fs::path& path, Diagnostics
     std::vector<std::size_t> mesh_of(specs.size());
     std::vector<std::size_t> last_use;
     std::map<fs::path, std::size_t> loaded_index;
-    std::size_t positions = 0, triangles = 0, normals = 0;
-    bool any_normals = false;
+    std::size_t positions = 0, triangles = 0, normals = 0, uvs = 0;
+    bool any_normals = false, any_uvs = false;
     for (std::size_t i = 0; i < specs.size(); ++i) {
         const ObjectSpec& spec = specs[i];
         std::error_code ec;
@@ -228,10 +248,12 @@ Scene load_scene_text(const std::string& text, const fs::path& path, Diagnostics
         triangles += m.triangles.size();
         normals += m.normals.size();
         any_normals = any_normals || m.has_normals();
+        uvs += m.uvs.size();
+        any_uvs = any_uvs || m.has_uvs();
     }
     // Indices are 32-bit; kNoNormal is reserved.
     constexpr std::size_t kMaxIndex = std::numeric_limits<std::uint32_t>::max() - 1;
-    if (positions > kMaxIndex || normals > kMaxIndex || triangles > kMaxIndex)
+    if (positions > kMaxIndex || normals > kMaxIndex || uvs > kMaxIndex || triangles > kMaxIndex)
         json_fail(s, "/objects", "the scene has more than " + std::to_string(kMaxIndex) + " vertices or triangles");
 
     TriangleMesh& world = scene.geometry;
@@ -241,6 +263,10 @@ Scene load_scene_text(const std::string& text, const fs::path& path, Diagnostics
     if (any_normals) {
         world.normals.reserve(normals);
         world.normal_indices.reserve(triangles);
+    }
+    if (any_uvs) {
+        world.uvs.reserve(uvs);
+        world.uv_indices.reserve(triangles);
     }
     for (std::size_t i = 0; i < specs.size(); ++i) {
         append_object(scene, meshes[mesh_of[i]], specs[i], s);
