@@ -64,7 +64,4 @@ float pdf_environment(const Environment& env, Vec3 direction);
 // the scene's bounding sphere (the caller multiplies). 0 when black.
 float environment_power_proxy(const Environment& env);
 
-// Rec. 709 luminance of linear RGB.
-constexpr float luminance(Vec3 c) { return 0.2126f * c.x + 0.7152f * c.y + 0.0722f * c.z; }
-
 }  // namespace sombra

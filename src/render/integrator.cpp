@@ -36,7 +36,8 @@ Vec3 trace_direct(const IntegratorContext& ctx, const Ray& ray, RayCounters& cou
     const Scene& scene = *ctx.scene;
     ++counters.camera_rays;
     Hit hit;
-    if (!intersect(*ctx.accel, ray, hit)) return scene.background;
+    // A miss sees the background or the environment map (only seen, spec §10).
+    if (!intersect(*ctx.accel, ray, hit)) return eval_environment(ctx.lights->environment, normalize(ray.dir));
 
     const SurfaceInteraction si = make_surface_interaction(scene.geometry, ray, hit);
     const Material& material = scene.materials[si.material];

@@ -49,7 +49,10 @@ RenderJob make_render_job(const Scene& scene, const Accel& accel, const RenderSe
     job.settings = settings;
     job.threads = threads;
     const bool path = settings.integrator == IntegratorKind::Path;
-    job.lights = make_light_set(scene, make_constant_environment(scene.background), path);
+    Environment environment = scene.environment ? make_map_environment(scene.environment->image, scene.environment->scale,
+                                                                       scene.environment->rotate_y_degrees)
+                                                : make_constant_environment(scene.background);
+    job.lights = make_light_set(scene, std::move(environment), path);
     return job;
 }
 

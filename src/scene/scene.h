@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "core/vec3.h"
+#include "scene/hdr_image.h"
 #include "scene/material.h"
 #include "scene/mesh.h"
 
@@ -58,9 +59,20 @@ struct PointLight {
     Vec3 intensity;  // radiant intensity, RGB (W/sr)
 };
 
+// An equirectangular environment map (spec §10 "environment"): it replaces
+// the background, is seen by rays that leave the scene and, under the path
+// integrator, lights it.
+struct EnvironmentMap {
+    std::string file;        // as written in the scene file (for messages)
+    HdrImage image;          // finite, non-negative linear RGB
+    float scale = 1;         // radiance = scale × texel, scale ≥ 0
+    float rotate_y_degrees = 0;
+};
+
 struct Scene {
     RenderSettings render;
     Vec3 background{0.0f};
+    std::optional<EnvironmentMap> environment;  // when set, replaces `background`
     CameraSpec camera;
     std::vector<Material> materials;
     std::vector<PointLight> lights;
