@@ -10,6 +10,11 @@ running again after a change here.
   millimetres, x to the left, y up, the open side towards -z. The light
   quad is lowered 0.5 mm below the ceiling so the two are not coplanar.
   Reflectances are the usual RGB approximations of the measured spectra.
+- cornell-box-empty.obj: the same box without its light quad, for path-traced
+  scenes that put a one-sided quad light (spec §10) in its place: the MTL
+  light emits from both sides (spec §9), and its upper side, 0.5 mm under
+  the ceiling, would light a sliver of ceiling so brightly that every path
+  reaching it becomes a firefly.
 - sphere.obj: a unit UV sphere (64 x 32) with exact vertex normals.
 - cube.obj: a unit cube centred at the origin, flat faces.
 """
@@ -66,18 +71,21 @@ def fmt(x):
     return ("%.6f" % x).rstrip("0").rstrip(".") if x != int(x) else str(int(x))
 
 
-def write_cornell():
-    lines = ["# Cornell box, published measurements (mm). Made by tools/make-scene-models.py.",
+def write_cornell(file_name="cornell-box.obj", with_light=True):
+    lines = ["# Cornell box, published measurements (mm)%s. Made by tools/make-scene-models.py."
+             % ("" if with_light else ", without the light quad"),
              "mtllib cornell-box.mtl"]
     n = 0
     for name, material, quads in CORNELL:
+        if name == "light" and not with_light:
+            continue
         lines += ["o " + name, "usemtl " + material]
         for quad in quads:
             for v in quad:
                 lines.append("v " + " ".join(fmt(c) for c in v))
             lines.append("f %d %d %d %d" % (n + 1, n + 2, n + 3, n + 4))
             n += 4
-    with open(os.path.join(OUT, "cornell-box.obj"), "w") as f:
+    with open(os.path.join(OUT, file_name), "w") as f:
         f.write("\n".join(lines) + "\n")
     with open(os.path.join(OUT, "cornell-box.mtl"), "w") as f:
         f.write(CORNELL_MTL)
@@ -132,5 +140,6 @@ def write_cube():
 if __name__ == "__main__":
     os.makedirs(OUT, exist_ok=True)
     write_cornell()
+    write_cornell("cornell-box-empty.obj", with_light=False)
     write_sphere()
     write_cube()
