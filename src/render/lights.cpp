@@ -1,5 +1,7 @@
 #include "render/lights.h"
 
+#include "render/spherical_triangle.h"
+
 #include <algorithm>
 #include <cmath>
 #include <numbers>
@@ -30,6 +32,18 @@ float bounding_radius(const TriangleMesh& mesh) {
         }
     const float r = 0.5f * length(hi - lo);
     return r > 0.0f && std::isfinite(r) ? r : 1.0f;
+}
+
+// Triangles subtending a solid angle in this range are sampled uniformly
+// over it (spherical triangles); outside it by area. Below the range the
+// triangle is small enough that d² and cos θ barely vary over it, so area
+// sampling is as good and numerically safer; near 2π sr (x almost on the
+// triangle) Arvo's formulas lose precision.
+constexpr double kMinSphericalSolidAngle = 1e-3;
+constexpr double kMaxSphericalSolidAngle = 6.0;
+
+bool sample_by_solid_angle(const SphericalTriangle& t) {
+    return t.solid_angle >= kMinSphericalSolidAngle && t.solid_angle <= kMaxSphericalSolidAngle;
 }
 
 // Solid-angle density of area-uniform sampling of a triangle of `area` at
@@ -105,19 +119,32 @@ bool sample_light(const LightSet& lights, const Scene& scene, Vec3 x, float u_ch
 
     const std::uint32_t triangle = lights.emitters[chosen];
     const TriangleCorners c = corners(scene.geometry, triangle);
-    // Uniform by area: the square-root parameterisation of the triangle.
-    const float su = std::sqrt(u1);
-    const float b1 = 1.0f - su, b2 = u2 * su;
-    const Vec3 y = (1.0f - b1 - b2) * c.p0 + b1 * c.p1 + b2 * c.p2;
-    const Vec3 to_light = y - x;
-    const float dist2 = dot(to_light, to_light);
-    if (!(dist2 > 0.0f)) return false;
-    const Vec3 wi = to_light / std::sqrt(dist2);
     const Vec3 n_w = normalize(cross(c.p1 - c.p0, c.p2 - c.p0));
+    const SphericalTriangle spherical = make_spherical_triangle(x, c.p0, c.p1, c.p2);
+    Vec3 y, wi;
+    float pdf = 0;
+    if (sample_by_solid_angle(spherical)) {
+        // Uniform over the solid angle; the point is where that direction meets the plane.
+        wi = sample_spherical_triangle(spherical, u1, u2);
+        const float cos_y = dot(n_w, wi);
+        const float t = dot(c.p0 - x, n_w) / cos_y;
+        if (!(t > 0.0f) || !std::isfinite(t)) return false;
+        y = x + t * wi;
+        pdf = static_cast<float>(1.0 / spherical.solid_angle);
+    } else {
+        // Uniform by area: the square-root parameterisation of the triangle.
+        const float su = std::sqrt(u1);
+        const float b1 = 1.0f - su, b2 = u2 * su;
+        y = (1.0f - b1 - b2) * c.p0 + b1 * c.p1 + b2 * c.p2;
+        const Vec3 to_light = y - x;
+        const float dist2 = dot(to_light, to_light);
+        if (!(dist2 > 0.0f)) return false;
+        wi = to_light / std::sqrt(dist2);
+        pdf = area_to_solid_angle(x, y, n_w, lights.emitter_areas[chosen]);
+    }
     const Material& m = scene.materials[scene.geometry.material_ids[triangle]];
     // One-sided emitters shine only toward their winding normal's side.
     if (m.emits_front_only && dot(n_w, wi) >= 0.0f) return false;
-    const float pdf = area_to_solid_angle(x, y, n_w, lights.emitter_areas[chosen]);
     if (!(pdf > 0.0f) || !std::isfinite(pdf)) return false;
     out.radiance = m.ke;
     out.wi = wi;
@@ -132,6 +159,8 @@ float pdf_light_triangle(const LightSet& lights, const Scene& scene, std::uint32
     if (it == lights.emitters.end() || *it != triangle) return 0.0f;
     const auto e = static_cast<std::size_t>(it - lights.emitters.begin());
     const TriangleCorners c = corners(scene.geometry, triangle);
+    const SphericalTriangle spherical = make_spherical_triangle(x, c.p0, c.p1, c.p2);
+    if (sample_by_solid_angle(spherical)) return lights.choice_probability[e] * static_cast<float>(1.0 / spherical.solid_angle);
     const Vec3 n_w = normalize(cross(c.p1 - c.p0, c.p2 - c.p0));
     return lights.choice_probability[e] * area_to_solid_angle(x, y, n_w, lights.emitter_areas[e]);
 }
