@@ -382,6 +382,8 @@ void run_path_error_bench(const std::string& file, const PathErrorOptions& o, st
     Table table;
     table.header = {"render", "spp", "render s", "samples/s", "RMSE", "relMSE", "relMSE × s"};
     table.right = {false, true, true, true, true, true, true};
+    double largest_rel_mse = 0;
+    int largest_spp = 0;
     auto measure = [&](int spp, const std::string& label) {
         const RenderSettings s = path_settings(scene, o.width, o.height, spp, o.max_depth, file);
         const RenderJob job = make_render_job(scene, bvh, s);
@@ -391,6 +393,10 @@ void run_path_error_bench(const std::string& file, const PathErrorOptions& o, st
         table.rows.push_back({label, std::to_string(spp), seconds(t.seconds),
                               thousands(std::uint64_t(std::llround(sps))), scientific(e.rmse), scientific(e.rel_mse),
                               scientific(e.rel_mse * t.seconds)});
+        if (label == "fixed spp" && spp >= largest_spp) {
+            largest_spp = spp;
+            largest_rel_mse = e.rel_mse;
+        }
         return sps;
     };
     // Warm-up (thread pool, caches), not reported.
@@ -405,9 +411,17 @@ void run_path_error_bench(const std::string& file, const PathErrorOptions& o, st
     const int fit = std::clamp(int(o.budget_seconds * rate / pixels), 1, kMaxSpp);
     std::cerr << "sombra-bench: " << name << ": equal time, " << fit << " spp\n";
     measure(fit, "**equal time " + seconds(o.budget_seconds) + " s**");
+    // The reference is noisy too: its MSE, by the 1/spp law from the largest
+    // fixed render's, is part of every measured MSE (the two are independent).
+    const int largest = o.fixed_spp.empty() ? 0 : *std::max_element(o.fixed_spp.begin(), o.fixed_spp.end());
     out << "Scene " << name << ", " << o.width << "×" << o.height << ", path, max depth " << o.max_depth
         << ", bvh; reference " << o.reference_spp << " spp (seed 1), renders seed 0.\n\n";
     out << to_markdown(table);
+    if (largest > 0 && largest_rel_mse > 0) {
+        out << "\nThe reference's own noise, estimated as relMSE(" << largest << " spp) × " << largest << " / "
+            << o.reference_spp << " = " << scientific(largest_rel_mse * largest / o.reference_spp)
+            << ", is included in each relMSE above (reference and render are independent, so their MSEs add).\n";
+    }
 }
 
 }  // namespace sombra::bench
