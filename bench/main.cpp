@@ -10,6 +10,7 @@
 #include "core/error.h"
 #include "growth_bench.h"
 #include "load_bench.h"
+#include "path_bench.h"
 #include "scene_bench.h"
 
 int main(int argc, char** argv) {
@@ -47,11 +48,53 @@ int main(int argc, char** argv) {
     growth->add_option("--height", growth_options.height, "Image height")->capture_default_str();
     growth->add_option("--csv", growth_options.csv, "Also write the numbers as CSV to this file");
 
+    PathBenchOptions path_options;
+    std::vector<std::string> path_files;
+    CLI::App* path = app.add_subcommand("path", "Path-trace scenes with every backend (bvh, embree), alternating");
+    path->add_option("scene", path_files, "Scene files (.json); rendered with integrator = path")
+        ->required()
+        ->check(CLI::ExistingFile);
+    path->add_option("--reps", path_options.reps, "Timed renders per backend (median reported)")
+        ->check(CLI::Range(1, 1000))
+        ->capture_default_str();
+    path->add_option("--width", path_options.width, "Image width")->check(CLI::Range(1, 4096))->capture_default_str();
+    path->add_option("--height", path_options.height, "Image height")->check(CLI::Range(1, 4096))->capture_default_str();
+    path->add_option("--spp", path_options.spp, "Samples per pixel")->check(CLI::Range(1, 65536))->capture_default_str();
+    path->add_option("--max-depth", path_options.max_depth, "Most scattering events on a path")
+        ->check(CLI::Range(0, 1024))
+        ->capture_default_str();
+
+    PathErrorOptions error_options;
+    std::string error_file;
+    std::string cache_dir = error_options.cache_dir.string();
+    CLI::App* path_error = app.add_subcommand(
+        "path-error", "Path tracing's error against a converged reference, at fixed spp and at equal time");
+    path_error->add_option("scene", error_file, "Scene file (.json)")->required()->check(CLI::ExistingFile);
+    path_error->add_option("--width", error_options.width, "Image width")->check(CLI::Range(1, 4096))->capture_default_str();
+    path_error->add_option("--height", error_options.height, "Image height")->check(CLI::Range(1, 4096))->capture_default_str();
+    path_error->add_option("--max-depth", error_options.max_depth, "Most scattering events on a path")
+        ->check(CLI::Range(0, 1024))
+        ->capture_default_str();
+    path_error->add_option("--reference-spp", error_options.reference_spp, "Samples per pixel of the reference")
+        ->check(CLI::Range(1, 65536))
+        ->capture_default_str();
+    path_error->add_option("--spp", error_options.fixed_spp, "Fixed sample counts to measure")
+        ->delimiter(',')
+        ->check(CLI::Range(1, 65536))
+        ->capture_default_str();
+    path_error->add_option("--budget", error_options.budget_seconds, "Seconds for the equal-time render")
+        ->check(CLI::Range(0.001, 3600.0))
+        ->capture_default_str();
+    path_error->add_option("--cache-dir", cache_dir, "Where the reference image is cached")->capture_default_str();
+
     CLI11_PARSE(app, argc, argv);
+    error_options.cache_dir = cache_dir;
     try {
         if (*scenes) run_scene_bench(scene_files, scene_options, std::cout);
         if (*load) run_load_bench(obj_file, load_reps, std::cout);
         if (*growth) run_growth_bench(model_files, growth_options, std::cout);
+        if (*path) run_path_bench(path_files, path_options, std::cout);
+        if (*path_error) run_path_error_bench(error_file, error_options, std::cout);
     } catch (const sombra::Error& e) {
         std::cerr << "sombra-bench: error: " << e.what() << '\n';
         return 1;
