@@ -95,6 +95,9 @@ inline std::string material_problem(const Material& m) {
     if (!in_unit_range(m.kd) || !in_unit_range(m.ks)) return "material '" + m.name + "': kd or ks outside [0, 1]";
     if (!is_finite(m.ke) || min_component(m.ke) < 0) return "material '" + m.name + "': ke not finite and >= 0";
     if (!std::isfinite(m.shininess) || m.shininess < 0) return "material '" + m.name + "': bad shininess";
+    if (!in_unit_range(m.kr) || !in_unit_range(m.kt)) return "material '" + m.name + "': kr or kt outside [0, 1]";
+    if (!(m.ior > 1) || !std::isfinite(m.ior)) return "material '" + m.name + "': ior not finite and > 1";
+    if (!(m.roughness >= 0 && m.roughness <= 1)) return "material '" + m.name + "': roughness outside [0, 1]";
     return {};
 }
 

@@ -101,11 +101,11 @@ seed_ply() {
   return 0
 }
 
-# Scene seeds: every scene with its objects' files pointed at the target's
-# m.obj, and once more at m.ply.
+# Scene seeds: every scene (and the version-2 seeds of fuzz/seeds/scene)
+# with its objects' files pointed at the target's m.obj, and once more at m.ply.
 seed_scene() {
   local corpus="$1" json name
-  for json in "$root"/scenes/*.json "$shared"/scenes/*.json; do
+  for json in "$root"/scenes/*.json "$shared"/scenes/*.json "$root"/fuzz/seeds/scene/*.json; do
     [ -f "$json" ] || continue
     name="$(basename "$json" .json)"
     sed 's/"file"[[:space:]]*:[[:space:]]*"[^"]*"/"file": "m.obj"/g' "$json" | add_seed "$corpus" "$name-obj"

@@ -93,6 +93,11 @@ int run_render(const CliOptions& o) {
         for (const std::string& w : diag.warnings) std::cerr << "sombra: warning: " << one_line(w) << '\n';
 
         const RenderSettings settings = resolve_settings(scene.render, o);
+        // After the overrides: --integrator path silences it, --integrator direct may cause it.
+        if (settings.integrator == IntegratorKind::Direct && needs_path_integrator(scene))
+            std::cerr << "sombra: warning: " << one_line(o.input)
+                      << ": the direct integrator lights with point lights only: quad lights and the environment "
+                         "are only seen, mirror and glass reflect nothing from point lights; use --integrator path\n";
         const AccelKind kind = *parse_accel_kind(o.accel);  // the command line checked the name
 
         const auto build_start = Clock::now();

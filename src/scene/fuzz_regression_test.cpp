@@ -68,6 +68,29 @@ TEST_F(FuzzRegression, EveryReproducerLoadsOrFailsCleanly) {
     EXPECT_GE(replayed, 2u);  // at least those tested one by one below
 }
 
+// The hand-written seeds of the version-2 keys (fuzz/seeds/scene) load
+// through the harness and pass its checks.
+TEST_F(FuzzRegression, VersionTwoSceneSeedsLoad) {
+    const fs::path seeds = fs::path(SOMBRA_SOURCE_DIR) / "fuzz" / "seeds" / "scene";
+    std::size_t count = 0;
+    for (const fs::directory_entry& entry : fs::directory_iterator(seeds)) {
+        SCOPED_TRACE(entry.path().string());
+        std::string problem = "threw";
+        EXPECT_NO_THROW(problem = fuzz::run_input(fuzz::Target::Scene, read_bytes(entry.path()), folder));
+        EXPECT_EQ(problem, "");
+        // And they load, not merely fail cleanly.
+        Diagnostics diag;
+        const fs::path staged = fuzz::stage_input(fuzz::Target::Scene, read_bytes(entry.path()), folder);
+        try {
+            load_scene_file(staged, diag);
+        } catch (const Error& e) {
+            ADD_FAILURE() << e.what();
+        }
+        ++count;
+    }
+    EXPECT_GE(count, 4u);
+}
+
 // The harness itself: a good input loads and passes the checks, and a broken
 // invariant is reported (so the replays above can fail).
 TEST_F(FuzzRegression, HarnessLoadsAGoodInputAndSeesABrokenOne) {

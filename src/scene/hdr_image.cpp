@@ -16,6 +16,7 @@
 #include <string>
 
 #include "core/error.h"
+#include "core/format.h"
 #include "scene/scene.h"
 
 namespace sombra {
@@ -44,24 +45,31 @@ void check_size(const std::filesystem::path& path, std::int64_t width, std::int6
                                        " per side and " + std::to_string(kMaxPixels) + " in all");
 }
 
-// The first negative, NaN or infinite value, in reading order, is an error.
-void check_pixels(const std::filesystem::path& path, const HdrImage& image) {
+// The first NaN or infinite value, in reading order, is an error; so is the
+// first negative one, unless the options read negatives as 0. Returns how many
+// values were read as 0.
+std::size_t check_pixels(const std::filesystem::path& path, HdrImage& image, const HdrReadOptions& options) {
     const std::size_t pixels = static_cast<std::size_t>(image.width) * static_cast<std::size_t>(image.height);
+    std::size_t clamped = 0;
     for (std::size_t p = 0; p < pixels; ++p) {
-        const char* problem = nullptr;
-        for (std::size_t c = 0; c < 3 && !problem; ++c) {
-            const float v = image.rgb[3 * p + c];
+        std::string problem;
+        for (std::size_t c = 0; c < 3 && problem.empty(); ++c) {
+            float& v = image.rgb[3 * p + c];
             if (std::isnan(v)) problem = "NaN";
             else if (std::isinf(v)) problem = "infinite";
-            else if (v < 0.0f) problem = "negative";
+            else if (v < 0.0f && options.clamp_negative) {
+                v = 0.0f;
+                ++clamped;
+            } else if (v < 0.0f) problem = "negative (" + format_number(v) + ")" + options.negative_hint;
         }
-        if (problem) {
+        if (!problem.empty()) {
             const auto x = p % static_cast<std::size_t>(image.width);
             const auto y = p / static_cast<std::size_t>(image.width);
             throw Error(path.string(),
                         "pixel (" + std::to_string(x) + ", " + std::to_string(y) + ") is " + problem);
         }
     }
+    return clamped;
 }
 
 HdrImage read_exr(const std::filesystem::path& path) {
@@ -176,7 +184,9 @@ HdrImage read_radiance(const std::filesystem::path& path) {
 
 }  // namespace
 
-HdrImage read_hdr_image(const std::filesystem::path& path) {
+HdrImage read_hdr_image(const std::filesystem::path& path) { return read_hdr_image(path, HdrReadOptions{}); }
+
+HdrImage read_hdr_image(const std::filesystem::path& path, const HdrReadOptions& options, std::size_t* clamped_values) {
     const std::string extension = lowercase(path.extension().string());
     if (extension != ".exr" && extension != ".hdr")
         throw Error(path.string(), "unsupported image format \"" + path.extension().string() +
@@ -186,7 +196,8 @@ HdrImage read_hdr_image(const std::filesystem::path& path) {
     if (std::filesystem::is_directory(path, ec)) throw Error(path.string(), "is a folder, not an image");
 
     HdrImage image = extension == ".exr" ? read_exr(path) : read_radiance(path);
-    check_pixels(path, image);
+    const std::size_t clamped = check_pixels(path, image, options);
+    if (clamped_values) *clamped_values = clamped;
     return image;
 }
 

@@ -3,7 +3,9 @@
 // .hdr files, checked so that the renderer can trust every pixel.
 #pragma once
 
+#include <cstddef>
 #include <filesystem>
+#include <string>
 #include <vector>
 
 namespace sombra {
@@ -28,7 +30,22 @@ struct HdrImage {
 // than kMaxImageSide per side or kMaxPixels in all (src/scene/scene.h;
 // checked from the header, before the pixels are allocated), or holds a
 // negative, NaN or infinite value: the message names the first such pixel in
-// reading order, e.g. "pixel (3, 7) is negative".
+// reading order, e.g. "pixel (3, 7) is negative (-0.25)".
 HdrImage read_hdr_image(const std::filesystem::path& path);
+
+// How read_hdr_image treats negative values. NaN and infinity are errors whatever these say.
+struct HdrReadOptions {
+    // Read negative values as 0 instead of failing (resampled maps often ring
+    // slightly below 0); the count of values so read is returned.
+    bool clamp_negative = false;
+    // Appended to the "is negative" message when clamp_negative is off, e.g.
+    // the way to opt in ("; add ... to read negative values as 0").
+    std::string negative_hint;
+};
+
+// read_hdr_image with options; `clamped_values`, when given, receives the
+// number of channel values read as 0 (always 0 unless clamp_negative).
+HdrImage read_hdr_image(const std::filesystem::path& path, const HdrReadOptions& options,
+                        std::size_t* clamped_values = nullptr);
 
 }  // namespace sombra

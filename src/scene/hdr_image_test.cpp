@@ -209,12 +209,60 @@ TEST(HdrImage, NegativeNanAndInfinitePixelsNameThePixel) {
         float bad;
         const char* what;
     };
-    for (const Case& c : {Case{-0.5f, "negative"}, Case{nan, "NaN"}, Case{inf, "infinite"}, Case{-inf, "infinite"}}) {
+    for (const Case& c : {Case{-0.5f, "negative (-0.5)"}, Case{nan, "NaN"}, Case{inf, "infinite"}, Case{-inf, "infinite"}}) {
         std::vector<float> rgb(3 * 4 * 3, 1.0f);
         rgb[3 * (2 * 4 + 1) + 2] = c.bad;  // pixel (1, 2), blue
         rgb[3 * (2 * 4 + 3) + 0] = -1.0f;  // a later one, not named
         write_exr(folder.path / "bad.exr", 4, 3, rgb);
         EXPECT_EQ(error_of(folder.path / "bad.exr"), std::string("pixel (1, 2) is ") + c.what);
+    }
+}
+
+TEST(HdrImage, NegativeHintIsAppended) {
+    TempFolder folder;
+    std::vector<float> rgb(3 * 2 * 2, 1.0f);
+    rgb[3 * 1 + 0] = -2.0f;  // pixel (1, 0), red
+    write_exr(folder.path / "neg.exr", 2, 2, rgb);
+    try {
+        read_hdr_image(folder.path / "neg.exr", HdrReadOptions{false, "; try X"});
+        FAIL() << "expected an error";
+    } catch (const Error& e) {
+        EXPECT_EQ(e.message(), "pixel (1, 0) is negative (-2); try X");
+    }
+}
+
+TEST(HdrImage, ClampNegativeReadsNegativesAsZeroAndCountsThem) {
+    TempFolder folder;
+    std::vector<float> rgb(3 * 3 * 2, 0.5f);
+    rgb[0] = -1.0f;
+    rgb[3 * 4 + 2] = -0.25f;
+    rgb[3 * 5 + 1] = -99.7f;
+    write_exr(folder.path / "neg.exr", 3, 2, rgb);
+    std::size_t clamped = 1234;
+    const HdrImage image = read_hdr_image(folder.path / "neg.exr", HdrReadOptions{true, {}}, &clamped);
+    EXPECT_EQ(clamped, 3u);
+    ASSERT_EQ(image.rgb.size(), rgb.size());
+    for (std::size_t i = 0; i < rgb.size(); ++i) EXPECT_EQ(image.rgb[i], rgb[i] < 0 ? 0.0f : rgb[i]) << i;
+
+    // Nothing to clamp: the count is 0.
+    write_exr(folder.path / "ok.exr", 1, 1, {1, 2, 3});
+    read_hdr_image(folder.path / "ok.exr", HdrReadOptions{true, {}}, &clamped);
+    EXPECT_EQ(clamped, 0u);
+}
+
+TEST(HdrImage, ClampNegativeKeepsNanAndInfinityErrors) {
+    TempFolder folder;
+    for (const float bad : {std::numeric_limits<float>::quiet_NaN(), std::numeric_limits<float>::infinity()}) {
+        std::vector<float> rgb(3 * 2, -1.0f);
+        rgb[4] = bad;  // pixel (1, 0), green
+        write_exr(folder.path / "bad.exr", 2, 1, rgb);
+        try {
+            read_hdr_image(folder.path / "bad.exr", HdrReadOptions{true, {}});
+            FAIL() << "expected an error for " << bad;
+        } catch (const Error& e) {
+            EXPECT_EQ(e.message().rfind("pixel (1, 0) is ", 0), 0u) << e.message();
+            EXPECT_EQ(e.message().find("negative"), std::string::npos) << e.message();
+        }
     }
 }
 

@@ -49,8 +49,10 @@ private:
     std::vector<std::string> sources_;
 };
 
-// Kd → kd; Ks > 0 in any channel → Phong with ks and shininess Ns, else
-// diffuse; Ke → ke. Colours are clamped to [0, 1] (Ke only to >= 0, it is a
+// illum 5 → mirror with kr = Ks; illum 7 → dielectric with ior = Ni (1.5
+// when Ni is missing or <= 1) and kt = Tf (1 when Tf is missing, which
+// tinyobjloader reports as 0 0 0); otherwise Kd → kd; Ks > 0 in any channel
+// → Phong with ks and shininess Ns, else diffuse (spec §5, §11). Ke → ke. Colours are clamped to [0, 1] (Ke only to >= 0, it is a
 // radiance) and Ns to [0, kMaxMtlShininess], each with a warning at `where`.
 Material material_from_mtl(const tinyobj::material_t& mtl, const std::string& where, Diagnostics& diag);
 
@@ -107,7 +109,16 @@ Material material_from_mtl(const tinyobj::material_t& mtl, const std::string& wh
     const Vec3 ks = clamp_rgb(mtl.specular, 1, "Ks", mtl, where, diag);
     // Emission is a radiance: unbounded above, but it must stay finite.
     m.ke = clamp_rgb(mtl.emission, std::numeric_limits<float>::infinity(), "Ke", mtl, where, diag);
-    if (max_component(ks) > 0) {
+    if (mtl.illum == 5) {
+        m.type = MaterialType::Mirror;
+        m.kr = ks;
+    } else if (mtl.illum == 7) {
+        m.type = MaterialType::Dielectric;
+        const float ni = static_cast<float>(mtl.ior);
+        m.ior = ni > 1 && std::isfinite(ni) ? ni : 1.5f;
+        const Vec3 tf = clamp_rgb(mtl.transmittance, 1, "Tf", mtl, where, diag);
+        m.kt = max_component(tf) > 0 ? tf : Vec3{1.0f};
+    } else if (max_component(ks) > 0) {
         m.type = MaterialType::Phong;
         m.ks = ks;
         const float ns = static_cast<float>(mtl.shininess);

@@ -10,6 +10,7 @@ namespace {
 
 using testing::shared_dir;
 using testing::TempFolder;
+namespace fs = std::filesystem;
 
 const Material* find_material(const LoadedMesh& loaded, const std::string& name) {
     for (const Material& m : loaded.materials) {
@@ -150,6 +151,47 @@ TEST(ObjMaterials, NoMtlAtAllGivesOneDefaultMaterial) {
     EXPECT_EQ(loaded.materials[0].kd, default_material().kd);
     EXPECT_EQ(loaded.mesh.material_ids, std::vector<std::uint32_t>{0});
     EXPECT_TRUE(diag.warnings.empty());
+}
+
+// MTL version 2 (spec §11): illum 5 is a mirror with kr = Ks, illum 7 glass
+// with ior = Ni (1.5 when missing or <= 1) and kt = Tf (1 when missing).
+TEST(ObjMaterials, Illum5IsAMirrorAndIllum7Glass) {
+    TempFolder folder;
+    folder.write("m.mtl",
+                 "newmtl mirror\nKs 0.9 0.8 0.7\nillum 5\n"
+                 "newmtl glass\nNi 1.33\nTf 0.9 1 0.8\nillum 7\n"
+                 "newmtl plain_glass\nillum 7\n"
+                 "newmtl low_ni\nNi 0.9\nillum 7\nKe 1 2 3\n"
+                 "newmtl phong\nKd 0.2 0.2 0.2\nKs 0.5 0.5 0.5\nillum 2\n");
+    const fs::path obj = folder.write("m.obj",
+                                      "mtllib m.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\n"
+                                      "usemtl mirror\nf 1 2 3\nusemtl glass\nf 1 2 3\nusemtl plain_glass\nf 1 2 3\n"
+                                      "usemtl low_ni\nf 1 2 3\nusemtl phong\nf 1 2 3\n");
+    Diagnostics diag;
+    const LoadedMesh loaded = load_obj(obj, diag);
+    EXPECT_TRUE(diag.warnings.empty()) << diag.warnings.front();
+    ASSERT_EQ(loaded.mesh.triangle_count(), 5u);
+
+    const Material& mirror = material_of(loaded, 0);
+    EXPECT_EQ(mirror.type, MaterialType::Mirror);
+    EXPECT_EQ(mirror.kr, (Vec3{0.9f, 0.8f, 0.7f}));
+
+    const Material& glass = material_of(loaded, 1);
+    EXPECT_EQ(glass.type, MaterialType::Dielectric);
+    EXPECT_FLOAT_EQ(glass.ior, 1.33f);
+    EXPECT_EQ(glass.kt, (Vec3{0.9f, 1.0f, 0.8f}));
+
+    const Material& plain = material_of(loaded, 2);
+    EXPECT_EQ(plain.type, MaterialType::Dielectric);
+    EXPECT_EQ(plain.ior, 1.5f);
+    EXPECT_EQ(plain.kt, Vec3{1.0f});
+
+    const Material& low = material_of(loaded, 3);
+    EXPECT_EQ(low.type, MaterialType::Dielectric);
+    EXPECT_EQ(low.ior, 1.5f);
+    EXPECT_EQ(low.ke, (Vec3{1, 2, 3}));
+
+    EXPECT_EQ(material_of(loaded, 4).type, MaterialType::Phong);
 }
 
 }  // namespace

@@ -79,4 +79,10 @@ struct Scene {
     TriangleMesh geometry;  // all objects, world space; material_ids index materials
 };
 
+// True when the scene holds version-2 content that the direct integrator
+// cannot light with (spec §10): quad lights (materials that emit from the
+// front only), an environment map, or mirror or dielectric materials on some
+// triangle. Emissive triangles of version 1 (ke, Ke) do not count.
+bool needs_path_integrator(const Scene& scene);
+
 }  // namespace sombra

@@ -11,6 +11,7 @@
 #include <numbers>
 #include <optional>
 #include <sstream>
+#include <utility>
 
 #include "scene/mesh_file.h"
 #include "scene/scene_json.h"
@@ -85,11 +86,21 @@ void append_object(Scene& scene, const LoadedMesh& loaded, const ObjectSpec& spe
         out.positions.push_back(q);
     }
 
+    // A mirroring transform (negative determinant) reverses every triangle's
+    // winding; swapping two corners restores it, so the winding normal keeps
+    // its side of the surface (spec §11, "sides for glass"). The normal and
+    // uv corners swap with them.
+    const bool mirrored = determinant3(spec.transform) < 0;
+    const auto wound = [mirrored](Index3 t) {
+        if (mirrored) std::swap(t[1], t[2]);
+        return t;
+    };
+
     const std::uint32_t vertex_count = static_cast<std::uint32_t>(in.positions.size());
     for (const Index3& t : in.triangles) {
         if (t[0] >= vertex_count || t[1] >= vertex_count || t[2] >= vertex_count)
             throw Error(mesh_name, "a triangle refers to a vertex that does not exist");
-        out.triangles.push_back({t[0] + position_base, t[1] + position_base, t[2] + position_base});
+        out.triangles.push_back(wound({t[0] + position_base, t[1] + position_base, t[2] + position_base}));
     }
 
     // Normals: inverse transpose, renormalised; those that vanish or blow up are dropped.
@@ -115,7 +126,7 @@ void append_object(Scene& scene, const LoadedMesh& loaded, const ObjectSpec& spe
                     const std::uint32_t n = corners[c];
                     mapped[c] = n < usable.size() && usable[n] ? normal_base + n : kNoNormal;
                 }
-                out.normal_indices.push_back(mapped);
+                out.normal_indices.push_back(wound(mapped));
             }
         }
     }
@@ -134,7 +145,7 @@ void append_object(Scene& scene, const LoadedMesh& loaded, const ObjectSpec& spe
             for (const Index3& corners : in.uv_indices) {
                 Index3 mapped;
                 for (int c = 0; c < 3; ++c) mapped[c] = corners[c] < in.uvs.size() ? uv_base + corners[c] : kNoUv;
-                out.uv_indices.push_back(mapped);
+                out.uv_indices.push_back(wound(mapped));
             }
         }
     }
@@ -201,14 +212,21 @@ Scene load_scene_file(const fs::path& path, Diagnostics& diag) {
 Scene load_scene_text(const std::string& text, const fs::path& path, Diagnostics& diag) {
     const SceneJson s{path.string(), diag};
     const Json root = parse_scene_json(text, s.name);
-    expect_keys(s, root, "", {"render", "background", "camera", "materials", "lights", "objects"});
+    expect_keys(s, root, "", {"render", "background", "environment", "camera", "materials", "lights", "objects"});
 
     Scene scene;
     if (const Json* v = find_member(root, "render")) scene.render = read_render(s, *v, "/render");
     if (const Json* v = find_member(root, "background")) scene.background = read_rgb(s, *v, "/background");
     scene.camera = read_camera(s, require_member(s, root, "", "camera"), "/camera");
     if (const Json* v = find_member(root, "materials")) scene.materials = read_materials(s, *v, "/materials");
-    if (const Json* v = find_member(root, "lights")) scene.lights = read_lights(s, *v, "/lights");
+    SceneLights lights;
+    if (const Json* v = find_member(root, "lights")) lights = read_lights(s, *v, "/lights");
+    scene.lights = std::move(lights.points);
+    if (const Json* v = find_member(root, "environment")) {
+        if (find_member(root, "background"))
+            json_fail(s, "/environment", "give either 'background' or 'environment', not both (the map replaces the background)");
+        scene.environment = read_environment(s, *v, "/environment", path.parent_path());
+    }
 
     std::map<std::string, std::uint32_t, std::less<>> material_index;
     for (std::size_t i = 0; i < scene.materials.size(); ++i)
@@ -221,6 +239,15 @@ Scene load_scene_text(const std::string& text, const fs::path& path, Diagnostics
     specs.reserve(objects.size());
     for (std::size_t i = 0; i < objects.size(); ++i)
         specs.push_back(read_object(s, objects[i], json_child("/objects", i), path, material_index));
+
+    // Quad lights join the geometry after the objects, through the same
+    // assembly: each is a two-triangle mesh with its own material.
+    std::vector<LoadedMesh> quad_meshes;
+    std::vector<ObjectSpec> quad_specs;
+    for (const QuadLight& q : lights.quads) {
+        quad_meshes.push_back(make_quad_light_mesh(q));
+        quad_specs.push_back(ObjectSpec{q.pointer, "quad light " + q.pointer, std::nullopt, Transform{}});
+    }
 
     // Load everything first so the world arrays are sized once, exactly. A
     // file used by several objects (one sphere, five materials) is read once.
@@ -251,6 +278,10 @@ Scene load_scene_text(const std::string& text, const fs::path& path, Diagnostics
         uvs += m.uvs.size();
         any_uvs = any_uvs || m.has_uvs();
     }
+    for (const LoadedMesh& q : quad_meshes) {
+        positions += q.mesh.positions.size();
+        triangles += q.mesh.triangles.size();
+    }
     // Indices are 32-bit; kNoNormal is reserved.
     constexpr std::size_t kMaxIndex = std::numeric_limits<std::uint32_t>::max() - 1;
     if (positions > kMaxIndex || normals > kMaxIndex || uvs > kMaxIndex || triangles > kMaxIndex)
@@ -273,6 +304,7 @@ Scene load_scene_text(const std::string& text, const fs::path& path, Diagnostics
         // Free each file's mesh after its last object: peak memory stays near two copies.
         if (last_use[mesh_of[i]] == i) meshes[mesh_of[i]] = LoadedMesh{};
     }
+    for (std::size_t i = 0; i < quad_meshes.size(); ++i) append_object(scene, quad_meshes[i], quad_specs[i], s);
     return scene;
 }
 

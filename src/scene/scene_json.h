@@ -7,6 +7,7 @@
 #pragma once
 
 #include <cstdint>
+#include <filesystem>
 #include <initializer_list>
 #include <nlohmann/json.hpp>
 #include <string>
@@ -66,7 +67,8 @@ Vec3 read_vec3(const SceneJson& s, const Json& v, std::string_view pointer);
 Vec3 read_rgb(const SceneJson& s, const Json& v, std::string_view pointer);
 const std::string& read_string(const SceneJson& s, const Json& v, std::string_view pointer);
 
-// "render": {width, height, spp, seed}; absent members keep their defaults.
+// "render": {width, height, spp, seed, integrator ("direct" | "path"),
+// max_depth (0 … kMaxDepth)}; absent members keep their defaults.
 RenderSettings read_render(const SceneJson& s, const Json& v, std::string_view pointer);
 
 // "camera": exactly one of the basis form (origin, left, up, forward: non-zero,
@@ -77,9 +79,36 @@ CameraSpec read_camera(const SceneJson& s, const Json& v, std::string_view point
 // when kd + ks exceeds 1 in a channel (not energy conserving).
 std::vector<Material> read_materials(const SceneJson& s, const Json& v, std::string_view pointer);
 
-// "lights": [{type, position, intensity}]; "type" may be left out ("point" is
-// the only kind).
-std::vector<PointLight> read_lights(const SceneJson& s, const Json& v, std::string_view pointer);
+// A quad light (spec §10) as written: the parallelogram corner, corner +
+// edge1, corner + edge1 + edge2, corner + edge2, emitting `radiance` toward
+// the side edge1 × edge2 points to.
+struct QuadLight {
+    std::string pointer;  // "/lights/2", for messages
+    Vec3 corner, edge1, edge2;
+    Vec3 radiance;  // finite, each component >= 0
+};
+
+struct SceneLights {
+    std::vector<PointLight> points;
+    std::vector<QuadLight> quads;
+};
+
+// "lights": [{type: "point" (the default when left out), position, intensity}
+// | {type: "quad", corner, edge1, edge2, radiance}]. Zero or parallel quad
+// edges are an error.
+SceneLights read_lights(const SceneJson& s, const Json& v, std::string_view pointer);
+QuadLight read_quad_light(const SceneJson& s, const Json& v, std::string_view pointer);
+
+// The two triangles of a quad light, (p, p+a, p+a+b) and (p, p+a+b, p+b), as
+// a loaded mesh with one material: diffuse kd = 0, ke = radiance, emitting
+// from the front only. No normals, no texture coordinates.
+LoadedMesh make_quad_light_mesh(const QuadLight& quad);
+
+// "environment": {file, scale, rotate_y, clamp_negative}: the map read with
+// read_hdr_image, its file relative to `folder`. clamp_negative (a sombra
+// extension, default false) reads negative values as 0 with one warning.
+EnvironmentMap read_environment(const SceneJson& s, const Json& v, std::string_view pointer,
+                                const std::filesystem::path& folder);
 
 // "transform": a list of steps, the first listed acting first. The result is
 // finite and invertible.

@@ -1,5 +1,5 @@
-// The sections of a scene file: render settings, camera, materials, lights
-// and transforms, validated as spec §2–§8 ask.
+// The sections of a scene file: render settings, camera, lights and
+// transforms (materials: scene_json_materials.cpp), validated as spec §2–§8 ask.
 #include "scene/scene_json.h"
 
 #include <cmath>
@@ -77,47 +77,6 @@ CameraLookAt read_camera_look_at(const SceneJson& s, const Json& v, std::string_
     return c;
 }
 
-Vec3 read_unit_interval_rgb(const SceneJson& s, const Json& object, std::string_view pointer, std::string_view key) {
-    const std::string p = json_child(pointer, key);
-    const Vec3 c = read_vec3(s, require_member(s, object, pointer, key), p);
-    if (min_component(c) < 0 || max_component(c) > 1)
-        json_fail(s, p, std::string(key) + " components must lie in [0, 1]");
-    return c;
-}
-
-Material read_material(const SceneJson& s, const std::string& name, const Json& v, std::string_view pointer) {
-    expect_keys(s, v, pointer, {"type", "kd", "ks", "shininess", "ke"});
-    const std::string type_pointer = json_child(pointer, "type");
-    const std::string& type = read_string(s, require_member(s, v, pointer, "type"), type_pointer);
-
-    Material m;
-    m.name = name;
-    if (type == "diffuse") {
-        m.type = MaterialType::Diffuse;
-        for (const char* phong_only : {"ks", "shininess"})
-            if (find_member(v, phong_only))
-                json_fail(s, json_child(pointer, phong_only),
-                          std::string("'") + phong_only + "' applies only to phong materials");
-    } else if (type == "phong") {
-        m.type = MaterialType::Phong;
-    } else {
-        json_fail(s, type_pointer, "unknown material type '" + type + "' (expected 'diffuse' or 'phong')");
-    }
-
-    m.kd = read_unit_interval_rgb(s, v, pointer, "kd");
-    if (m.type == MaterialType::Phong) {
-        m.ks = read_unit_interval_rgb(s, v, pointer, "ks");
-        const std::string p = json_child(pointer, "shininess");
-        m.shininess = read_float(s, require_member(s, v, pointer, "shininess"), p);
-        if (m.shininess < 0) json_fail(s, p, "shininess must be non-negative");
-        if (breaks_energy_conservation(m))
-            json_warn(s, pointer,
-                      "kd + ks exceeds 1 in some channel: the material reflects more light than it receives");
-    }
-    if (const Json* ke = find_member(v, "ke")) m.ke = read_rgb(s, *ke, json_child(pointer, "ke"));
-    return m;
-}
-
 Transform read_matrix(const SceneJson& s, const Json& v, std::string_view pointer) {
     if (!v.is_array() || v.size() != 16) json_fail(s, pointer, "expected an array of 16 numbers (row-major 4x4)");
     Transform t;
@@ -169,7 +128,7 @@ std::string transform_problem(const Transform& t) {
 }  // namespace
 
 RenderSettings read_render(const SceneJson& s, const Json& v, std::string_view pointer) {
-    expect_keys(s, v, pointer, {"width", "height", "spp", "seed"});
+    expect_keys(s, v, pointer, {"width", "height", "spp", "seed", "integrator", "max_depth"});
     RenderSettings r;
     if (const Json* w = find_member(v, "width"))
         r.width = static_cast<int>(read_integer(s, *w, json_child(pointer, "width"), 1, kMaxImageSide));
@@ -178,6 +137,18 @@ RenderSettings read_render(const SceneJson& s, const Json& v, std::string_view p
     if (const Json* spp = find_member(v, "spp"))
         r.spp = static_cast<int>(read_integer(s, *spp, json_child(pointer, "spp"), 1, kMaxSpp));
     if (const Json* seed = find_member(v, "seed")) r.seed = read_unsigned(s, *seed, json_child(pointer, "seed"));
+    if (const Json* integrator = find_member(v, "integrator")) {
+        const std::string p = json_child(pointer, "integrator");
+        const std::string& name = read_string(s, *integrator, p);
+        if (name == "direct")
+            r.integrator = IntegratorKind::Direct;
+        else if (name == "path")
+            r.integrator = IntegratorKind::Path;
+        else
+            json_fail(s, p, "unknown integrator '" + name + "' (expected 'direct' or 'path')");
+    }
+    if (const Json* depth = find_member(v, "max_depth"))
+        r.max_depth = static_cast<int>(read_integer(s, *depth, json_child(pointer, "max_depth"), 0, kMaxDepth));
     if (const std::string problem = render_settings_problem(r); !problem.empty()) json_fail(s, pointer, problem);
     return r;
 }
@@ -199,35 +170,26 @@ CameraSpec read_camera(const SceneJson& s, const Json& v, std::string_view point
     return camera;
 }
 
-std::vector<Material> read_materials(const SceneJson& s, const Json& v, std::string_view pointer) {
-    expect_object(s, v, pointer);
-    std::vector<Material> materials;
-    materials.reserve(v.size());
-    for (auto it = v.begin(); it != v.end(); ++it) {
-        const std::string p = json_child(pointer, it.key());
-        expect_object(s, it.value(), p);
-        materials.push_back(read_material(s, it.key(), it.value(), p));
-    }
-    return materials;
-}
-
-std::vector<PointLight> read_lights(const SceneJson& s, const Json& v, std::string_view pointer) {
+SceneLights read_lights(const SceneJson& s, const Json& v, std::string_view pointer) {
     expect_array(s, v, pointer);
-    std::vector<PointLight> lights;
-    lights.reserve(v.size());
+    SceneLights lights;
     for (std::size_t i = 0; i < v.size(); ++i) {
         const std::string p = json_child(pointer, i);
         const Json& light = v[i];
-        expect_keys(s, light, p, {"type", "position", "intensity"});
-        if (const Json* type = find_member(light, "type")) {
-            const std::string& name = read_string(s, *type, json_child(p, "type"));
-            if (name != "point")
-                json_fail(s, json_child(p, "type"), "unknown light type '" + name + "' (only 'point' is supported)");
+        expect_object(s, light, p);
+        std::string type = "point";
+        if (const Json* t = find_member(light, "type")) type = read_string(s, *t, json_child(p, "type"));
+        if (type == "quad") {
+            lights.quads.push_back(read_quad_light(s, light, p));
+            continue;
         }
+        if (type != "point")
+            json_fail(s, json_child(p, "type"), "unknown light type '" + type + "' (expected 'point' or 'quad')");
+        expect_keys(s, light, p, {"type", "position", "intensity"});
         PointLight l;
         l.position = read_vec3(s, require_member(s, light, p, "position"), json_child(p, "position"));
         l.intensity = read_rgb(s, require_member(s, light, p, "intensity"), json_child(p, "intensity"));
-        lights.push_back(l);
+        lights.points.push_back(l);
     }
     return lights;
 }

@@ -1,0 +1,21 @@
+// Questions about a loaded scene's content that the app asks before rendering.
+#include <vector>
+
+#include "scene/scene.h"
+
+namespace sombra {
+
+bool needs_path_integrator(const Scene& scene) {
+    if (scene.environment) return true;
+    std::vector<bool> used(scene.materials.size(), false);
+    for (const std::uint32_t id : scene.geometry.material_ids)
+        if (id < used.size()) used[id] = true;
+    for (std::size_t i = 0; i < scene.materials.size(); ++i) {
+        const Material& m = scene.materials[i];
+        if (!used[i]) continue;
+        if (m.emits_front_only || m.type == MaterialType::Mirror || m.type == MaterialType::Dielectric) return true;
+    }
+    return false;
+}
+
+}  // namespace sombra

@@ -1,0 +1,123 @@
+// The "materials" section of a scene file: the types of spec §5 and §11, each
+// with its own required keys, defaults and ranges.
+#include <algorithm>
+#include <cmath>
+
+#include "scene/scene_json.h"
+
+namespace sombra {
+namespace {
+
+// The keys each type accepts; anything else is an error (a typo, or a key of another type).
+struct TypeKeys {
+    const char* type;
+    std::initializer_list<std::string_view> keys;
+};
+const TypeKeys kTypes[] = {
+    {"diffuse", {"type", "kd", "ke"}},
+    {"phong", {"type", "kd", "ks", "shininess", "ke"}},
+    {"mirror", {"type", "kr", "ke"}},
+    {"dielectric", {"type", "ior", "kt", "ke"}},
+    {"conductor", {"type", "ks", "roughness", "ke"}},
+};
+constexpr const char* kTypeList = "'diffuse', 'phong', 'mirror', 'dielectric' or 'conductor'";
+
+Vec3 read_unit_interval_rgb(const SceneJson& s, const Json& v, std::string_view pointer, std::string_view key) {
+    const Vec3 c = read_vec3(s, v, pointer);
+    if (min_component(c) < 0 || max_component(c) > 1)
+        json_fail(s, pointer, std::string(key) + " components must lie in [0, 1]");
+    return c;
+}
+
+Vec3 require_unit_interval_rgb(const SceneJson& s, const Json& object, std::string_view pointer,
+                               std::string_view key) {
+    return read_unit_interval_rgb(s, require_member(s, object, pointer, key), json_child(pointer, key), key);
+}
+
+// The keys of another type that `type` does not take: "'ks' applies only to
+// phong and conductor materials" says more than "unknown key".
+void reject_foreign_keys(const SceneJson& s, const Json& v, std::string_view pointer, const TypeKeys& type) {
+    for (const auto& [key, value] : v.items()) {
+        if (std::find(type.keys.begin(), type.keys.end(), key) != type.keys.end()) continue;
+        std::string owners;
+        for (const TypeKeys& other : kTypes)
+            if (std::find(other.keys.begin(), other.keys.end(), key) != other.keys.end())
+                owners += (owners.empty() ? "" : " and ") + std::string(other.type);
+        if (owners.empty()) json_fail(s, json_child(pointer, key), "unknown key '" + key + "'");
+        json_fail(s, json_child(pointer, key),
+                  "'" + key + "' applies only to " + owners + " materials, not " + type.type);
+    }
+}
+
+void read_phong(const SceneJson& s, const Json& v, std::string_view pointer, Material& m) {
+    m.ks = require_unit_interval_rgb(s, v, pointer, "ks");
+    const std::string p = json_child(pointer, "shininess");
+    m.shininess = read_float(s, require_member(s, v, pointer, "shininess"), p);
+    if (m.shininess < 0) json_fail(s, p, "shininess must be non-negative");
+    if (breaks_energy_conservation(m))
+        json_warn(s, pointer, "kd + ks exceeds 1 in some channel: the material reflects more light than it receives");
+}
+
+void read_dielectric(const SceneJson& s, const Json& v, std::string_view pointer, Material& m) {
+    if (const Json* ior = find_member(v, "ior")) {
+        const std::string p = json_child(pointer, "ior");
+        m.ior = read_float(s, *ior, p);
+        if (!(m.ior > 1)) json_fail(s, p, "ior must be greater than 1 (the outside is vacuum, ior 1)");
+    }
+    if (const Json* kt = find_member(v, "kt")) m.kt = read_unit_interval_rgb(s, *kt, json_child(pointer, "kt"), "kt");
+}
+
+void read_conductor(const SceneJson& s, const Json& v, std::string_view pointer, Material& m) {
+    m.ks = require_unit_interval_rgb(s, v, pointer, "ks");
+    const std::string p = json_child(pointer, "roughness");
+    m.roughness = read_float(s, require_member(s, v, pointer, "roughness"), p);
+    if (m.roughness < 0 || m.roughness > 1) json_fail(s, p, "roughness must lie in [0, 1]");
+}
+
+Material read_material(const SceneJson& s, const std::string& name, const Json& v, std::string_view pointer) {
+    expect_object(s, v, pointer);
+    const std::string type_pointer = json_child(pointer, "type");
+    const std::string& type = read_string(s, require_member(s, v, pointer, "type"), type_pointer);
+    if (type == "pbr")
+        json_fail(s, type_pointer, "material type 'pbr' is not supported yet (expected " + std::string(kTypeList) + ")");
+    const TypeKeys* keys = nullptr;
+    for (const TypeKeys& t : kTypes)
+        if (type == t.type) keys = &t;
+    if (!keys) json_fail(s, type_pointer, "unknown material type '" + type + "' (expected " + kTypeList + ")");
+    reject_foreign_keys(s, v, pointer, *keys);
+
+    Material m;
+    m.name = name;
+    if (type == "diffuse") {
+        m.type = MaterialType::Diffuse;
+        m.kd = require_unit_interval_rgb(s, v, pointer, "kd");
+    } else if (type == "phong") {
+        m.type = MaterialType::Phong;
+        m.kd = require_unit_interval_rgb(s, v, pointer, "kd");
+        read_phong(s, v, pointer, m);
+    } else if (type == "mirror") {
+        m.type = MaterialType::Mirror;
+        m.kr = require_unit_interval_rgb(s, v, pointer, "kr");
+    } else if (type == "dielectric") {
+        m.type = MaterialType::Dielectric;
+        read_dielectric(s, v, pointer, m);
+    } else {
+        m.type = MaterialType::Conductor;
+        read_conductor(s, v, pointer, m);
+    }
+    if (const Json* ke = find_member(v, "ke")) m.ke = read_rgb(s, *ke, json_child(pointer, "ke"));
+    return m;
+}
+
+}  // namespace
+
+std::vector<Material> read_materials(const SceneJson& s, const Json& v, std::string_view pointer) {
+    expect_object(s, v, pointer);
+    std::vector<Material> materials;
+    materials.reserve(v.size());
+    for (auto it = v.begin(); it != v.end(); ++it)
+        materials.push_back(read_material(s, it.key(), it.value(), json_child(pointer, it.key())));
+    return materials;
+}
+
+}  // namespace sombra
