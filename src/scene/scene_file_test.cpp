@@ -348,18 +348,32 @@ TEST(SharedScenes, LoadWithTheirTriangleCounts) {
     }
 }
 
-// Every scene the repository ships must load, warning-free.
+// Every scene the repository ships must load, warning-free, except for the
+// one warning a scene asks for by reading a shared environment map with
+// "clamp_negative" (the shared maps hold a few negative values). Scenes that
+// use ../shared are skipped, with a note, where it is absent.
 TEST(RepositoryScenes, AllLoad) {
     const fs::path scenes = fs::path(SOMBRA_SOURCE_DIR) / "scenes";
     if (!fs::is_directory(scenes)) GTEST_SKIP() << "no scenes/ at " << SOMBRA_SOURCE_DIR;
+    const bool have_shared = fs::is_directory(fs::path(SOMBRA_SHARED_DIR) / "models");
     int loaded = 0;
     for (const fs::directory_entry& entry : fs::directory_iterator(scenes)) {
         if (entry.path().extension() != ".json") continue;
         SCOPED_TRACE(entry.path().string());
+        std::ifstream in(entry.path());
+        const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+        if (!have_shared && text.find("../../shared/") != std::string::npos) {
+            std::cout << "note: " << entry.path().filename() << " needs shared/, skipped\n";
+            continue;
+        }
         Diagnostics diag;
         const Scene s = load_scene_file(entry.path(), diag);
         EXPECT_GT(s.geometry.triangle_count(), 0u);
-        EXPECT_TRUE(diag.warnings.empty()) << diag.warnings.front();
+        for (const std::string& w : diag.warnings) {
+            const bool asked_for = text.find("\"clamp_negative\": true") != std::string::npos &&
+                                   w.find("negative values read as 0") != std::string::npos;
+            EXPECT_TRUE(asked_for) << w;
+        }
         ++loaded;
     }
     EXPECT_GT(loaded, 0);
