@@ -80,8 +80,9 @@ LightTreeChoice sample_light_tree(const LightTree& tree, Vec3 x, Vec3 n, float u
 
 // The probability that sample_light_tree, called with the same x and n,
 // returns `emitter`: the same float operations, so it equals the sampled
-// probability exactly. Summed over all emitters it is 1, or 0 where every
-// emitter's importance is 0 (the sample fails).
+// probability exactly. Summed over all emitters it is at most 1: the rest is
+// the probability that the descent reaches a node whose children both have
+// importance 0 (a looser parent bound let it through), where the sample fails.
 float pmf_light_tree(const LightTree& tree, Vec3 x, Vec3 n, std::uint32_t emitter);
 
 }  // namespace sombra
