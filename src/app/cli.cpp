@@ -59,6 +59,10 @@ CliParse parse_command_line(int argc, const char* const* argv) {
         ->check(CLI::IsMember({"direct", "path"}));
     render->add_option("--max-depth", o.max_depth, "Most scattering events on a path, 0 to 1024 (path; overrides the scene)")
         ->check(CLI::Range(0, kMaxDepth));
+    render->add_option("--light-tree", o.light_tree,
+                       "Choose emitters by a light tree: auto (from 8 emitters on), on, or off (in proportion to power)")
+        ->check(CLI::IsMember({"auto", "on", "off"}))
+        ->capture_default_str();
     render->add_option("--stats-json", o.stats_json, "Write the run's statistics as JSON to FILE");
     render->add_flag("-q,--quiet", o.quiet, "No progress bar, no summary");
 

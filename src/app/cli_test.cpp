@@ -45,6 +45,14 @@ TEST_F(Cli, OverridesAndQuiet) {
     EXPECT_EQ(fs::file_size(dir_ / "out.pfm"), std::string("PF\n8 4\n-1.0\n").size() + 8 * 4 * 3 * 4);
 }
 
+TEST_F(Cli, LightTreeChoices) {
+    write_text(dir_ / "s.json", scene());
+    for (const char* choice : {"auto", "on", "off"}) {
+        const RunResult r = run(std::string("render s.json -o out.pfm --width 8 --height 4 --integrator path --quiet --light-tree ") + choice);
+        EXPECT_EQ(r.status, 0) << choice << ": " << r.err;
+    }
+}
+
 TEST_F(Cli, DefaultOutputIsRenderPng) {
     write_text(dir_ / "s.json", scene());
     ASSERT_EQ(run("render s.json --quiet").status, 0);
@@ -62,7 +70,8 @@ TEST_F(Cli, QuickLookOfAModel) {
 TEST_F(Cli, WrongCommandLinesExitWithTwo) {
     for (const char* args : {"", "render", "paint s.json", "render s.json --bogus", "render s.json --spp", "render s.json --spp x",
                              "render s.json --accel nope", "render s.json --threads -1",
-                             "render s.json --threads 100000", "render s.json --seed -1", "render s.json --exposure x"}) {
+                             "render s.json --threads 100000", "render s.json --seed -1", "render s.json --exposure x",
+                             "render s.json --light-tree maybe"}) {
         const RunResult r = run(args);
         EXPECT_EQ(r.status, 2) << args << ": " << r.err;
         EXPECT_EQ(r.err.rfind("sombra: error: ", 0), 0u) << args << ": " << r.err;

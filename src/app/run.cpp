@@ -104,7 +104,10 @@ int run_render(const CliOptions& o) {
         const Accel accel = make_accel(scene.geometry, kind);
         stats.build_seconds = seconds_since(build_start);
 
-        const RenderJob job = make_render_job(scene, accel, settings, o.threads);
+        const LightSelection selection = o.light_tree == "on"    ? LightSelection::Tree
+                                         : o.light_tree == "off" ? LightSelection::Power
+                                                                 : LightSelection::Automatic;
+        const RenderJob job = make_render_job(scene, accel, settings, o.threads, selection);
 
         interrupt.set_phase(InterruptWatcher::Phase::Rendering);
         const auto render_start = Clock::now();

@@ -57,12 +57,19 @@ float area_to_solid_angle(Vec3 x, Vec3 y, Vec3 unit_normal, float area) {
     return dist2 / (cos_y * area);
 }
 
+// The probability of choosing some emitter rather than the environment.
+float emitters_choice_probability(const LightSet& lights) {
+    if (lights.emitters.empty()) return 0.0f;
+    return lights.choice_cdf[lights.emitters.size() - 1];
+}
+
 }  // namespace
 
-LightSet make_light_set(const Scene& scene, Environment environment, bool sample_environment_light) {
+LightSet make_light_set(const Scene& scene, Environment environment, bool sample_environment_light, LightSelection selection) {
     LightSet lights;
     const TriangleMesh& mesh = scene.geometry;
     std::vector<float> power;
+    std::vector<LightTreeEmitter> tree_emitters;
     for (std::uint32_t t = 0; t < mesh.triangle_count(); ++t) {
         const Material& m = scene.materials[mesh.material_ids[t]];
         if (!is_emissive(m)) continue;
@@ -74,6 +81,15 @@ LightSet make_light_set(const Scene& scene, Environment environment, bool sample
         lights.emitter_areas.push_back(area);
         const float sides = m.emits_front_only ? 1.0f : 2.0f;
         power.push_back(std::max(luminance(m.ke), 1e-6f * max_component(m.ke)) * area * kPi * sides);
+        tree_emitters.push_back({c.p0, c.p1, c.p2, power.back(), !m.emits_front_only});
+    }
+    lights.use_tree = selection == LightSelection::Tree ||
+                      (selection == LightSelection::Automatic && tree_emitters.size() >= kLightTreeMinEmitters);
+    if (lights.use_tree) {
+        // Powers that underflow or overflow float would weigh nothing in the tree.
+        for (LightTreeEmitter& e : tree_emitters)
+            if (!(e.power > 0.0f) || !std::isfinite(e.power)) e.power = 1.0f;
+        lights.tree = make_light_tree(tree_emitters);
     }
     lights.environment = std::move(environment);
     lights.environment_lights = sample_environment_light && !is_black(lights.environment);
@@ -99,12 +115,24 @@ LightSet make_light_set(const Scene& scene, Environment environment, bool sample
     return lights;
 }
 
-bool sample_light(const LightSet& lights, const Scene& scene, Vec3 x, float u_choice, float u1, float u2, LightSample& out) {
+bool sample_light(const LightSet& lights, const Scene& scene, Vec3 x, Vec3 n, float u_choice, float u1, float u2,
+                  LightSample& out) {
     if (!lights.has_sampled_lights()) return false;
-    const auto it = std::upper_bound(lights.choice_cdf.begin(), lights.choice_cdf.end(), u_choice);
-    const auto chosen = static_cast<std::size_t>(std::min<std::ptrdiff_t>(it - lights.choice_cdf.begin(),
-                                                                          static_cast<std::ptrdiff_t>(lights.choice_cdf.size()) - 1));
-    const float choice = lights.choice_probability[chosen];
+    std::size_t chosen = 0;
+    float choice = 0;
+    const float emitter_share = emitters_choice_probability(lights);
+    if (lights.use_tree && u_choice < emitter_share) {
+        // The emitters' share of u_choice, stretched back onto [0, 1), picks in the tree.
+        const float u = std::min(u_choice / emitter_share, 0x1.fffffep-1f);
+        const LightTreeChoice tc = sample_light_tree(lights.tree, x, n, u);
+        chosen = tc.emitter;
+        choice = emitter_share * tc.probability;
+    } else {
+        const auto it = std::upper_bound(lights.choice_cdf.begin(), lights.choice_cdf.end(), u_choice);
+        chosen = static_cast<std::size_t>(std::min<std::ptrdiff_t>(it - lights.choice_cdf.begin(),
+                                                                   static_cast<std::ptrdiff_t>(lights.choice_cdf.size()) - 1));
+        choice = lights.choice_probability[chosen];
+    }
     if (!(choice > 0.0f)) return false;
 
     if (chosen == lights.emitters.size()) {
@@ -154,15 +182,19 @@ bool sample_light(const LightSet& lights, const Scene& scene, Vec3 x, float u_ch
     return true;
 }
 
-float pdf_light_triangle(const LightSet& lights, const Scene& scene, std::uint32_t triangle, Vec3 x, Vec3 y) {
+float pdf_light_triangle(const LightSet& lights, const Scene& scene, std::uint32_t triangle, Vec3 x, Vec3 n, Vec3 y) {
     const auto it = std::lower_bound(lights.emitters.begin(), lights.emitters.end(), triangle);
     if (it == lights.emitters.end() || *it != triangle) return 0.0f;
     const auto e = static_cast<std::size_t>(it - lights.emitters.begin());
+    const float choice = lights.use_tree ? emitters_choice_probability(lights) *
+                                               pmf_light_tree(lights.tree, x, n, static_cast<std::uint32_t>(e))
+                                         : lights.choice_probability[e];
+    if (!(choice > 0.0f)) return 0.0f;
     const TriangleCorners c = corners(scene.geometry, triangle);
     const SphericalTriangle spherical = make_spherical_triangle(x, c.p0, c.p1, c.p2);
-    if (sample_by_solid_angle(spherical)) return lights.choice_probability[e] * static_cast<float>(1.0 / spherical.solid_angle);
+    if (sample_by_solid_angle(spherical)) return choice * static_cast<float>(1.0 / spherical.solid_angle);
     const Vec3 n_w = normalize(cross(c.p1 - c.p0, c.p2 - c.p0));
-    return lights.choice_probability[e] * area_to_solid_angle(x, y, n_w, lights.emitter_areas[e]);
+    return choice * area_to_solid_angle(x, y, n_w, lights.emitter_areas[e]);
 }
 
 float pdf_light_environment(const LightSet& lights, Vec3 dir) {

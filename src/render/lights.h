@@ -2,8 +2,11 @@
 // "from x, where are you and how much arrives" and never trace rays
 // themselves (the integrator casts the shadow ray up to the returned
 // distance). Point lights are delta lights, each visited at every vertex;
-// emissive triangles and the environment are sampled one at a time, chosen
-// in proportion to their power.
+// emissive triangles and the environment are sampled one at a time: the
+// environment in proportion to its share of the power, and among the
+// emitters in proportion to power or, in scenes of many emitters, by a light
+// tree that weighs each by what it can send to the shading point
+// (render/light_tree.h).
 #pragma once
 
 #include <cmath>
@@ -13,9 +16,22 @@
 
 #include "render/environment.h"
 #include "render/interaction.h"
+#include "render/light_tree.h"
 #include "scene/scene.h"
 
 namespace sombra {
+
+// How sample_light chooses among the emissive triangles.
+enum class LightSelection {
+    Automatic,  // the tree from kLightTreeMinEmitters emitters on, power below
+    Power,      // in proportion to power, wherever the shading point is
+    Tree,       // by the light tree
+};
+
+// From this many emitters on, Automatic uses the light tree. Below it the
+// tree's descent costs more than it saves (and with one or two emitters,
+// the typical quad light, it would change nothing of note).
+constexpr std::size_t kLightTreeMinEmitters = 8;
 
 struct LightSet {
     // Emissive triangles (material ke > 0), in increasing triangle order
@@ -29,6 +45,11 @@ struct LightSet {
     // running sums for sampling.
     std::vector<float> choice_probability;
     std::vector<float> choice_cdf;
+    // The tree over `emitters` (same indices), when use_tree: the emitters
+    // are then chosen by it, each with the probability the tree gives times
+    // the emitters' share of the power (1 − the environment's).
+    LightTree tree;
+    bool use_tree = false;
 
     bool has_sampled_lights() const { return !choice_probability.empty(); }
 };
@@ -37,7 +58,8 @@ struct LightSet {
 // `sample_environment_light` (under path tracing) and is otherwise only seen.
 // Emitter power = luminance(ke) · area · π (twice for two-sided emitters);
 // the environment's = its power proxy · π R², R the scene's bounding radius.
-LightSet make_light_set(const Scene& scene, Environment environment, bool sample_environment_light);
+LightSet make_light_set(const Scene& scene, Environment environment, bool sample_environment_light,
+                        LightSelection selection = LightSelection::Automatic);
 
 // What arrives at a point from one sampled light.
 struct LightSample {
@@ -48,17 +70,20 @@ struct LightSample {
     float pdf = 0;   // solid-angle density, including the probability of choosing this light
 };
 
-// Samples one emitter or the environment for the point x: u_choice picks
-// the light, (u1, u2) a point on it: on a triangle uniform over the solid
+// Samples one emitter or the environment for the point x with unit shading
+// normal n (zero when unknown; the light tree then leaves out its cosine
+// bound, which only sharpens the choice): u_choice picks the light, (u1, u2) a point on it: on a triangle uniform over the solid
 // angle it subtends from x (render/spherical_triangle.h) when that is
 // between 10⁻³ and 6 sr, else uniform by area.
 // Returns false when nothing can be sampled or the sample carries nothing
 // (the emitter is seen edge-on or from its dark side).
-bool sample_light(const LightSet& lights, const Scene& scene, Vec3 x, float u_choice, float u1, float u2, LightSample& out);
+bool sample_light(const LightSet& lights, const Scene& scene, Vec3 x, Vec3 n, float u_choice, float u1, float u2,
+                  LightSample& out);
 
-// The solid-angle density with which sample_light, called at x, picks
-// point y on emitter triangle `triangle` (0 when it is not a light).
-float pdf_light_triangle(const LightSet& lights, const Scene& scene, std::uint32_t triangle, Vec3 x, Vec3 y);
+// The solid-angle density with which sample_light, called at x with normal
+// n (the same x and n), picks point y on emitter triangle `triangle` (0 when
+// it is not a light, or the light tree gives it no chance from x).
+float pdf_light_triangle(const LightSet& lights, const Scene& scene, std::uint32_t triangle, Vec3 x, Vec3 n, Vec3 y);
 
 // The solid-angle density with which sample_light picks direction `dir` on
 // the environment (0 when the environment is not sampled).

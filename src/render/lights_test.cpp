@@ -60,7 +60,7 @@ TEST(Lights, SampledDensityEqualsTheDensityOfTheSampledPoint) {
     for (int k = 0; k < n; ++k) {
         const auto i = static_cast<std::uint32_t>(k);
         LightSample ls;
-        if (!sample_light(lights, scene, x, hash_to_unit(i, 1), hash_to_unit(i, 2), hash_to_unit(i, 3), ls)) continue;
+        if (!sample_light(lights, scene, x, Vec3{0, 1, 0}, hash_to_unit(i, 1), hash_to_unit(i, 2), hash_to_unit(i, 3), ls)) continue;
         ASSERT_TRUE(std::isfinite(ls.pdf));
         ASSERT_GT(ls.pdf, 0.0f);
         EXPECT_NEAR(length(ls.wi), 1.0f, 1e-5f);
@@ -72,7 +72,7 @@ TEST(Lights, SampledDensityEqualsTheDensityOfTheSampledPoint) {
         const bool bright = ls.target.y < 10;
         ++counts[bright ? 0 : 1];
         const std::uint32_t triangle = bright ? 1 : 2;
-        EXPECT_NEAR(ls.pdf, pdf_light_triangle(lights, scene, triangle, x, ls.target), 1e-3f * ls.pdf);
+        EXPECT_NEAR(ls.pdf, pdf_light_triangle(lights, scene, triangle, x, Vec3{0, 1, 0}, ls.target), 1e-3f * ls.pdf);
         EXPECT_EQ(ls.radiance, scene.materials[bright ? 1 : 2].ke);
     }
     // How often each light is chosen: binomial, |z| < 5.
@@ -90,7 +90,7 @@ TEST(Lights, OneSidedEmittersAreDarkFromBehind) {
     for (int k = 0; k < 2000; ++k) {
         const auto i = static_cast<std::uint32_t>(k);
         LightSample ls;
-        if (sample_light(lights, scene, above, hash_to_unit(i, 4), hash_to_unit(i, 5), hash_to_unit(i, 6), ls))
+        if (sample_light(lights, scene, above, Vec3{0.0f}, hash_to_unit(i, 4), hash_to_unit(i, 5), hash_to_unit(i, 6), ls))
             EXPECT_LT(ls.target.y, 10.0f);  // only the bright, two-sided one
     }
 }
@@ -102,7 +102,7 @@ TEST(Lights, NoSampledLightsWithoutEmittersOrEnvironment) {
     const LightSet lights = make_light_set(scene, make_constant_environment(Vec3{0.0f}), true);
     EXPECT_FALSE(lights.has_sampled_lights());
     LightSample ls;
-    EXPECT_FALSE(sample_light(lights, scene, {0, 0, 1}, 0.5f, 0.5f, 0.5f, ls));
+    EXPECT_FALSE(sample_light(lights, scene, {0, 0, 1}, Vec3{0.0f}, 0.5f, 0.5f, 0.5f, ls));
     // Under direct the background is only seen, never sampled.
     const LightSet direct = make_light_set(scene, make_constant_environment(Vec3{1.0f}), false);
     EXPECT_FALSE(direct.has_sampled_lights());

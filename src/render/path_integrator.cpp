@@ -24,7 +24,7 @@ constexpr int kRouletteStart = 3;
 Vec3 sample_one_light(const IntegratorContext& ctx, const SurfaceInteraction& si, const Material& material,
                       const BsdfPoint& bsdf_point, Vec3 wo, float u_choice, SampleStream::Pair u, RayCounters& counters) {
     LightSample ls;
-    if (!sample_light(*ctx.lights, *ctx.scene, si.position, u_choice, u.u1, u.u2, ls)) return Vec3{0.0f};
+    if (!sample_light(*ctx.lights, *ctx.scene, si.position, si.n_s, u_choice, u.u1, u.u2, ls)) return Vec3{0.0f};
     const Vec3 f = eval_bsdf(material, bsdf_point, wo, ls.wi) * std::fabs(dot(si.n_s, ls.wi));
     if (!(max_component(f) > 0.0f)) return Vec3{0.0f};
 
@@ -53,6 +53,7 @@ Vec3 trace_path(const IntegratorContext& ctx, const Ray& camera_ray, SampleStrea
     bool previous_delta = true;  // the camera "vertex" counts as delta: no MIS for what it sees
     float previous_pdf = 0.0f;   // the BSDF's solid-angle density of the last bounce
     Vec3 previous_position{0.0f};
+    Vec3 previous_normal{0.0f};  // its shading normal: the light tree's choice depends on both
     Ray ray = camera_ray;
     // The weight of an emitter or the environment reached by a BSDF-sampled
     // bounce whose density was bsdf_pdf, where next-event estimation would
@@ -86,7 +87,8 @@ Vec3 trace_path(const IntegratorContext& ctx, const Ray& camera_ray, SampleStrea
         if (max_component(le) > 0.0f) {
             const float w = previous_delta ? 1.0f
                                            : bounce_weight(previous_pdf, pdf_light_triangle(lights, scene, si.triangle,
-                                                                                            previous_position, si.position));
+                                                                                            previous_position, previous_normal,
+                                                                                            si.position));
             radiance += beta * le * w;
         }
         if (depth >= ctx.max_depth) break;
@@ -115,6 +117,7 @@ Vec3 trace_path(const IntegratorContext& ctx, const Ray& camera_ray, SampleStrea
         previous_delta = bs.delta;
         previous_pdf = bs.pdf;
         previous_position = si.position;
+        previous_normal = si.n_s;
         ray = Ray{spawn_origin(si, bs.wi), bs.wi};
         ++counters.bounce_rays;
 

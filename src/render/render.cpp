@@ -41,7 +41,8 @@ Vec3 render_pixel(const RenderJob& job, const IntegratorContext& ctx, int i, int
 
 }  // namespace
 
-RenderJob make_render_job(const Scene& scene, const Accel& accel, const RenderSettings& settings, int threads) {
+RenderJob make_render_job(const Scene& scene, const Accel& accel, const RenderSettings& settings, int threads,
+                          LightSelection light_selection) {
     RenderJob job;
     job.scene = &scene;
     job.accel = &accel;
@@ -52,7 +53,7 @@ RenderJob make_render_job(const Scene& scene, const Accel& accel, const RenderSe
     Environment environment = scene.environment ? make_map_environment(scene.environment->image, scene.environment->scale,
                                                                        scene.environment->rotate_y_degrees)
                                                 : make_constant_environment(scene.background);
-    job.lights = make_light_set(scene, std::move(environment), path);
+    job.lights = make_light_set(scene, std::move(environment), path, light_selection);
     return job;
 }
 

@@ -33,8 +33,10 @@ struct RenderJob {
 
 // The job for rendering `scene` with `accel` at `settings`, with the scene's
 // camera resolved for that image size and its lights gathered for the
-// integrator (under `path` the background is a constant environment light).
-RenderJob make_render_job(const Scene& scene, const Accel& accel, const RenderSettings& settings, int threads = 0);
+// integrator (under `path` the background is a constant environment light),
+// emitters chosen as `light_selection` says (render/lights.h).
+RenderJob make_render_job(const Scene& scene, const Accel& accel, const RenderSettings& settings, int threads = 0,
+                          LightSelection light_selection = LightSelection::Automatic);
 
 struct RenderOutput {
     Film film;
