@@ -5,9 +5,12 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <vector>
 
+#include "render/chi2_test_util.h"
 #include "render/sampler.h"
 
 namespace sombra {
@@ -80,6 +83,42 @@ TEST(Lights, SampledDensityEqualsTheDensityOfTheSampledPoint) {
         const double p = lights.choice_probability[static_cast<std::size_t>(l)];
         EXPECT_LT(std::fabs(counts[l] - n * p), 5 * std::sqrt(n * p * (1 - p)) + 1) << "light " << l;
     }
+}
+
+TEST(Lights, SmallDistantTrianglesAreSampledUniformlyByArea) {
+    // Seen from the floor, the far light subtends well under 1e-3 sr, so it
+    // is sampled by area: every cell of its 4-fold midpoint subdivision
+    // (16 equal-area triangles) gets 1/16 of the samples (χ², 15 dof).
+    Scene scene = two_emitters_and_a_floor();
+    scene.materials[1].ke = Vec3{0.0f};  // only the far light remains
+    const LightSet lights = make_light_set(scene, make_constant_environment(Vec3{0.0f}), true, LightSelection::Power);
+    ASSERT_EQ(lights.emitters.size(), 1u);
+    const Vec3 p0{5, 40, 5}, p1{5.5f, 40, 5}, p2{5, 40, 5.5f};
+    const int n = 4, samples = 32000;
+    std::vector<double> observed(static_cast<std::size_t>(n * n), 0.0);
+    for (int k = 0; k < samples; ++k) {
+        const auto i = static_cast<std::uint32_t>(k);
+        LightSample ls;
+        ASSERT_TRUE(sample_light(lights, scene, {0, 0, 0}, Vec3{0, 1, 0}, hash_to_unit(i, 7), hash_to_unit(i, 8),
+                                 hash_to_unit(i, 9), ls));
+        // Barycentrics of the target in the right-angled triangle.
+        const double b1 = (ls.target.x - p0.x) / (p1.x - p0.x), b2 = (ls.target.z - p0.z) / (p2.z - p0.z);
+        ASSERT_GE(b1, -1e-4);
+        ASSERT_GE(b2, -1e-4);
+        ASSERT_LE(b1 + b2, 1 + 1e-4);
+        const double f1 = std::clamp(b1 * n, 0.0, n - 1e-9), f2 = std::clamp(b2 * n, 0.0, n - 1e-9);
+        int a = static_cast<int>(f1), b = static_cast<int>(f2);
+        bool down = (f1 - a) + (f2 - b) > 1.0;
+        if (a + b >= n) b = n - 1 - a;
+        if (a + b + 1 >= n) down = false;  // rounding past the hypotenuse: the last up cell
+        // Up cells (a, b) with a + b < n number n(n+1)/2, down cells n(n−1)/2.
+        const int index = down ? n * (n + 1) / 2 + a * (n - 1) - a * (a - 1) / 2 + b : a * n - a * (a - 1) / 2 + b;
+        observed[static_cast<std::size_t>(index)] += 1;
+    }
+    double chi2 = 0;
+    const double expected = static_cast<double>(samples) / (n * n);
+    for (double o : observed) chi2 += (o - expected) * (o - expected) / expected;
+    EXPECT_GT(chi2::gamma_q(0.5 * (n * n - 1), 0.5 * chi2), 1e-3) << "chi2 " << chi2;
 }
 
 TEST(Lights, OneSidedEmittersAreDarkFromBehind) {
