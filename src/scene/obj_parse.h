@@ -1,15 +1,13 @@
-// OBJ text → positions, normals, texture coordinates, faces and the material directives, in
-// parallel over chunks of lines (spec §5, §9). What it reads and rejects is
-// what tinyobjloader did for sombra before (objsuite/README.md), except that
-// every error names its line and `usemtl` takes the rest of its line as the
-// name; the numbers are rounded correctly. MTL files are not read here.
-// One `f`, `l` or `p` line of an OBJ (obj_parse.cpp's per-line part): the
-// corner indices as tinyobjloader resolved them, and the index problems
-// sombra reports before anything else (0, beyond 32 bits, before the first
-// vertex, not a number).
-// The numbers of an OBJ line, read the way tinyobjloader decides what a
-// number is (so that sombra keeps its outcome on malformed files), with the
-// value rounded correctly (std::from_chars, the same float strtof gives).
+// OBJ text → positions, normals, texture coordinates, faces and the
+// material directives, in parallel over chunks of lines (spec §5, §9). What
+// it reads and rejects is what tinyobjloader did for sombra before
+// (objsuite/README.md), except that every error names its line and `usemtl`
+// takes the rest of its line as the name; numbers are read the way
+// tinyobjloader decides what a number is, but rounded correctly
+// (std::from_chars, the same float strtof gives). MTL files are not read
+// here. The per-line part (obj_parse_line.cpp) resolves one `f`, `l` or `p`
+// line's corner indices and reports the index problems sombra checks first
+// (0, beyond 32 bits, before the first vertex, not a number).
 #pragma once
 
 #include <cstdint>

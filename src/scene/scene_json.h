@@ -1,9 +1,7 @@
-// Private to the scene loader: parsing a scene file's JSON text and reading
-// typed values out of it, each failure naming its place as
+// Private to the scene loader: parsing a scene file's JSON text, reading
+// typed values out of it, and reading its sections (spec §2, §3, §5, §8,
+// §10, §11), each validated on its own. Every failure names its place as
 // "scene.json:line:col" (syntax) or "scene.json: /json/pointer" (meaning).
-// Private to the scene loader: the sections of a scene file (spec §2, §3, §5,
-// §8), each read and validated on its own. Every function throws Error naming
-// the JSON pointer of the offending value.
 #pragma once
 
 #include <cstdint>
