@@ -1,10 +1,11 @@
 #include "render/lights.h"
 
-#include "render/spherical_triangle.h"
-
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
+
+#include "render/spherical_triangle.h"
 
 namespace sombra {
 
