@@ -36,11 +36,14 @@ float bounding_radius(const TriangleMesh& mesh) {
 }
 
 // Triangles subtending a solid angle in this range are sampled uniformly
-// over it (spherical triangles); outside it by area. Below the range the
-// triangle is small enough that d² and cos θ barely vary over it, so area
-// sampling is as good and numerically safer; near 2π sr (x almost on the
-// triangle) Arvo's formulas lose precision.
-constexpr double kMinSphericalSolidAngle = 1e-3;
+// over it (spherical triangles); outside it by area. Below the range d² and
+// cos θ vary little over the triangle, so area sampling is nearly as good
+// and cheaper: measured (docs/performance.md, "Sampling triangle lights"),
+// the Cornell box's light (about 0.02 sr per triangle from the floor) is
+// sampled better per second by area, the spheres scene's large quad light
+// (0.1–0.4 sr) by solid angle. Near 2π sr (x almost on the triangle)
+// Arvo's formulas lose precision.
+constexpr double kMinSphericalSolidAngle = 0.05;
 constexpr double kMaxSphericalSolidAngle = 6.0;
 
 bool sample_by_solid_angle(const SphericalTriangle& t) {

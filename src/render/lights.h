@@ -74,7 +74,7 @@ struct LightSample {
 // normal n (zero when unknown; the light tree then leaves out its cosine
 // bound, which only sharpens the choice): u_choice picks the light, (u1, u2) a point on it: on a triangle uniform over the solid
 // angle it subtends from x (render/spherical_triangle.h) when that is
-// between 10⁻³ and 6 sr, else uniform by area.
+// between 0.05 and 6 sr, else uniform by area.
 // Returns false when nothing can be sampled or the sample carries nothing
 // (the emitter is seen edge-on or from its dark side).
 bool sample_light(const LightSet& lights, const Scene& scene, Vec3 x, Vec3 n, float u_choice, float u1, float u2,
