@@ -52,8 +52,9 @@ private:
 // illum 5 → mirror with kr = Ks; illum 7 → dielectric with ior = Ni (1.5
 // when Ni is missing or <= 1) and kt = Tf (1 when Tf is missing, which
 // tinyobjloader reports as 0 0 0); otherwise Kd → kd; Ks > 0 in any channel
-// → Phong with ks and shininess Ns, else diffuse (spec §5, §11). Ke → ke. Colours are clamped to [0, 1] (Ke only to >= 0, it is a
-// radiance) and Ns to [0, kMaxMtlShininess], each with a warning at `where`.
+// → Phong with ks and shininess Ns, else diffuse (spec §5, §11). Ke → ke.
+// Colours are clamped to [0, 1] (Ke only to >= 0, it is a radiance) and Ns
+// to [0, kMaxMtlShininess], each with a warning at `where`.
 Material material_from_mtl(const tinyobj::material_t& mtl, const std::string& where, Diagnostics& diag);
 
 inline constexpr float kMaxMtlShininess = 1e6f;
