@@ -83,6 +83,51 @@ double adaptive_simpson(const F& f, double a, double b, double eps, int min_dept
     return Rec{f, min_depth, max_depth, eps / 1024.0, rel}.run(a, b, fa, fm, fb, whole, eps, 0);
 }
 
+// Pearson's χ² of observed counts against expected ones, for any binning.
+struct Pearson {
+    double chi2 = 0;
+    int dof = 0;          // bins used (after pooling) − 1
+    double p_value = 1;   // Q(dof/2, χ²/2); 1 when fewer than 2 bins remain; 0 for a bad bin
+    long bad_bin = -1;    // a bin that expects nothing yet holds more than `slack` samples, or −1
+};
+
+// Bins expecting fewer than `min_expected` are pooled, smallest expectation
+// first, until the pooled group expects at least that; bins expecting 0 may
+// hold up to `slack` samples (integration error), more makes the test fail
+// with p = 0 and bad_bin set.
+inline Pearson pearson(const std::vector<double>& observed, const std::vector<double>& expected,
+                       double min_expected = 5, double slack = 0) {
+    Pearson res;
+    std::vector<std::size_t> order(observed.size());
+    for (std::size_t k = 0; k < order.size(); ++k) order[k] = k;
+    std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return expected[a] < expected[b]; });
+    double pooled_obs = 0, pooled_exp = 0;
+    int bins = 0;
+    for (const std::size_t k : order) {
+        if (expected[k] <= 0.0) {
+            if (observed[k] > slack) {
+                res.bad_bin = static_cast<long>(k);
+                res.p_value = 0;
+                return res;
+            }
+            pooled_obs += observed[k];
+        } else if (expected[k] < min_expected || (pooled_exp > 0 && pooled_exp < min_expected)) {
+            pooled_obs += observed[k];
+            pooled_exp += expected[k];
+        } else {
+            res.chi2 += (observed[k] - expected[k]) * (observed[k] - expected[k]) / expected[k];
+            ++bins;
+        }
+    }
+    if (pooled_exp > 0) {
+        res.chi2 += (pooled_obs - pooled_exp) * (pooled_obs - pooled_exp) / pooled_exp;
+        ++bins;
+    }
+    res.dof = bins - 1;
+    res.p_value = res.dof < 1 ? 1.0 : gamma_q(0.5 * res.dof, 0.5 * res.chi2);
+    return res;
+}
+
 struct Options {
     int cos_bins = 10;          // bins in cos θ of the frame: over [−1, 1], or [0, 1] when hemisphere
     int phi_bins = 20;          // bins in φ over [0, 2π)
@@ -179,43 +224,25 @@ Result run(const Frame& frame, const SampleFn& sample, const PdfFn& pdf, const O
         observed.push_back(n - successes);
         expected.push_back(n * std::max(0.0, 1.0 - res.pdf_integral));
     }
-    // Pool the bins, smallest expectation first, until each pooled group expects ≥ min_expected.
-    std::vector<std::size_t> order(observed.size());
-    for (std::size_t k = 0; k < order.size(); ++k) order[k] = k;
-    std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return expected[a] < expected[b]; });
-    double pooled_obs = 0, pooled_exp = 0;
-    int bins = 0;
-    for (const std::size_t k : order) {
-        if (expected[k] <= 0.0) {
-            // Nori's slack for integration error: a handful of samples where the pdf integrates to 0.
-            if (observed[k] > n * 1e-5) {
-                res.message = std::to_string(static_cast<long>(observed[k])) +
-                              (k == cells ? " failed samples though the pdf integrates to 1"
-                                          : " samples in bin (cos " + std::to_string(k / o.phi_bins) + ", phi " +
-                                                std::to_string(k % o.phi_bins) + ") whose pdf integrates to 0");
-                return res;
-            }
-            pooled_obs += observed[k];
-        } else if (expected[k] < o.min_expected || (pooled_exp > 0 && pooled_exp < o.min_expected)) {
-            pooled_obs += observed[k];
-            pooled_exp += expected[k];
-        } else {
-            res.chi2 += (observed[k] - expected[k]) * (observed[k] - expected[k]) / expected[k];
-            ++bins;
-        }
+    // Nori's slack for integration error: a handful of samples where the pdf integrates to 0.
+    const Pearson pearson_result = pearson(observed, expected, o.min_expected, n * 1e-5);
+    if (pearson_result.bad_bin >= 0) {
+        const auto k = static_cast<std::size_t>(pearson_result.bad_bin);
+        res.message = std::to_string(static_cast<long>(observed[k])) +
+                      (k == cells ? " failed samples though the pdf integrates to 1"
+                                  : " samples in bin (cos " + std::to_string(k / o.phi_bins) + ", phi " +
+                                        std::to_string(k % o.phi_bins) + ") whose pdf integrates to 0");
+        return res;
     }
-    if (pooled_exp > 0) {
-        res.chi2 += (pooled_obs - pooled_exp) * (pooled_obs - pooled_exp) / pooled_exp;
-        ++bins;
-    }
-    res.dof = bins - 1;
+    res.chi2 = pearson_result.chi2;
+    res.dof = pearson_result.dof;
     if (res.dof < 1) {
         res.p_value = 1;
         res.passed = true;
         res.message = "fewer than 2 bins: no test";
         return res;
     }
-    res.p_value = gamma_q(0.5 * res.dof, 0.5 * res.chi2);
+    res.p_value = pearson_result.p_value;
     res.passed = res.p_value > res.significance;
     res.message = "chi2 = " + std::to_string(res.chi2) + ", dof = " + std::to_string(res.dof) + ", p = " +
                   std::to_string(res.p_value) + " (level " + std::to_string(res.significance) +

@@ -9,66 +9,20 @@
 #include <random>
 #include <vector>
 
+#include "render/chi2_test_util.h"
+
 namespace sombra {
 namespace {
-
-// --- χ² goodness of fit (local to this file; see environment_test.cpp for the sphere) ---
-
-// Q(a, x) = Γ(a, x) / Γ(a), the regularized upper incomplete gamma function
-// (series for x < a + 1, else Lentz's continued fraction; Numerical Recipes §6.2).
-double gamma_q(double a, double x) {
-    if (x <= 0) return 1.0;
-    const double log_prefix = -x + a * std::log(x) - std::lgamma(a);
-    if (x < a + 1) {
-        double term = 1 / a, sum = term;
-        for (int n = 1; n < 10000 && std::fabs(term) > std::fabs(sum) * 1e-15; ++n) sum += term *= x / (a + n);
-        return 1 - sum * std::exp(log_prefix);
-    }
-    const double tiny = 1e-300;
-    double b = x + 1 - a, c = 1 / tiny, d = 1 / b, h = d;
-    for (int i = 1; i < 10000; ++i) {
-        const double an = -i * (i - a);
-        b += 2;
-        d = an * d + b;
-        d = std::fabs(d) < tiny ? tiny : d;
-        c = b + an / c;
-        c = std::fabs(c) < tiny ? tiny : c;
-        d = 1 / d;
-        h *= d * c;
-        if (std::fabs(d * c - 1) < 1e-15) break;
-    }
-    return std::exp(log_prefix) * h;
-}
 
 constexpr int kChi2Tests = 3;  // the χ² tests in this file, for Šidák's correction
 const double kAlpha = 1 - std::pow(1 - 0.01, 1.0 / kChi2Tests);
 
-// The p-value of observed counts against expected ones; cells expecting
-// fewer than 5 are merged (in order) with their neighbours first. An observed
-// count in a cell expecting nothing fails outright (p = 0).
-double chi2_p_value(const std::vector<double>& observed, const std::vector<double>& expected) {
-    double chi2 = 0, pooled_o = 0, pooled_e = 0;
-    int cells = 0;
-    for (std::size_t i = 0; i < observed.size(); ++i) {
-        if (expected[i] == 0 && observed[i] > 0) return 0.0;
-        pooled_o += observed[i];
-        pooled_e += expected[i];
-        if (pooled_e >= 5) {
-            chi2 += (pooled_o - pooled_e) * (pooled_o - pooled_e) / pooled_e;
-            ++cells;
-            pooled_o = pooled_e = 0;
-        }
-    }
-    if (pooled_e > 0) chi2 += (pooled_o - pooled_e) * (pooled_o - pooled_e) / pooled_e, ++cells;
-    return cells < 2 ? 1.0 : gamma_q((cells - 1) / 2.0, chi2 / 2);
-}
-
 const std::vector<float> kWeights = {0.0f, 3.0f, 1.0f, 0.0f, 0.0f, 0.25f, 7.5f, 2.0f, 0.0f, 0.5f, 0.0f};
 
 TEST(Chi2, IncompleteGammaKnownValues) {
-    EXPECT_NEAR(gamma_q(1, 2), std::exp(-2.0), 1e-12);  // Q(1, x) = e^-x
-    EXPECT_NEAR(gamma_q(0.5, 0.5 * 3.841458820694124), 0.05, 1e-9);  // χ²(1) at 95%
-    EXPECT_NEAR(gamma_q(5, 0.5 * 23.209251158954356), 0.01, 1e-9);  // χ²(10) at 99%
+    EXPECT_NEAR(chi2::gamma_q(1, 2), std::exp(-2.0), 1e-12);  // Q(1, x) = e^-x
+    EXPECT_NEAR(chi2::gamma_q(0.5, 0.5 * 3.841458820694124), 0.05, 1e-9);  // χ²(1) at 95%
+    EXPECT_NEAR(chi2::gamma_q(5, 0.5 * 23.209251158954356), 0.01, 1e-9);  // χ²(10) at 99%
 }
 
 TEST(Distribution1D, ProbabilitiesFollowTheWeights) {
@@ -133,7 +87,7 @@ TEST(Distribution1D, ContinuousSamplesFollowThePdfChi2) {
         observed[std::min(cells - 1, static_cast<int>(s.x * cells))] += 1;
     }
     for (int c = 0; c < cells; ++c) expected[c] = n * pdf(d, c / sub) / cells;
-    EXPECT_GT(chi2_p_value(observed, expected), kAlpha);
+    EXPECT_GT(chi2::pearson(observed, expected).p_value, kAlpha);
 }
 
 TEST(Distribution1D, AllZeroIsUniformAndEmptySamplesNothing) {
@@ -201,7 +155,7 @@ TEST(Distribution2D, SamplesFollowThePdfChi2AndSkipEmptyCells) {
         for (int i = 0; i < cw; ++i)
             expected[j * cw + i] = n * pdf(d, (static_cast<float>(i) + 0.5f) / static_cast<float>(cw),
                                                  (static_cast<float>(j) + 0.5f) / static_cast<float>(ch)) / (cw * ch);
-    EXPECT_GT(chi2_p_value(observed, expected), kAlpha);
+    EXPECT_GT(chi2::pearson(observed, expected).p_value, kAlpha);
 }
 
 TEST(Distribution2D, U1ChoosesTheColumnU2TheRow) {

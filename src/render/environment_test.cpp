@@ -15,38 +15,14 @@
 #include <random>
 #include <vector>
 
+#include "render/chi2_test_util.h"
+
 namespace sombra {
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 
-// --- χ² over the sphere (local to this file; a shared chi2_test_util.h is coming) ---
-
-// Q(a, x) = Γ(a, x) / Γ(a), the regularized upper incomplete gamma function
-// (series for x < a + 1, else Lentz's continued fraction; Numerical Recipes §6.2).
-double gamma_q(double a, double x) {
-    if (x <= 0) return 1.0;
-    const double log_prefix = -x + a * std::log(x) - std::lgamma(a);
-    if (x < a + 1) {
-        double term = 1 / a, sum = term;
-        for (int n = 1; n < 10000 && std::fabs(term) > std::fabs(sum) * 1e-15; ++n) sum += term *= x / (a + n);
-        return 1 - sum * std::exp(log_prefix);
-    }
-    const double tiny = 1e-300;
-    double b = x + 1 - a, c = 1 / tiny, d = 1 / b, h = d;
-    for (int i = 1; i < 10000; ++i) {
-        const double an = -i * (i - a);
-        b += 2;
-        d = an * d + b;
-        d = std::fabs(d) < tiny ? tiny : d;
-        c = b + an / c;
-        c = std::fabs(c) < tiny ? tiny : c;
-        d = 1 / d;
-        h *= d * c;
-        if (std::fabs(d * c - 1) < 1e-15) break;
-    }
-    return std::exp(log_prefix) * h;
-}
+// --- χ² over the sphere, with the texel edges as bin cuts ---
 
 constexpr int kChi2Tests = 3;  // χ² tests in this file, for Šidák's correction
 const double kAlpha = 1 - std::pow(1 - 0.01, 1.0 / kChi2Tests);
@@ -108,19 +84,7 @@ double sphere_chi2(const Environment& env, int n, std::uint32_t seed) {
                 }
             expected[c * np + p] = sum * n;
         }
-    double chi2 = 0, pooled_o = 0, pooled_e = 0;
-    int cells = 0;
-    for (std::size_t i = 0; i < observed.size(); ++i) {
-        if (expected[i] == 0 && observed[i] > 0) return 0.0;
-        pooled_o += observed[i];
-        pooled_e += expected[i];
-        if (pooled_e >= 5) {
-            chi2 += (pooled_o - pooled_e) * (pooled_o - pooled_e) / pooled_e;
-            ++cells;
-            pooled_o = pooled_e = 0;
-        }
-    }
-    return cells < 2 ? 1.0 : gamma_q((cells - 1) / 2.0, chi2 / 2);
+    return chi2::pearson(observed, expected).p_value;
 }
 
 // ∫ luminance(eval) dω by the midpoint rule on a fine (cos θ, φ) grid.

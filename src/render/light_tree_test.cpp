@@ -100,28 +100,14 @@ TEST(LightTree, PmfIsADistributionAndSamplingFollowsIt) {
             // MIS needs the very same float, not a close one.
             ASSERT_EQ(choice.probability, pmf_light_tree(tree, s.x, s.n, choice.emitter));
         }
-        // Pearson's χ², pooling categories expected to hold fewer than 5.
-        double chi2 = 0, pooled_expected = 0, pooled_observed = 0;
-        int dof = -1;
-        for (std::size_t i = 0; i < pmf.size(); ++i) {
-            const double expected = pmf[i] * n;
-            if (expected < 5) {
-                pooled_expected += expected;
-                pooled_observed += counts[i];
-                if (expected == 0) {
-                    EXPECT_EQ(counts[i], 0.0) << "category " << i;
-                }
-                continue;
-            }
-            chi2 += (counts[i] - expected) * (counts[i] - expected) / expected;
-            ++dof;
-        }
-        if (pooled_expected > 0) {
-            chi2 += (pooled_observed - pooled_expected) * (pooled_observed - pooled_expected) / pooled_expected;
-            ++dof;
-        }
-        ASSERT_GT(dof, 0);
-        EXPECT_GT(chi2::gamma_q(0.5 * dof, 0.5 * chi2), 1e-4) << "χ² " << chi2 << " with " << dof << " dof";
+        // Pearson's χ², pooling categories expected to hold fewer than 5; a
+        // category of pmf 0 must never be sampled.
+        std::vector<double> expected(pmf.size());
+        for (std::size_t i = 0; i < pmf.size(); ++i) expected[i] = pmf[i] * n;
+        const chi2::Pearson test = chi2::pearson(counts, expected);
+        EXPECT_EQ(test.bad_bin, -1) << "category of pmf 0 sampled";
+        ASSERT_GT(test.dof, 0);
+        EXPECT_GT(test.p_value, 1e-4) << "χ² " << test.chi2 << " with " << test.dof << " dof";
     }
 }
 
