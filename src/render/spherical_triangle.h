@@ -5,6 +5,7 @@
 #pragma once
 
 #include "core/vec3.h"
+#include "core/vec3d.h"
 
 namespace sombra {
 
@@ -12,7 +13,7 @@ namespace sombra {
 // corners and its solid angle Ω in steradians. Computed in double: Arvo's
 // formulas subtract nearly equal angles for small triangles.
 struct SphericalTriangle {
-    double a[3], b[3], c[3];  // unit directions from x to p0, p1, p2
+    Vec3d a{}, b{}, c{};      // unit directions from x to p0, p1, p2
     double solid_angle = 0;   // Ω; 0 when degenerate or seen edge-on
     double alpha = 0;         // the spherical triangle's angle at a
 };
