@@ -2,34 +2,17 @@
 // executable, one case per row of docs/robustness.md's version-2 table: one
 // "sombra: error:" line and exit 1, no image; and the one warning that the
 // direct integrator gives for content only the path integrator lights.
-#include <ImfChannelList.h>
-#include <ImfFrameBuffer.h>
-#include <ImfHeader.h>
-#include <ImfOutputFile.h>
 #include <gtest/gtest.h>
 
 #include <vector>
 
 #include "cli_test_fixture.h"
+#include "scene/exr_test_file.h"
 
 namespace {
 
 using namespace sombra::cli_test;
-
-// A float RGB EXR of width × height pixels.
-void write_exr(const fs::path& file, int width, int height, const std::vector<float>& rgb) {
-    const Imath::Box2i window({0, 0}, {width - 1, height - 1});
-    Imf::Header header(window, window);
-    Imf::FrameBuffer frame;
-    const char* names[3] = {"R", "G", "B"};
-    for (std::size_t c = 0; c < 3; ++c) {
-        header.channels().insert(names[c], Imf::Channel(Imf::FLOAT));
-        frame.insert(names[c], Imf::Slice::Make(Imf::FLOAT, rgb.data() + c, window, 12, 12 * std::size_t(width)));
-    }
-    Imf::OutputFile out(file.c_str(), header);
-    out.setFrameBuffer(frame);
-    out.writePixels(height);
-}
+using sombra::testing::write_exr;
 
 const std::string kRender = R"({"width": 16, "height": 12})";
 const std::string kCamera = R"({"origin": [0, 0, 4], "look_at": [0, 0, 0], "fov": 40})";

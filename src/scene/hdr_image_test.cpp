@@ -21,6 +21,7 @@
 #include <vector>
 
 #include "core/error.h"
+#include "scene/exr_test_file.h"
 #include "scene/polygon_test_files.h"
 
 namespace sombra {
@@ -28,24 +29,7 @@ namespace {
 
 namespace fs = std::filesystem;
 using testing::TempFolder;
-
-// Writes `rgb` (width × height, 3 floats per pixel) as a float EXR whose data
-// window starts at `origin` (the display window is the same box).
-void write_exr(const fs::path& file, int width, int height, const std::vector<float>& rgb,
-               Imath::V2i origin = {0, 0}, const std::vector<std::string>& channels = {"R", "G", "B"}) {
-    const Imath::Box2i window(origin, origin + Imath::V2i(width - 1, height - 1));
-    Imf::Header header(window, window);
-    Imf::FrameBuffer frame;
-    const std::size_t x_stride = 3 * sizeof(float);
-    for (std::size_t c = 0; c < channels.size(); ++c) {
-        header.channels().insert(channels[c], Imf::Channel(Imf::FLOAT));
-        frame.insert(channels[c], Imf::Slice::Make(Imf::FLOAT, rgb.data() + c, window, x_stride,
-                                                   x_stride * static_cast<std::size_t>(width)));
-    }
-    Imf::OutputFile out(file.c_str(), header);
-    out.setFrameBuffer(frame);
-    out.writePixels(height);
-}
+using testing::write_exr;
 
 // One pixel in Radiance's RGBE encoding (Ward's float2rgbe).
 std::string rgbe(float r, float g, float b) {

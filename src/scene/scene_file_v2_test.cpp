@@ -1,10 +1,6 @@
 // Scene files, version 2 (spec §10, §11): render.integrator and max_depth,
 // mirror, dielectric and conductor materials, quad lights, environment maps
 // (with the clamp_negative extension), and winding under mirroring transforms.
-#include <ImfChannelList.h>
-#include <ImfFrameBuffer.h>
-#include <ImfHeader.h>
-#include <ImfOutputFile.h>
 #include <gtest/gtest.h>
 #include <unistd.h>
 
@@ -13,27 +9,14 @@
 #include <string>
 #include <vector>
 
+#include "scene/exr_test_file.h"
 #include "scene/scene_file.h"
 
 namespace sombra {
 namespace {
 
 namespace fs = std::filesystem;
-
-// Writes a float RGB EXR of width × height pixels.
-void write_exr(const fs::path& file, int width, int height, const std::vector<float>& rgb) {
-    const Imath::Box2i window({0, 0}, {width - 1, height - 1});
-    Imf::Header header(window, window);
-    Imf::FrameBuffer frame;
-    const char* names[3] = {"R", "G", "B"};
-    for (std::size_t c = 0; c < 3; ++c) {
-        header.channels().insert(names[c], Imf::Channel(Imf::FLOAT));
-        frame.insert(names[c], Imf::Slice::Make(Imf::FLOAT, rgb.data() + c, window, 12, 12 * std::size_t(width)));
-    }
-    Imf::OutputFile out(file.c_str(), header);
-    out.setFrameBuffer(frame);
-    out.writePixels(height);
-}
+using testing::write_exr;
 
 class SceneV2 : public ::testing::Test {
 protected:
