@@ -1,5 +1,7 @@
 #include "bench_util.h"
 
+#include <tbb/parallel_for.h>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -70,6 +72,30 @@ bool same_colour(const float* a, const float* b) {
         same = same && std::fabs(a[c] - b[c]) <= 1e-3f * scale;
     }
     return same;
+}
+
+ImageAgreement bvh_against_brute(const TriangleMesh& mesh, const Accel& bvh, int width, int height, double rays_per_pixel,
+                                 std::size_t min_pixels,
+                                 const std::function<Vec3(const Accel& accel, int i, int j)>& radiance) {
+    constexpr double kBruteBudget = 2e9;  // triangle tests: a few seconds at most
+    const Accel brute = make_accel(mesh, AccelKind::Brute);
+    const std::size_t pixels = std::size_t(width) * std::size_t(height);
+    const double affordable = kBruteBudget / (std::max<double>(double(mesh.triangle_count()), 1) * std::max(rays_per_pixel, 1.0));
+    const std::size_t samples =
+        std::clamp<std::size_t>(std::size_t(affordable), min_pixels, std::max<std::size_t>(pixels / 37, 1));
+    const std::size_t stride = std::max<std::size_t>(pixels / samples, 1);
+    std::vector<char> same((pixels + stride - 1) / stride);
+    tbb::parallel_for(std::size_t(0), same.size(), [&](std::size_t k) {
+        const std::size_t p = k * stride;
+        const int i = int(p % std::size_t(width)), j = int(p / std::size_t(width));
+        const Vec3 a = radiance(bvh, i, j), b = radiance(brute, i, j);
+        const float fa[3] = {a.x, a.y, a.z}, fb[3] = {b.x, b.y, b.z};
+        same[k] = same_colour(fa, fb);
+    });
+    ImageAgreement agreement;
+    agreement.pixels = same.size();
+    agreement.equal = std::size_t(std::count(same.begin(), same.end(), char(1)));
+    return agreement;
 }
 
 }  // namespace sombra::bench

@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -56,5 +57,15 @@ bool same_colour(const float* a, const float* b);
 
 // The benchmark refuses to time backends whose images agree in fewer pixels.
 inline constexpr double kMinEqualFraction = 0.999;
+
+// The BVH against the brute-force loop, before any timing: radiance(accel,
+// i, j) traces pixel (i, j) with `accel` (everything else the same) at the
+// centres of every stride-th pixel: every 37th, fewer on big scenes so that
+// brute force spends at most about 2·10⁹ triangle tests (a pixel costing
+// `rays_per_pixel` rays), but never fewer than `min_pixels`. The BVH's hits
+// are bit-identical to brute's, so the pixels must agree.
+ImageAgreement bvh_against_brute(const TriangleMesh& mesh, const Accel& bvh, int width, int height, double rays_per_pixel,
+                                 std::size_t min_pixels,
+                                 const std::function<Vec3(const Accel& accel, int i, int j)>& radiance);
 
 }  // namespace sombra::bench

@@ -1,7 +1,5 @@
 #include "measure.h"
 
-#include <tbb/parallel_for.h>
-
 #include <algorithm>
 #include <utility>
 
@@ -36,39 +34,20 @@ Round build_and_render(const Scene& scene, const RenderSettings& settings, Accel
     return round;
 }
 
-// Triangle tests the brute-force check may spend: a few seconds at most.
-constexpr double kBruteBudget = 2e9;
-
-// The radiance at the centres of every `stride`-th pixel (every 37th, fewer on
-// big scenes), traced through the BVH and through the brute-force loop: they
-// must agree to the last bit in theory, and within compare_films' tolerance here.
-ImageAgreement bvh_against_brute(const Scene& scene, const RenderSettings& settings) {
+// The radiance at the centres of sampled pixels, traced through the BVH and
+// through the brute-force loop (bench_util.h): they must agree to the last
+// bit in theory, and within compare_films' tolerance here.
+ImageAgreement direct_bvh_against_brute(const Scene& scene, const RenderSettings& settings) {
     const Accel bvh = make_accel(scene.geometry, AccelKind::Bvh);
-    const Accel brute = make_accel(scene.geometry, AccelKind::Brute);
     const Camera camera = make_camera(scene.camera, settings.width, settings.height);
-    const std::size_t pixels = std::size_t(settings.width) * std::size_t(settings.height);
-    const double rays_per_pixel = 1.0 + double(scene.lights.size());
-    const double affordable = kBruteBudget / (std::max<double>(double(scene.geometry.triangle_count()), 1) * rays_per_pixel);
-    const std::size_t samples = std::clamp<std::size_t>(std::size_t(affordable), 64, std::max<std::size_t>(pixels / 37, 1));
-    const std::size_t stride = std::max<std::size_t>(pixels / samples, 1);
     const LightSet lights = make_light_set(scene, make_constant_environment(scene.background), false);
-    const IntegratorContext with_bvh{&scene, &bvh, &lights}, with_brute{&scene, &brute, &lights};
-    std::vector<char> same((pixels + stride - 1) / stride);
-    tbb::parallel_for(std::size_t(0), same.size(), [&](std::size_t k) {
-        const std::size_t p = k * stride;
-        const float x = float(p % std::size_t(settings.width)) + 0.5f;
-        const float y = float(p / std::size_t(settings.width)) + 0.5f;
-        const Ray ray = camera_ray(camera, image_plane_s(x, settings.width), image_plane_t(y, settings.height));
-        RayCounters counters;
-        const Vec3 a = trace_direct(with_bvh, ray, counters);
-        const Vec3 b = trace_direct(with_brute, ray, counters);
-        const float fa[3] = {a.x, a.y, a.z}, fb[3] = {b.x, b.y, b.z};
-        same[k] = same_colour(fa, fb);
-    });
-    ImageAgreement agreement;
-    agreement.pixels = same.size();
-    agreement.equal = std::size_t(std::count(same.begin(), same.end(), char(1)));
-    return agreement;
+    return bvh_against_brute(scene.geometry, bvh, settings.width, settings.height, 1.0 + double(scene.lights.size()), 64,
+                             [&](const Accel& accel, int i, int j) {
+                                 const Ray ray = camera_ray(camera, image_plane_s(float(i) + 0.5f, settings.width),
+                                                            image_plane_t(float(j) + 0.5f, settings.height));
+                                 RayCounters counters;
+                                 return trace_direct(IntegratorContext{&scene, &accel, &lights}, ray, counters);
+                             });
 }
 
 }  // namespace
@@ -102,7 +81,7 @@ SceneMeasurement measure_scene(const Scene& scene, const RenderSettings& setting
     }
     films.clear();
 
-    m.brute_agreement = bvh_against_brute(scene, settings);
+    m.brute_agreement = direct_bvh_against_brute(scene, settings);
     if (m.brute_agreement.equal != m.brute_agreement.pixels) {
         const ImageAgreement& a = m.brute_agreement;
         throw Error(name, "bvh and brute disagree at " + thousands(a.pixels - a.equal) + " of " + thousands(a.pixels) +

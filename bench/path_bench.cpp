@@ -1,7 +1,5 @@
 #include "path_bench.h"
 
-#include <tbb/parallel_for.h>
-
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -41,9 +39,6 @@ namespace {
 // its effect exceeds the noise; smaller effects than that no test on noisy
 // images can see.
 constexpr double kMaxZ = 4.0;
-
-// Triangle tests the bvh-against-brute check may spend.
-constexpr double kBruteBudget = 2e9;
 
 struct PairedTest {
     double z[3] = {0, 0, 0};        // mean(d)/se per channel
@@ -108,33 +103,16 @@ Timed timed_render(const RenderJob& job) {
 // hits are bit-identical to brute's, so the radiance must agree.
 ImageAgreement path_bvh_against_brute(const Scene& scene, const RenderSettings& settings, const Accel& bvh,
                                       const LightSet& lights, double rays_per_path) {
-    const Accel brute = make_accel(scene.geometry, AccelKind::Brute);
     const Camera camera = make_camera(scene.camera, settings.width, settings.height);
-    const std::size_t pixels = std::size_t(settings.width) * std::size_t(settings.height);
-    const double affordable =
-        kBruteBudget / (std::max<double>(double(scene.geometry.triangle_count()), 1) * std::max(rays_per_path, 1.0));
-    const std::size_t samples = std::clamp<std::size_t>(std::size_t(affordable), 16, std::max<std::size_t>(pixels / 37, 1));
-    const std::size_t stride = std::max<std::size_t>(pixels / samples, 1);
-    const IntegratorContext with_bvh{&scene, &bvh, &lights, settings.max_depth};
-    const IntegratorContext with_brute{&scene, &brute, &lights, settings.max_depth};
-    std::vector<char> same((pixels + stride - 1) / stride);
-    tbb::parallel_for(std::size_t(0), same.size(), [&](std::size_t k) {
-        const std::size_t p = k * stride;
-        const int i = int(p % std::size_t(settings.width)), j = int(p / std::size_t(settings.width));
-        const Ray ray = camera_ray(camera, image_plane_s(float(i) + 0.5f, settings.width),
-                                   image_plane_t(float(j) + 0.5f, settings.height));
-        const std::uint64_t key = pixel_key(settings.seed, i, j, settings.width);
-        RayCounters counters;
-        SampleStream sa{key, 0, 1}, sb{key, 0, 1};
-        const Vec3 a = trace_path(with_bvh, ray, sa, counters);
-        const Vec3 b = trace_path(with_brute, ray, sb, counters);
-        const float fa[3] = {a.x, a.y, a.z}, fb[3] = {b.x, b.y, b.z};
-        same[k] = same_colour(fa, fb);
-    });
-    ImageAgreement agreement;
-    agreement.pixels = same.size();
-    agreement.equal = std::size_t(std::count(same.begin(), same.end(), char(1)));
-    return agreement;
+    return bvh_against_brute(scene.geometry, bvh, settings.width, settings.height, rays_per_path, 16,
+                             [&](const Accel& accel, int i, int j) {
+                                 const Ray ray = camera_ray(camera, image_plane_s(float(i) + 0.5f, settings.width),
+                                                            image_plane_t(float(j) + 0.5f, settings.height));
+                                 RayCounters counters;
+                                 SampleStream samples{pixel_key(settings.seed, i, j, settings.width), 0, 1};
+                                 return trace_path(IntegratorContext{&scene, &accel, &lights, settings.max_depth}, ray,
+                                                   samples, counters);
+                             });
 }
 
 std::string image_text(const RenderSettings& s) {
