@@ -7,9 +7,12 @@
 
 #include "render/render.h"
 #include "scene/scene_file.h"
+#include "render/test_meshes.h"
 
 namespace sombra {
 namespace {
+
+using testing::add_quad;
 
 constexpr double kPi = 3.14159265358979323846;
 
@@ -17,15 +20,6 @@ constexpr double kPi = 3.14159265358979323846;
 Vec3 trace_direct(const Scene& scene, const Accel& accel, const Ray& ray, RayCounters& counters) {
     const LightSet lights = make_light_set(scene, make_constant_environment(scene.background), false);
     return sombra::trace_direct(IntegratorContext{&scene, &accel, &lights}, ray, counters);
-}
-
-// Appends the quad (a, b, c, d) as two triangles with material `material`.
-void add_quad(TriangleMesh& mesh, Vec3 a, Vec3 b, Vec3 c, Vec3 d, std::uint32_t material) {
-    const auto base = static_cast<std::uint32_t>(mesh.positions.size());
-    mesh.positions.insert(mesh.positions.end(), {a, b, c, d});
-    mesh.triangles.push_back({base, base + 1, base + 2});
-    mesh.triangles.push_back({base, base + 2, base + 3});
-    mesh.material_ids.insert(mesh.material_ids.end(), {material, material});
 }
 
 // A camera at height `eye` looking straight down at the plane y = 0.

@@ -17,9 +17,12 @@
 #include "render/integrator.h"
 #include "render/lights.h"
 #include "render/sampler.h"
+#include "render/test_meshes.h"
 
 namespace sombra {
 namespace {
+
+using testing::add_triangle;
 
 float uniform(std::uint32_t& counter, std::uint64_t key) { return hash_to_unit(counter++, key); }
 
@@ -168,13 +171,6 @@ TEST(LightTree, OneSidedEmittersFacingAwayGetNothing) {
         sum += p;
     }
     EXPECT_NEAR(sum, 1.0, 1e-5);
-}
-
-void add_triangle(TriangleMesh& mesh, Vec3 a, Vec3 b, Vec3 c, std::uint32_t material) {
-    const auto base = static_cast<std::uint32_t>(mesh.positions.size());
-    mesh.positions.insert(mesh.positions.end(), {a, b, c});
-    mesh.triangles.push_back({base, base + 1, base + 2});
-    mesh.material_ids.push_back(material);
 }
 
 // A diffuse floor under a 40 × 25 grid of small emissive quads (2000

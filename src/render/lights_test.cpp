@@ -12,17 +12,12 @@
 
 #include "render/chi2_test_util.h"
 #include "render/sampler.h"
+#include "render/test_meshes.h"
 
 namespace sombra {
 namespace {
 
-void add_triangle(Scene& scene, Vec3 a, Vec3 b, Vec3 c, std::uint32_t material) {
-    TriangleMesh& mesh = scene.geometry;
-    const auto base = static_cast<std::uint32_t>(mesh.positions.size());
-    mesh.positions.insert(mesh.positions.end(), {a, b, c});
-    mesh.triangles.push_back({base, base + 1, base + 2});
-    mesh.material_ids.push_back(material);
-}
+using testing::add_triangle;
 
 Scene two_emitters_and_a_floor() {
     Scene scene;
@@ -34,9 +29,9 @@ Scene two_emitters_and_a_floor() {
     dim.ke = Vec3{1.0f, 2.0f, 3.0f};
     dim.emits_front_only = true;
     scene.materials = {floor, bright, dim};
-    add_triangle(scene, {-10, 0, -10}, {-10, 0, 10}, {10, 0, 10}, 0);
-    add_triangle(scene, {-1, 2, -1}, {1, 2, -1}, {0, 2.5f, 1}, 1);   // near: sampled by solid angle
-    add_triangle(scene, {5, 40, 5}, {5.5f, 40, 5}, {5, 40, 5.5f}, 2);  // far and small: by area; emits toward −y
+    add_triangle(scene.geometry, {-10, 0, -10}, {-10, 0, 10}, {10, 0, 10}, 0);
+    add_triangle(scene.geometry, {-1, 2, -1}, {1, 2, -1}, {0, 2.5f, 1}, 1);   // near: sampled by solid angle
+    add_triangle(scene.geometry, {5, 40, 5}, {5.5f, 40, 5}, {5, 40, 5.5f}, 2);  // far and small: by area; emits toward −y
     return scene;
 }
 
@@ -141,7 +136,7 @@ TEST(Lights, OneSidedEmittersAreDarkFromBehind) {
 TEST(Lights, NoSampledLightsWithoutEmittersOrEnvironment) {
     Scene scene;
     scene.materials.push_back(Material{});
-    add_triangle(scene, {0, 0, 0}, {1, 0, 0}, {0, 1, 0}, 0);
+    add_triangle(scene.geometry, {0, 0, 0}, {1, 0, 0}, {0, 1, 0}, 0);
     const LightSet lights = make_light_set(scene, make_constant_environment(Vec3{0.0f}), true);
     EXPECT_FALSE(lights.has_sampled_lights());
     LightSample ls;

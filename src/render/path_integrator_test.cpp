@@ -12,9 +12,13 @@
 #include "render/integrator.h"
 #include "render/render.h"
 #include "scene/scene_file.h"
+#include "render/test_meshes.h"
 
 namespace sombra {
 namespace {
+
+using testing::add_quad;
+using testing::add_triangle;
 
 constexpr double kPi = std::numbers::pi;
 // |z| beyond this fails: about 1 in 10^6 for a correct estimator, so the
@@ -47,19 +51,6 @@ void expect_agrees(const Estimate& e, double expected, const char* what) {
     }
     const double z = (e.mean() - expected) / se;
     EXPECT_LT(std::fabs(z), kZ) << what << ": mean " << e.mean() << " ± " << se << ", expected " << expected;
-}
-
-void add_triangle(TriangleMesh& mesh, Vec3 a, Vec3 b, Vec3 c, std::uint32_t material) {
-    const auto base = static_cast<std::uint32_t>(mesh.positions.size());
-    mesh.positions.insert(mesh.positions.end(), {a, b, c});
-    mesh.triangles.push_back({base, base + 1, base + 2});
-    mesh.material_ids.push_back(material);
-}
-
-// Quad (a, b, c, d) as two triangles, wound a → b → c.
-void add_quad(TriangleMesh& mesh, Vec3 a, Vec3 b, Vec3 c, Vec3 d, std::uint32_t material) {
-    add_triangle(mesh, a, b, c, material);
-    add_triangle(mesh, a, c, d, material);
 }
 
 // A flat-shaded sphere (subdivided octahedron, corners pushed onto the

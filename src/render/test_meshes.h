@@ -1,0 +1,28 @@
+// Test helper: building the small meshes the render tests light and trace.
+#pragma once
+
+#include <cstdint>
+
+#include "scene/mesh.h"
+
+namespace sombra::testing {
+
+// Appends the triangle (a, b, c), wound a → b → c, with material `material`.
+inline void add_triangle(TriangleMesh& mesh, Vec3 a, Vec3 b, Vec3 c, std::uint32_t material) {
+    const auto base = static_cast<std::uint32_t>(mesh.positions.size());
+    mesh.positions.insert(mesh.positions.end(), {a, b, c});
+    mesh.triangles.push_back({base, base + 1, base + 2});
+    mesh.material_ids.push_back(material);
+}
+
+// Appends the quad (a, b, c, d) as the triangles (a, b, c) and (a, c, d),
+// sharing its four corners.
+inline void add_quad(TriangleMesh& mesh, Vec3 a, Vec3 b, Vec3 c, Vec3 d, std::uint32_t material) {
+    const auto base = static_cast<std::uint32_t>(mesh.positions.size());
+    mesh.positions.insert(mesh.positions.end(), {a, b, c, d});
+    mesh.triangles.push_back({base, base + 1, base + 2});
+    mesh.triangles.push_back({base, base + 2, base + 3});
+    mesh.material_ids.insert(mesh.material_ids.end(), {material, material});
+}
+
+}  // namespace sombra::testing
