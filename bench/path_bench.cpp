@@ -8,9 +8,11 @@
 #include <iostream>
 #include <iterator>
 #include <sstream>
+#include <stdexcept>
 
 #include "bench_util.h"
 #include "core/error.h"
+#include "image/atomic_file.h"
 #include "render/camera.h"
 #include "render/integrator.h"
 #include "render/render.h"
@@ -287,19 +289,20 @@ bool read_reference(const std::filesystem::path& path, int width, int height, Fi
     return true;
 }
 
+// Written whole or not at all (image/atomic_file.h), so that an interrupted
+// run never leaves a truncated reference for the next one to trust.
 void write_reference(const std::filesystem::path& path, const Film& film) {
     std::filesystem::create_directories(path.parent_path().empty() ? "." : path.parent_path());
-    const std::filesystem::path temp = path.string() + ".tmp";
-    {
+    write_file_atomically(path, [&film](const std::filesystem::path& temp) {
         std::ofstream out(temp, std::ios::binary | std::ios::trunc);
         const std::int32_t w = film.width, h = film.height;
         out.write(kCacheMagic, 8);
         out.write(reinterpret_cast<const char*>(&w), 4);
         out.write(reinterpret_cast<const char*>(&h), 4);
         out.write(reinterpret_cast<const char*>(film.rgb.data()), std::streamsize(film.rgb.size() * sizeof(float)));
-        if (!out) throw Error(temp.string(), "cannot write the reference image");
-    }
-    std::filesystem::rename(temp, path);
+        out.close();
+        if (!out) throw std::runtime_error("cannot write the reference image");
+    });
 }
 
 struct ErrorFigures {
