@@ -27,7 +27,7 @@ Camera make_camera(const CameraSpec& spec, int width, int height) {
     const Vec3d c = to_double(look.look_at);
     const double aspect = static_cast<double>(width) / static_cast<double>(height);
     const double half_height = std::tan(static_cast<double>(look.fov_degrees) * std::numbers::pi / 360.0);
-    const Vec3d f = scaled_unit({c.x - o.x, c.y - o.y, c.z - o.z}, 1.0);
+    const Vec3d f = scaled_unit(c - o, 1.0);
     const Vec3d l = scaled_unit(cross(to_double(look.up), f), half_height * aspect);
     const Vec3d u = scaled_unit(cross(f, l), half_height);
     return Camera{look.origin, to_float(l), to_float(u), to_float(f)};

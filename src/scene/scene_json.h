@@ -14,10 +14,19 @@
 
 #include "core/error.h"
 #include "core/vec3.h"
+#include "core/vec3d.h"
 #include "scene/scene.h"
 #include "scene/transform.h"
 
 namespace sombra {
+
+// Relative tolerance for "perpendicular" (spec §3: |cos| of the angle) and,
+// in the same spirit, for "parallel" (sine of the angle): the camera's
+// vectors and a quad light's edges are held to it.
+inline constexpr double kAngleTolerance = 1e-3;
+
+// True when a and b (non-zero) are parallel within kAngleTolerance.
+inline bool nearly_parallel(Vec3d a, Vec3d b) { return length(cross(a, b)) <= kAngleTolerance * length(a) * length(b); }
 
 using Json = nlohmann::json;
 

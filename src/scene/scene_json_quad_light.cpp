@@ -1,16 +1,8 @@
 // Quad lights (spec §10): read from "lights", then made into two triangles
 // with an emit-from-the-front material, which join the scene as an object does.
-#include "core/vec3d.h"
 #include "scene/scene_json.h"
 
 namespace sombra {
-namespace {
-
-// Sine of the angle between the edges below this counts as parallel: the
-// same tolerance as the camera's "perpendicular" (spec §3).
-constexpr double kParallelSine = 1e-3;
-
-}  // namespace
 
 QuadLight read_quad_light(const SceneJson& s, const Json& v, std::string_view pointer) {
     expect_keys(s, v, pointer, {"type", "corner", "edge1", "edge2", "radiance"});
@@ -24,7 +16,7 @@ QuadLight read_quad_light(const SceneJson& s, const Json& v, std::string_view po
     const Vec3d a = to_double(q.edge1), b = to_double(q.edge2);
     if (length(a) == 0) json_fail(s, json_child(pointer, "edge1"), "quad light edge 'edge1' is zero");
     if (length(b) == 0) json_fail(s, json_child(pointer, "edge2"), "quad light edge 'edge2' is zero");
-    if (length(cross(a, b)) <= kParallelSine * length(a) * length(b))
+    if (nearly_parallel(a, b))
         json_fail(s, pointer, "quad light edges 'edge1' and 'edge2' are parallel (the quad has no area)");
     // The triangles are built in float: their corners must stay finite and distinct.
     const Vec3 far = q.corner + q.edge1 + q.edge2;

@@ -11,9 +11,6 @@
 namespace sombra {
 namespace {
 
-// Relative tolerance for "perpendicular" (spec §3) and, in the same spirit,
-// for "parallel" (sine of the angle).
-constexpr double kAngleTolerance = 1e-3;
 // |det| / (product of column lengths) below this counts as singular: 0 for a
 // flattening matrix, 1 for any rotation or scale, whatever its size.
 constexpr double kSingularRatio = 1e-6;
@@ -65,12 +62,12 @@ CameraLookAt read_camera_look_at(const SceneJson& s, const Json& v, std::string_
     if (const Json* fov = find_member(v, "fov")) c.fov_degrees = read_float(s, *fov, json_child(pointer, "fov"));
 
     const Vec3d o = to_double(c.origin), t = to_double(c.look_at), up = to_double(c.up);
-    const Vec3d view{t.x - o.x, t.y - o.y, t.z - o.z};
+    const Vec3d view = t - o;
     // The renderer normalises in float: the view direction must survive that.
     if (length(view) == 0 || length(c.look_at - c.origin) == 0)
         json_fail(s, json_child(pointer, "look_at"), "'look_at' is the same point as 'origin'");
     if (length(up) == 0) json_fail(s, json_child(pointer, "up"), "camera vector 'up' is zero");
-    if (length(cross(up, view)) <= kAngleTolerance * length(up) * length(view))
+    if (nearly_parallel(up, view))
         json_fail(s, json_child(pointer, "up"), "'up' is parallel to the view direction ('look_at' - 'origin')");
     if (!(c.fov_degrees > 0 && c.fov_degrees < 180))
         json_fail(s, json_child(pointer, "fov"), "fov must lie strictly between 0 and 180 degrees");
