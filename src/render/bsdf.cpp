@@ -166,6 +166,18 @@ Vec3 eval_bsdf(const Material& m, const BsdfPoint& p, Vec3 wo, Vec3 wi) {
     return Vec3{0.0f};
 }
 
+BsdfTerms eval_bsdf_terms(const Material& m, const BsdfPoint& p, Vec3 wo, Vec3 wi) {
+    if (dot(p.n_g, wi) <= 0.0f) return {Vec3{0.0f}, Vec3{0.0f}};
+    switch (m.type) {
+        case MaterialType::Diffuse: return {eval_lambert(m.kd), Vec3{0.0f}};
+        case MaterialType::Phong: return {eval_lambert(m.kd), m.ks * eval_phong_lobe(p.n_s, wi, wo, m.shininess)};
+        case MaterialType::Conductor: return {Vec3{0.0f}, eval_bsdf(m, p, wo, wi)};
+        case MaterialType::Mirror:
+        case MaterialType::Dielectric: return {Vec3{0.0f}, Vec3{0.0f}};
+    }
+    return {Vec3{0.0f}, Vec3{0.0f}};
+}
+
 float pdf_bsdf(const Material& m, const BsdfPoint& p, Vec3 wo, Vec3 wi) {
     if (dot(p.n_g, wi) <= 0.0f) return 0.0f;
     switch (m.type) {

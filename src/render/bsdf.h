@@ -61,6 +61,15 @@ struct BsdfSample {
 // smooth Conductor); 0 where the no-light-leak rule says so.
 Vec3 eval_bsdf(const Material& m, const BsdfPoint& p, Vec3 wo, Vec3 wi);
 
+// f(wo, wi) split as spec §4 and §14 name its parts, for `sombra explain`:
+// the diffuse term (kd/π) and the lobe (Phong's specular lobe, or the
+// microfacet lobe). Their sum is eval_bsdf's value up to float rounding;
+// the integrators use eval_bsdf's.
+struct BsdfTerms {
+    Vec3 diffuse, lobe;
+};
+BsdfTerms eval_bsdf_terms(const Material& m, const BsdfPoint& p, Vec3 wo, Vec3 wi);
+
 // Solid-angle density (1/sr) with which sample_bsdf draws wi: non-delta lobes
 // only, 0 for a delta material and wherever sample_bsdf never succeeds.
 float pdf_bsdf(const Material& m, const BsdfPoint& p, Vec3 wo, Vec3 wi);

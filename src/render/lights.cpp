@@ -146,6 +146,7 @@ bool sample_light(const LightSet& lights, const Scene& scene, Vec3 x, Vec3 n, fl
         out.wi = es.direction;
         out.at_infinity = true;
         out.pdf = choice * es.pdf;
+        out.triangle = 0xffffffffu;
         return max_component(out.radiance) > 0.0f;
     }
 
@@ -183,6 +184,7 @@ bool sample_light(const LightSet& lights, const Scene& scene, Vec3 x, Vec3 n, fl
     out.target = y;
     out.at_infinity = false;
     out.pdf = choice * pdf;
+    out.triangle = triangle;
     return true;
 }
 
