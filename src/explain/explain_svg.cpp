@@ -108,7 +108,7 @@ public:
         const float image_scale = std::min(kPanel / static_cast<float>(image.width), kPanel / static_cast<float>(image.height));
         const float image_w = image_scale * static_cast<float>(image.width), image_h = image_scale * static_cast<float>(image.height);
         const float width = kViewWidth + kGap + std::max(image_w, 200.0f);
-        const float height = kPanel + 130.0f;
+        const float height = kPanel + caption_height();
         svg_ << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << num(width) << "\" height=\"" << num(height)
              << "\" viewBox=\"0 0 " << num(width) << " " << num(height) << "\" font-family=\"sans-serif\" font-size=\"12\">\n";
         svg_ << "<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n";
@@ -259,7 +259,8 @@ private:
             line(x, at, kBlockedColour, 2.2f);
             line(at, target, kBlockedColour, 1, "4 4");
             cross_at(at, kBlockedColour);
-            label(at, "blocked by " + object_name(blocker.triangle), kBlockedColour);
+            // Named in the view when the story is short; a long path's caption names each blocker instead.
+            if (r_.vertices.size() <= 2) label(at, "blocked by " + object_name(blocker.triangle), kBlockedColour);
         } else if (outcome == LightOutcome::Behind) {
             line(x, target, kBehindColour, 1, "2 4");
         }
@@ -309,30 +310,62 @@ private:
         svg_ << "<text x=\"8\" y=\"" << num(y) << "\" fill=\"" << colour << "\">" << escape_xml(text) << "</text>\n";
     }
 
-    void caption(float height) {
-        float y = kPanel + 20;
-        text_line(y, "Pixel (" + std::to_string(r_.pixel_x) + ", " + std::to_string(r_.pixel_y) + "), sample " +
-                         std::to_string(r_.sample) + ": L = " + readable(r_.value) + "   (" + r_.end + ")");
-        y += 18;
-        // The first vertex's lights, one line each: why the pixel is as bright as it is.
-        if (!r_.vertices.empty() && r_.vertices.front().hit) {
-            for (const PointLightRecord& l : r_.vertices.front().point_lights) {
-                std::string text = "light " + std::to_string(l.light) + ": ";
-                const char* colour = kVisibleColour;
-                switch (l.outcome) {
-                    case LightOutcome::Visible: text += "visible, adds " + readable(l.contribution); break;
-                    case LightOutcome::Blocked:
-                        text += "blocked by " + object_name(l.blocker.triangle) + " at distance " + readable(l.blocker.distance);
-                        colour = kBlockedColour;
-                        break;
-                    case LightOutcome::Behind: text += "behind the surface"; colour = kBehindColour; break;
-                    case LightOutcome::OnSurface: text += "on the surface"; colour = kBehindColour; break;
-                }
-                if (y > height - 60) break;
-                text_line(y, text, colour);
-                y += 16;
-            }
+    struct CaptionLine {
+        std::string text;
+        const char* colour;
+    };
+
+    CaptionLine light_line(const std::string& name, LightOutcome outcome, const BlockerRecord& blocker, Vec3 contribution) const {
+        switch (outcome) {
+            case LightOutcome::Visible: return {name + ": reaches the light, adds " + readable(contribution), kVisibleColour};
+            case LightOutcome::Blocked:
+                return {name + ": blocked by " + object_name(blocker.triangle) + " at distance " + readable(blocker.distance),
+                        kBlockedColour};
+            case LightOutcome::Behind: return {name + ": behind the surface, adds nothing", kBehindColour};
+            case LightOutcome::OnSurface: return {name + ": on the surface, adds nothing", kBehindColour};
         }
+        return {name, kBehindColour};
+    }
+
+    // Why the sample is as bright as it is, one line per light term: the
+    // first vertex's lights under `direct`, every vertex's under `path`.
+    std::vector<CaptionLine> story_lines() const {
+        std::vector<CaptionLine> lines;
+        lines.push_back({"Pixel (" + std::to_string(r_.pixel_x) + ", " + std::to_string(r_.pixel_y) + "), sample " +
+                             std::to_string(r_.sample) + ": L = " + readable(r_.value) + "   (" + r_.end + ")",
+                         "#222"});
+        for (const VertexRecord& v : r_.vertices) {
+            const std::string at = r_.path ? "x" + std::to_string(v.depth) + " " : "";
+            if (!v.hit) {
+                lines.push_back({at + "leaves the scene: environment L_e = " + readable(v.emission.radiance) + ", adds " +
+                                     readable(v.emission.contribution),
+                                 kPathColour});
+                continue;
+            }
+            if (r_.path)
+                lines.push_back({at + "on " + object_name(v.surface.triangle) + ", throughput " + readable(v.throughput) +
+                                     (v.emission.present ? ", emission adds " + readable(v.emission.contribution) : ""),
+                                 kPathColour});
+            for (const PointLightRecord& l : v.point_lights)
+                lines.push_back(light_line("  " + at + "light " + std::to_string(l.light), l.outcome, l.blocker, l.contribution));
+            const SampledLightRecord& s = v.sampled_light;
+            if (s.sampled)
+                lines.push_back(light_line("  " + at + (s.environment ? "environment sample" : "emitter sample"), s.outcome,
+                                           s.blocker, s.contribution));
+        }
+        return lines;
+    }
+
+    static constexpr std::size_t kMaxStoryLines = 12;
+
+    float caption_height() const { return 80.0f + 16.0f * static_cast<float>(std::min(story_lines().size(), kMaxStoryLines)); }
+
+    void caption(float height) {
+        const std::vector<CaptionLine> lines = story_lines();
+        float y = kPanel + 20;
+        for (std::size_t i = 0; i < lines.size() && i < kMaxStoryLines; ++i, y += 16)
+            text_line(y, i + 1 == kMaxStoryLines && lines.size() > kMaxStoryLines ? "… (the text story has the rest)" : lines[i].text,
+                      lines[i].colour);
         text_line(height - 42, "The scene seen from above and to the right of the camera (orthographic, outlines only).", "#555");
         text_line(height - 26, "Blue: camera ray and path (x0, x1, …); green: shading normal n_s; gold: shadow ray that reaches its light;",
                   "#555");

@@ -154,9 +154,17 @@ private:
         if (!l.environment) out_ << ", point " << readable(l.target) << ", distance " << readable(l.distance);
         out_ << "\n    L_e = " << readable(l.radiance) << ", light pdf = " << readable(l.light_pdf)
              << " /sr, BSDF pdf = " << readable(l.bsdf_pdf) << " /sr\n";
+        if (l.outcome == LightOutcome::Behind) {
+            out_ << "    BEHIND the surface (n_g·ω_i ≤ 0): f_r = 0, no shadow ray, no contribution\n";
+            return;
+        }
         if (l.outcome == LightOutcome::Blocked) {
             out_ << "    BLOCKED: the shadow ray meets " << where(l.blocker.triangle) << " at distance "
                  << readable(l.blocker.distance) << "\n";
+            return;
+        }
+        if (l.f == Vec3{0.0f}) {
+            out_ << "    f_r = 0 in this direction: no shadow ray, no contribution\n";
             return;
         }
         out_ << "    f_r = " << readable(l.f) << " = diffuse " << readable(l.f_diffuse) << " + lobe " << readable(l.f_lobe)

@@ -70,7 +70,7 @@ struct SampledLightRecord {
     float mis_weight = 0;            // power heuristic (1 when only lights are sampled)
     float cos_s = 0;                 // |n_s·ω_i|
     Vec3 f_diffuse, f_lobe, f;       // f_r split and whole
-    LightOutcome outcome = LightOutcome::Visible;  // Blocked, or Visible (the side checks are the sampler's)
+    LightOutcome outcome = LightOutcome::Visible;  // Behind (f_r = 0, no shadow ray), Blocked, or Visible
     BlockerRecord blocker;
     Vec3 contribution;               // β · f·|cos| · L_e · w / pdf
 };

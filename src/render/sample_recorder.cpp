@@ -100,7 +100,10 @@ void SampleRecorder::sampled_light(const LightSample* ls, const ShadingView& vie
         // Shown for blocked and zero-f samples too: what MIS would have weighed.
         r.bsdf_pdf = shadow && !blocked ? bsdf_pdf : pdf_bsdf(view.material, view.bsdf_point, view.wo, ls->wi);
         r.mis_weight = w;
-        r.outcome = blocked ? LightOutcome::Blocked : LightOutcome::Visible;
+        // Without a shadow ray the BSDF was 0 there: the light is behind the surface, or the lobe sends nothing its way.
+        r.outcome = blocked                                              ? LightOutcome::Blocked
+                    : !shadow && dot(view.si.n_g, ls->wi) <= 0.0f ? LightOutcome::Behind
+                                                                     : LightOutcome::Visible;
         if (blocked && shadow) r.blocker = find_blocker(*shadow);
     }
     r.contribution = vertex().throughput * contribution;
