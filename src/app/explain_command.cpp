@@ -2,6 +2,7 @@
 // sample with a recorder, and tell its story (spec §14).
 #include <unistd.h>
 
+#include <algorithm>
 #include <fstream>
 #include <iostream>
 
@@ -64,15 +65,17 @@ int run_explain(const CliOptions& o) {
         const std::string story = o.json ? explain_json(context, record) : explain_text(context, record);
 
         if (!o.svg.empty()) {
+            RenderJob preview = job;
+            preview.settings.spp = picture_spp(settings);
             interrupt.set_phase(InterruptWatcher::Phase::Rendering);
             RenderOutput rendered;
             {
                 const bool show = !o.quiet && isatty(STDERR_FILENO);
                 ProgressBar bar(progress,
                                 static_cast<std::uint64_t>(settings.width) * static_cast<std::uint64_t>(settings.height) *
-                                    static_cast<std::uint64_t>(settings.spp),
+                                    static_cast<std::uint64_t>(preview.settings.spp),
                                 show);
-                rendered = render_image(job, progress);
+                rendered = render_image(preview, progress);
             }
             if (rendered.cancelled) {
                 const int sig = interrupt.signal_received();

@@ -29,10 +29,15 @@ std::string explain_text(const ExplainContext& context, const SampleRecord& reco
 // "vertices" (every vertex; one under `direct`).
 std::string explain_json(const ExplainContext& context, const SampleRecord& record);
 
+// The samples per pixel of the render drawn beside the story: the scene's,
+// at most 16. The picture needs only to show the scene, and a 4096-spp
+// scene's explanation should not take as long as its render.
+inline int picture_spp(const RenderSettings& settings) { return settings.spp < 16 ? settings.spp : 16; }
+
 // A picture of the story: the scene's outlines seen from beside the camera
 // with the camera, the path, the lights and the shadow rays (blocked ones
 // red, with the blocker marked), next to `image` (the render) with the pixel
-// marked. A complete SVG document.
+// marked. `image` is the render at picture_spp samples. A complete SVG document.
 std::string explain_svg(const ExplainContext& context, const SampleRecord& record, ImageView image, float exposure);
 
 }  // namespace sombra

@@ -303,7 +303,7 @@ private:
         svg_ << "<circle cx=\"" << num(px + size * 0.5f) << "\" cy=\"" << num(py + size * 0.5f)
              << "\" r=\"12\" fill=\"none\" stroke=\"#ff2020\" stroke-width=\"2\"/>\n";
         svg_ << "<text x=\"" << num(left) << "\" y=\"" << num(h + 16) << "\">the render (" << image.width << "x" << image.height
-             << ", " << c_.job.settings.spp << " spp), pixel (" << r_.pixel_x << ", " << r_.pixel_y << ") circled</text>\n";
+             << ", " << picture_spp(c_.job.settings) << " spp), pixel (" << r_.pixel_x << ", " << r_.pixel_y << ") circled</text>\n";
     }
 
     void text_line(float y, const std::string& text, const char* colour = "#222") {
