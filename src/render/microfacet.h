@@ -59,6 +59,15 @@ inline Vec3 sample_ggx_vndf(Vec3 wo, float alpha, float u1, float u2) {
     return normalize(Vec3{alpha * nh.x, alpha * nh.y, std::max(1e-9f, nh.z)});
 }
 
+// The solid-angle density of ωi = ωo mirrored about an h drawn by
+// sample_ggx_vndf: D_wo(h) / (4 ωo·h) = D(h)·G1(ωo) / (4 cos θ_o). 0 unless
+// both directions are above the shading plane.
+inline float ggx_reflection_pdf(Vec3 wo, Vec3 wi, float alpha) {
+    if (wo.z <= 0.0f || wi.z <= 0.0f) return 0.0f;
+    const Vec3 h = normalize(wi + wo);
+    return 0.25f * ggx_d(h, alpha) * ggx_g1_over_cos(wo, alpha);
+}
+
 // Schlick's Fresnel of spec §11: F = f0 + (1 − f0)(1 − cos)⁵, cos clamped to [0, 1].
 inline Vec3 fresnel_schlick(Vec3 f0, float cos_theta) {
     const float c = 1.0f - std::clamp(cos_theta, 0.0f, 1.0f);
