@@ -6,6 +6,7 @@
 
 #include "render/brdf.h"
 #include "render/bsdf_lobes.h"
+#include "render/bsdf_pbr.h"
 #include "render/microfacet.h"
 
 namespace sombra {
@@ -111,6 +112,7 @@ bool is_delta_bsdf(const Material& m) {
         case MaterialType::Mirror:
         case MaterialType::Dielectric: return true;
         case MaterialType::Conductor: return conductor_alpha(m) < kDeltaAlpha;
+        case MaterialType::Pbr: return is_delta_pbr(m);
         case MaterialType::Diffuse:
         case MaterialType::Phong: return false;
     }
@@ -138,6 +140,7 @@ Vec3 eval_bsdf(const Material& m, const BsdfPoint& p, Vec3 wo, Vec3 wi) {
             if (alpha < kDeltaAlpha) return Vec3{0.0f};
             return eval_ggx(m.ks, alpha, p.frame.to_local(wo), p.frame.to_local(wi));
         }
+        case MaterialType::Pbr: return eval_pbr(m, p, wo, wi);
         case MaterialType::Mirror:
         case MaterialType::Dielectric: return Vec3{0.0f};
     }
@@ -154,6 +157,7 @@ float pdf_bsdf(const Material& m, const BsdfPoint& p, Vec3 wo, Vec3 wi) {
             if (alpha < kDeltaAlpha) return 0.0f;
             return ggx_reflection_pdf(p.frame.to_local(wo), p.frame.to_local(wi), alpha);
         }
+        case MaterialType::Pbr: return pdf_pbr(m, p, wo, wi);
         case MaterialType::Mirror:
         case MaterialType::Dielectric: return 0.0f;
     }
@@ -168,6 +172,7 @@ bool sample_bsdf(const Material& m, const BsdfPoint& p, Vec3 wo, float u_lobe, f
             if (dot(wo, p.n_s) <= 0.0f) return false;
             return sample_specular_reflection(p, wo, m.kr, 1.0f, out);
         case MaterialType::Dielectric: return sample_dielectric(m, p, wo, u_lobe, out);
+        case MaterialType::Pbr: return sample_pbr(m, p, wo, u_lobe, u1, u2, out);
         case MaterialType::Conductor: {
             const Vec3 wo_l = p.frame.to_local(wo);
             if (wo_l.z <= 0.0f) return false;
