@@ -13,6 +13,7 @@ std::string material_type_name(MaterialType type) {
         case MaterialType::Mirror: return "mirror";
         case MaterialType::Dielectric: return "dielectric";
         case MaterialType::Conductor: return "conductor";
+        case MaterialType::Pbr: return "pbr";
     }
     return "?";
 }
@@ -26,6 +27,9 @@ std::vector<MaterialParameter> material_parameters(const Material& m) {
         case MaterialType::Mirror: p = {{"kr", rgb(m.kr)}}; break;
         case MaterialType::Dielectric: p = {{"ior", {m.ior}}, {"kt", rgb(m.kt)}}; break;
         case MaterialType::Conductor: p = {{"ks", rgb(m.ks)}, {"roughness", {m.roughness}}}; break;
+        case MaterialType::Pbr:
+            p = {{"base_color", rgb(m.base_color)}, {"metallic", {m.metallic}}, {"roughness", {m.roughness}}, {"ior", {m.ior}}};
+            break;
     }
     if (is_emissive(m)) p.push_back({"ke", rgb(m.ke)});
     return p;

@@ -12,7 +12,7 @@
 
 namespace sombra {
 
-// "diffuse", "phong", "mirror", "dielectric", "conductor".
+// "diffuse", "phong", "mirror", "dielectric", "conductor", "pbr".
 std::string material_type_name(MaterialType type);
 
 // A material's parameters as (name, value) pairs in the order spec §5/§11 list them.

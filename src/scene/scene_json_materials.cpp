@@ -19,8 +19,9 @@ const TypeKeys kTypes[] = {
     {"mirror", {"type", "kr", "ke"}},
     {"dielectric", {"type", "ior", "kt", "ke"}},
     {"conductor", {"type", "ks", "roughness", "ke"}},
+    {"pbr", {"type", "base_color", "metallic", "roughness", "ior", "ke"}},
 };
-constexpr const char* kTypeList = "'diffuse', 'phong', 'mirror', 'dielectric' or 'conductor'";
+constexpr const char* kTypeList = "'diffuse', 'phong', 'mirror', 'dielectric', 'conductor' or 'pbr'";
 
 Vec3 read_unit_interval_rgb(const SceneJson& s, const Json& v, std::string_view pointer, std::string_view key) {
     const Vec3 c = read_vec3(s, v, pointer);
@@ -58,28 +59,45 @@ void read_phong(const SceneJson& s, const Json& v, std::string_view pointer, Mat
         json_warn(s, pointer, "kd + ks exceeds 1 in some channel: the material reflects more light than it receives");
 }
 
-void read_dielectric(const SceneJson& s, const Json& v, std::string_view pointer, Material& m) {
+// `ior` when given (the default stays 1.5): greater than 1, the outside being vacuum.
+void read_optional_ior(const SceneJson& s, const Json& v, std::string_view pointer, Material& m) {
     if (const Json* ior = find_member(v, "ior")) {
         const std::string p = json_child(pointer, "ior");
         m.ior = read_float(s, *ior, p);
         if (!(m.ior > 1)) json_fail(s, p, "ior must be greater than 1 (the outside is vacuum, ior 1)");
     }
+}
+
+// A required number in [0, 1] (roughness, metallic).
+float require_unit_interval(const SceneJson& s, const Json& v, std::string_view pointer, std::string_view key) {
+    const std::string p = json_child(pointer, key);
+    const float x = read_float(s, require_member(s, v, pointer, key), p);
+    if (x < 0 || x > 1) json_fail(s, p, std::string(key) + " must lie in [0, 1]");
+    return x;
+}
+
+void read_dielectric(const SceneJson& s, const Json& v, std::string_view pointer, Material& m) {
+    read_optional_ior(s, v, pointer, m);
     if (const Json* kt = find_member(v, "kt")) m.kt = read_unit_interval_rgb(s, *kt, json_child(pointer, "kt"), "kt");
 }
 
 void read_conductor(const SceneJson& s, const Json& v, std::string_view pointer, Material& m) {
     m.ks = require_unit_interval_rgb(s, v, pointer, "ks");
-    const std::string p = json_child(pointer, "roughness");
-    m.roughness = read_float(s, require_member(s, v, pointer, "roughness"), p);
-    if (m.roughness < 0 || m.roughness > 1) json_fail(s, p, "roughness must lie in [0, 1]");
+    m.roughness = require_unit_interval(s, v, pointer, "roughness");
+}
+
+// The glTF metallic–roughness material (§11): all but ior required.
+void read_pbr(const SceneJson& s, const Json& v, std::string_view pointer, Material& m) {
+    m.base_color = require_unit_interval_rgb(s, v, pointer, "base_color");
+    m.metallic = require_unit_interval(s, v, pointer, "metallic");
+    m.roughness = require_unit_interval(s, v, pointer, "roughness");
+    read_optional_ior(s, v, pointer, m);
 }
 
 Material read_material(const SceneJson& s, const std::string& name, const Json& v, std::string_view pointer) {
     expect_object(s, v, pointer);
     const std::string type_pointer = json_child(pointer, "type");
     const std::string& type = read_string(s, require_member(s, v, pointer, "type"), type_pointer);
-    if (type == "pbr")
-        json_fail(s, type_pointer, "material type 'pbr' is not supported yet (expected " + std::string(kTypeList) + ")");
     const TypeKeys* keys = nullptr;
     for (const TypeKeys& t : kTypes)
         if (type == t.type) keys = &t;
@@ -101,9 +119,12 @@ Material read_material(const SceneJson& s, const std::string& name, const Json& 
     } else if (type == "dielectric") {
         m.type = MaterialType::Dielectric;
         read_dielectric(s, v, pointer, m);
-    } else {
+    } else if (type == "conductor") {
         m.type = MaterialType::Conductor;
         read_conductor(s, v, pointer, m);
+    } else {
+        m.type = MaterialType::Pbr;
+        read_pbr(s, v, pointer, m);
     }
     if (const Json* ke = find_member(v, "ke")) m.ke = read_rgb(s, *ke, json_child(pointer, "ke"));
     return m;
