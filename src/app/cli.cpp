@@ -35,8 +35,8 @@ CliParse parse_command_line(int argc, const char* const* argv) {
     app.require_subcommand(1);
 
     CliOptions o;
-    CLI::App* render = app.add_subcommand("render", "Render a scene (.json) or take a quick look at a model (.obj, .ply)");
-    render->add_option("input", o.input, "Scene file (.json) or model (.obj, .ply)")->required();
+    CLI::App* render = app.add_subcommand("render", "Render a scene (.json) or take a quick look at a model (.obj, .ply, .gltf, .glb)");
+    render->add_option("input", o.input, "Scene file (.json) or model (.obj, .ply, .gltf, .glb)")->required();
     render->add_option("-o,--output", o.output, "Image to write: .png (8-bit sRGB), .pfm or .exr (linear)")
         ->capture_default_str();
     render->add_option("--width", o.width, "Image width in pixels (overrides the scene)");

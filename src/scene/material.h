@@ -15,6 +15,7 @@ enum class MaterialType {
     Mirror,      // perfect specular reflection, reflectance kr (§11)
     Dielectric,  // smooth glass: Fresnel reflection and refraction, ior, kt (§11)
     Conductor,   // GGX microfacet metal, Schlick Fresnel from ks, roughness (§11)
+    Pbr,         // glTF 2.0 metallic–roughness: base_color, metallic, roughness, ior (§11)
 };
 
 struct Material {
@@ -28,6 +29,8 @@ struct Material {
     Vec3 kt{1.0f};        // Dielectric transmission tint, each channel in [0, 1]
     float ior = 1.5f;     // Dielectric index of refraction inside, > 1 (outside is 1)
     float roughness = 0;  // Conductor roughness r in [0, 1]; GGX α = r²
+    Vec3 base_color{1.0f};
+    float metallic = 0.0f;
     // Quad lights (§10) emit only toward the side their winding normal
     // (v1 − v0) × (v2 − v0) points to, and are black from behind.
     bool emits_front_only = false;
