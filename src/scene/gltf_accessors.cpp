@@ -107,14 +107,15 @@ View make_view(const AccessorReader& r, int index, const std::string& what) {
         fail(r, index, what, "byteOffset is not a multiple of the component size (" + std::to_string(size) + ")");
 
     // Everything read must lie in the view, and the view in the buffer.
-    constexpr std::uint64_t kMax = std::numeric_limits<std::uint64_t>::max();
     if (bv.byteOffset > buffer.size() || bv.byteLength > buffer.size() - bv.byteOffset)
         fail(r, index, what, "bufferView " + std::to_string(a.bufferView) + " (" + std::to_string(bv.byteLength) +
                                  " bytes at " + std::to_string(bv.byteOffset) + ") overruns its buffer of " +
                                  std::to_string(buffer.size()) + " bytes");
+    // byteOffset + (count − 1) × stride + element ≤ byteLength, without overflow.
     const std::uint64_t last = static_cast<std::uint64_t>(a.count) - 1;
-    const bool overflows = last > (kMax - element - a.byteOffset) / v.stride;
-    if (overflows || a.byteOffset + last * v.stride + element > bv.byteLength)
+    const bool fits = a.byteOffset <= bv.byteLength && element <= bv.byteLength - a.byteOffset &&
+                      last <= (bv.byteLength - a.byteOffset - element) / v.stride;
+    if (!fits)
         fail(r, index, what, std::to_string(a.count) + " elements of " + std::to_string(element) + " bytes, stride " +
                                  std::to_string(v.stride) + ", at byteOffset " + std::to_string(a.byteOffset) +
                                  " overrun bufferView " + std::to_string(a.bufferView) + " (" +
