@@ -5,6 +5,13 @@
 // gltf_loader.cpp walks the node tree and assembles the LoadedMesh.
 #pragma once
 
+// tinygltf's configuration, the same in every translation unit that sees
+// its classes (their default members depend on it): no stb_image in
+// tinygltf (sombra does not decode glTF images yet; the textures module
+// will do it itself), no external images read.
+#define TINYGLTF_NO_STB_IMAGE
+#define TINYGLTF_NO_STB_IMAGE_WRITE
+#define TINYGLTF_NO_EXTERNAL_IMAGE
 #include <tiny_gltf.h>
 
 #include <cstdint>

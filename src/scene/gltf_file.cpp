@@ -1,12 +1,8 @@
 // glTF file → tinygltf::Model, with the guards that tinygltf lacks on
 // hostile input. This is the one translation unit that compiles tinygltf's
-// implementation (header-only, Debian's libtinygltf-dev): JSON through
-// nlohmann-json, no stb_image (sombra does not decode glTF images yet, and
-// the textures module will decode them itself), no external images read.
+// implementation (header-only, Debian's libtinygltf-dev; JSON through
+// nlohmann-json), configured in scene/gltf.h.
 #define TINYGLTF_IMPLEMENTATION
-#define TINYGLTF_NO_STB_IMAGE
-#define TINYGLTF_NO_STB_IMAGE_WRITE
-#define TINYGLTF_NO_EXTERNAL_IMAGE
 #include "scene/gltf.h"
 
 #include <nlohmann/json.hpp>
