@@ -13,4 +13,9 @@ namespace sombra::bench {
 // Error when either loader fails.
 void run_load_bench(const std::string& obj_file, int reps, std::ostream& out);
 
+// The same for a .gltf or .glb file: sombra's load_gltf, its guarded parse
+// alone, and tinygltf's plain LoadBinaryFromFile / LoadASCIIFromFile (when
+// tinygltf accepts the file: not with Draco), medians of `reps` rounds.
+void run_gltf_load_bench(const std::string& file, int reps, std::ostream& out);
+
 }  // namespace sombra::bench

@@ -31,8 +31,8 @@ int main(int argc, char** argv) {
 
     int load_reps = 5;
     std::string obj_file;
-    CLI::App* load = app.add_subcommand("load", "Load an OBJ with sombra and with tinyobjloader, alternating");
-    load->add_option("obj", obj_file, "OBJ file")->required()->check(CLI::ExistingFile);
+    CLI::App* load = app.add_subcommand("load", "Load an OBJ with sombra and with tinyobjloader, alternating (a .gltf/.glb: with tinygltf)");
+    load->add_option("obj", obj_file, "OBJ, glTF or GLB file")->required()->check(CLI::ExistingFile);
     load->add_option("--reps", load_reps, "Timed rounds per loader (median reported)")
         ->check(CLI::Range(1, 1000))
         ->capture_default_str();
@@ -91,7 +91,13 @@ int main(int argc, char** argv) {
     error_options.cache_dir = cache_dir;
     try {
         if (*scenes) run_scene_bench(scene_files, scene_options, std::cout);
-        if (*load) run_load_bench(obj_file, load_reps, std::cout);
+        if (*load) {
+            const std::string ext = std::filesystem::path(obj_file).extension().string();
+            if (ext == ".gltf" || ext == ".glb")
+                run_gltf_load_bench(obj_file, load_reps, std::cout);
+            else
+                run_load_bench(obj_file, load_reps, std::cout);
+        }
         if (*growth) run_growth_bench(model_files, growth_options, std::cout);
         if (*path) run_path_bench(path_files, path_options, std::cout);
         if (*path_error) run_path_error_bench(error_file, error_options, std::cout);

@@ -26,7 +26,7 @@ namespace fs = std::filesystem;
 inline constexpr std::string_view kMtlSeparator = "\n#MTL\n";
 inline constexpr const char* kMtlName = "m.mtl";
 
-enum class Target { Obj, Ply, Scene };
+enum class Target { Obj, Ply, Scene, Gltf };
 
 inline void write_file(const fs::path& path, std::string_view bytes) {
     std::FILE* file = std::fopen(path.c_str(), "wb");
@@ -59,6 +59,12 @@ inline fs::path stage_input(Target target, std::string_view bytes, const fs::pat
             return folder / "fuzz.obj";
         }
         case Target::Ply: write_file(folder / "fuzz.ply", bytes); return folder / "fuzz.ply";
+        case Target::Gltf: {
+            // The container decides the name: GLB bytes start with "glTF".
+            const fs::path path = folder / (bytes.substr(0, 4) == "glTF" ? "fuzz.glb" : "fuzz.gltf");
+            write_file(path, bytes);
+            return path;
+        }
         case Target::Scene:
             if (!fs::exists(folder / "m.ply")) write_scene_meshes(folder);
             write_file(folder / "scene.json", bytes);
@@ -98,12 +104,24 @@ inline std::string material_problem(const Material& m) {
     if (!in_unit_range(m.kr) || !in_unit_range(m.kt)) return "material '" + m.name + "': kr or kt outside [0, 1]";
     if (!(m.ior > 1) || !std::isfinite(m.ior)) return "material '" + m.name + "': ior not finite and > 1";
     if (!(m.roughness >= 0 && m.roughness <= 1)) return "material '" + m.name + "': roughness outside [0, 1]";
+    if (!in_unit_range(m.base_color) || !(m.metallic >= 0 && m.metallic <= 1))
+        return "material '" + m.name + "': base_color or metallic outside [0, 1]";
     return {};
 }
 
 inline std::string loaded_mesh_problem(const LoadedMesh& loaded) {
     for (const Material& m : loaded.materials)
         if (std::string problem = material_problem(m); !problem.empty()) return problem;
+    for (const PointLight& light : loaded.lights)
+        if (!is_finite(light.position) || !is_finite(light.intensity) || min_component(light.intensity) < 0)
+            return "bad light";
+    if (const std::optional<ModelCamera>& c = loaded.camera;
+        c && !(is_finite(c->origin) && is_finite(c->forward) && is_finite(c->up) && c->yfov_degrees > 0 &&
+               c->yfov_degrees < 180 && std::isfinite(c->aspect) && c->aspect >= 0 &&
+               std::fabs(length(c->forward) - 1) < 1e-3f && std::fabs(length(c->up) - 1) < 1e-3f))
+        return "bad camera";
+    if (!loaded.texture_refs.empty() && loaded.texture_refs.size() != loaded.materials.size())
+        return "texture_refs and materials differ in size";
     return mesh_problem(loaded.mesh, loaded.materials.size());
 }
 
@@ -138,6 +156,7 @@ inline std::string run_input(Target target, std::string_view bytes, const fs::pa
             case Target::Obj: return loaded_mesh_problem(load_obj(path, diag));
             case Target::Ply: return loaded_mesh_problem(load_ply(path, diag));
             case Target::Scene: return scene_problem(load_scene_file(path, diag));
+            case Target::Gltf: return loaded_mesh_problem(load_gltf(path, diag));
         }
     } catch (const Error&) {
         return {};

@@ -2,11 +2,12 @@
 # Builds the libFuzzer targets (CMake preset "fuzz", clang) and runs each for
 # a given time, one after the other, with its seed corpus.
 #
-#   tools/fuzz.sh [SECONDS_PER_TARGET] [TARGET...]     (default: 60 s; obj ply scene)
+#   tools/fuzz.sh [SECONDS_PER_TARGET] [TARGET...]     (default: 60 s; obj ply scene gltf)
 #
-# Targets: obj (OBJ + MTL), ply, scene (scene JSON down to loaded meshes); see
-# fuzz/fuzz_harness.h. Corpora grow in build/fuzz/corpus/TARGET (seeded from
-# ../shared/objsuite, the small ../shared/models, scenes/ and ../shared/scenes;
+# Targets: obj (OBJ + MTL), ply, scene (scene JSON down to loaded meshes),
+# gltf (.gltf / .glb through tinygltf and Draco); see fuzz/fuzz_harness.h. Corpora grow in build/fuzz/corpus/TARGET (seeded from
+# ../shared/objsuite, the small ../shared/models, scenes/ and ../shared/scenes,
+# fuzz/seeds/gltf, ../shared/models/gltf and the assimp glTF2 test models;
 # nothing is written into the repository). Exits non-zero when a target finds
 # a crash, leak, timeout or out-of-memory, and prints the reproducer's path:
 # replay it with  build/fuzz/fuzz/fuzz_TARGET REPRODUCER  and, once fixed, add it
@@ -18,12 +19,12 @@ root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 seconds="${1:-60}"
 [ $# -gt 0 ] && shift
 targets=("$@")
-[ ${#targets[@]} -gt 0 ] || targets=(obj ply scene)
+[ ${#targets[@]} -gt 0 ] || targets=(obj ply scene gltf)
 case "$seconds" in
-  '' | *[!0-9]*) echo "usage: tools/fuzz.sh [SECONDS_PER_TARGET] [obj|ply|scene ...]" >&2; exit 2 ;;
+  '' | *[!0-9]*) echo "usage: tools/fuzz.sh [SECONDS_PER_TARGET] [obj|ply|scene|gltf ...]" >&2; exit 2 ;;
 esac
 for t in "${targets[@]}"; do
-  case "$t" in obj | ply | scene) ;; *) echo "fuzz.sh: unknown target '$t' (obj, ply, scene)" >&2; exit 2 ;; esac
+  case "$t" in obj | ply | scene | gltf) ;; *) echo "fuzz.sh: unknown target '$t' (obj, ply, scene, gltf)" >&2; exit 2 ;; esac
 done
 
 shared="${SOMBRA_SHARED_DIR:-$root/../shared}"
@@ -111,6 +112,22 @@ seed_scene() {
     sed 's/"file"[[:space:]]*:[[:space:]]*"[^"]*"/"file": "m.obj"/g' "$json" | add_seed "$corpus" "$name-obj"
     sed 's/"file"[[:space:]]*:[[:space:]]*"[^"]*"/"file": "m.ply"/g' "$json" | add_seed "$corpus" "$name-ply"
   done
+}
+
+# glTF seeds: the hand-made ones of fuzz/seeds/gltf (tools/make-gltf-seeds.py),
+# ../shared's Draco bunny, and every assimp glTF2 test model under 64 KiB
+# (those with external .bin files load without them: the target writes one file).
+seed_gltf() {
+  local corpus="$1" f
+  for f in "$root"/fuzz/seeds/gltf/* "$shared"/models/gltf/*.gl[tb]*; do
+    [ -f "$f" ] && add_seed "$corpus" "$(basename "$f")" <"$f"
+  done
+  if [ -d /usr/share/assimp/models/glTF2 ]; then
+    while IFS= read -r -d '' f; do
+      add_seed "$corpus" "assimp-$(echo "${f#/usr/share/assimp/models/glTF2/}" | tr '/' '_')" <"$f"
+    done < <(find /usr/share/assimp/models/glTF2 \( -name '*.gltf' -o -name '*.glb' \) -size -64k -print0)
+  fi
+  return 0
 }
 
 status=0

@@ -12,6 +12,9 @@ packages=(
   libopenexr-dev         # EXR output, EXR environment maps
   libstb-dev             # stb_image: Radiance .hdr environment maps (headers in /usr/include/stb, libstb)
   libcli11-dev           # command line
+  libtinygltf-dev        # glTF 2.0 parsing (header-only; src/scene/gltf_file.cpp)
+  libdraco-dev           # KHR_draco_mesh_compression
+  assimp-testmodels      # tests: real and deliberately broken glTF 2.0 files (/usr/share/assimp/models/glTF2)
   libgtest-dev libgmock-dev  # tests
   libembree-dev          # --accel embree, the BVH's yardstick (optional: the build works without it)
   python3-matplotlib python3-numpy  # tools/bench.sh: the big benchmark mesh and the cost-growth plot

@@ -64,8 +64,8 @@ CliParse parse_command_line(int argc, const char* const* argv) {
     app.require_subcommand(1);
 
     CliOptions o;
-    CLI::App* render = app.add_subcommand("render", "Render a scene (.json) or take a quick look at a model (.obj, .ply)");
-    render->add_option("input", o.input, "Scene file (.json) or model (.obj, .ply)")->required();
+    CLI::App* render = app.add_subcommand("render", "Render a scene (.json) or take a quick look at a model (.obj, .ply, .gltf, .glb)");
+    render->add_option("input", o.input, "Scene file (.json) or model (.obj, .ply, .gltf, .glb)")->required();
     render->add_option("-o,--output", o.output, "Image to write: .png (8-bit sRGB), .pfm or .exr (linear)")
         ->capture_default_str();
     add_render_options(*render, o);
@@ -73,7 +73,7 @@ CliParse parse_command_line(int argc, const char* const* argv) {
 
     CLI::App* explain = app.add_subcommand(
         "explain", "Tell the story of one pixel: every term of the rendering equation behind its value");
-    explain->add_option("input", o.input, "Scene file (.json) or model (.obj, .ply)")->required();
+    explain->add_option("input", o.input, "Scene file (.json) or model (.obj, .ply, .gltf, .glb)")->required();
     explain->add_option("x", o.pixel_x, "Pixel column, 0 at the left")->required();
     explain->add_option("y", o.pixel_y, "Pixel row, 0 at the top")->required();
     explain->add_option("--sample", o.sample, "Which of the pixel's samples, 0 to spp - 1")->capture_default_str();

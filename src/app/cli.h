@@ -15,7 +15,7 @@ enum class Command {
 
 struct CliOptions {
     Command command = Command::Render;
-    std::string input;                 // scene .json, or a model .obj/.ply for the quick look
+    std::string input;                 // scene .json, or a model .obj/.ply/.gltf/.glb for the quick look
     std::string output = "render.png";
     std::optional<int> width, height, spp;
     std::optional<std::uint64_t> seed;

@@ -26,8 +26,9 @@ std::string one_line(std::string text) {
 Scene load_input(const std::filesystem::path& input, Diagnostics& diag) {
     const std::string ext = lower_extension(input);
     if (ext == ".json") return load_scene_file(input, diag);
-    if (ext == ".obj" || ext == ".ply") return make_quicklook_scene(input, diag);
-    throw Error(input.string(), "unknown input type '" + ext + "' (expected a scene .json, or a model .obj or .ply)");
+    if (ext == ".obj" || ext == ".ply" || ext == ".gltf" || ext == ".glb") return make_quicklook_scene(input, diag);
+    throw Error(input.string(),
+                "unknown input type '" + ext + "' (expected a scene .json, or a model .obj, .ply, .gltf or .glb)");
 }
 
 RenderSettings resolve_settings(const RenderSettings& scene_settings, const CliOptions& o) {

@@ -5,11 +5,14 @@
 
 #include <array>
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 #include "core/vec2.h"
 #include "core/vec3.h"
+#include "scene/light.h"
 #include "scene/material.h"
+#include "scene/texture_refs.h"
 
 namespace sombra {
 
@@ -47,12 +50,30 @@ struct TriangleMesh {
     bool has_uvs() const { return !uv_indices.empty(); }
 };
 
+// A pinhole camera that a model file places (glTF), in the file's
+// coordinates: at `origin`, looking along `forward`, with `up` (both unit,
+// perpendicular), a vertical field of view, and the image aspect (width /
+// height) the file asks for, 0 when it leaves that to the image.
+struct ModelCamera {
+    Vec3 origin, forward, up;
+    float yfov_degrees = 45;
+    float aspect = 0;
+};
+
 // A mesh file as read from disk: geometry in the file's own coordinates and
 // the materials its faces refer to. Loaders always leave at least one
 // material when there are triangles (the default one for faces without).
 struct LoadedMesh {
     TriangleMesh mesh;
     std::vector<Material> materials;
+
+    // What only glTF files carry (empty for OBJ and PLY): the point lights
+    // and the first camera the file's scene places, in the file's
+    // coordinates; and per material (parallel to `materials`, or empty) the
+    // texture references the renderer does not apply yet.
+    std::vector<PointLight> lights;
+    std::optional<ModelCamera> camera;
+    std::vector<MaterialTextureRefs> texture_refs;
 };
 
 }  // namespace sombra

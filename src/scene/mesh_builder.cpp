@@ -331,7 +331,10 @@ LoadedMesh MeshBuilder::finish(std::vector<Material> materials, Diagnostics& dia
         }
     }
     if (needs_default) materials.push_back(default_material());
-    return LoadedMesh{std::move(mesh_), std::move(materials)};
+    LoadedMesh out;
+    out.mesh = std::move(mesh_);
+    out.materials = std::move(materials);
+    return out;
 }
 
 }  // namespace sombra

@@ -27,8 +27,10 @@ LoadedMesh load_mesh_file(const std::filesystem::path& path, Diagnostics& diag) 
                    [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
     if (extension == ".obj") return load_obj(path, diag);
     if (extension == ".ply") return load_ply(path, diag);
-    throw Error(where, extension.empty() ? "mesh file has no extension (expected .obj or .ply)"
-                                         : "unsupported mesh file type '" + extension + "' (expected .obj or .ply)");
+    if (extension == ".gltf" || extension == ".glb") return load_gltf(path, diag);
+    throw Error(where, extension.empty() ? "mesh file has no extension (expected .obj, .ply, .gltf or .glb)"
+                                         : "unsupported mesh file type '" + extension +
+                                               "' (expected .obj, .ply, .gltf or .glb)");
 }
 
 namespace {

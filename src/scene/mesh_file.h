@@ -1,4 +1,4 @@
-// Mesh files → LoadedMesh: OBJ (+MTL) and PLY.
+// Mesh files → LoadedMesh: OBJ (+MTL), PLY and glTF 2.0.
 #pragma once
 
 #include <filesystem>
@@ -18,7 +18,13 @@ LoadedMesh load_obj(const std::filesystem::path& path, Diagnostics& diag);
 // Reads an ascii or binary (little/big endian) PLY file (spec §9).
 LoadedMesh load_ply(const std::filesystem::path& path, Diagnostics& diag);
 
-// Dispatches on the extension (.obj or .ply, case-insensitive); throws
+// Reads a glTF 2.0 file, .gltf (JSON, external or embedded buffers) or .glb
+// (spec §13): the default scene's meshes in the file's world space (node
+// transforms applied), its materials as `pbr`, its point lights and first
+// perspective camera. Throws Error(path, ...) for a broken file.
+LoadedMesh load_gltf(const std::filesystem::path& path, Diagnostics& diag);
+
+// Dispatches on the extension (.obj, .ply, .gltf or .glb, case-insensitive); throws
 // Error(path, ...) for any other, for a missing file, or a folder.
 LoadedMesh load_mesh_file(const std::filesystem::path& path, Diagnostics& diag);
 

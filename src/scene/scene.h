@@ -8,6 +8,7 @@
 
 #include "core/vec3.h"
 #include "scene/hdr_image.h"
+#include "scene/light.h"
 #include "scene/material.h"
 #include "scene/mesh.h"
 
@@ -52,11 +53,6 @@ struct CameraLookAt {
 struct CameraSpec {
     std::optional<CameraBasis> basis;
     std::optional<CameraLookAt> look_at;
-};
-
-struct PointLight {
-    Vec3 position;
-    Vec3 intensity;  // radiant intensity, RGB (W/sr)
 };
 
 // An equirectangular environment map (spec §10 "environment"): it replaces

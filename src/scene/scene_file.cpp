@@ -4,6 +4,7 @@
 // into world-space geometry.
 #include "scene/scene_file.h"
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <limits>
@@ -304,6 +305,13 @@ Scene load_scene_text(const std::string& text, const fs::path& path, Diagnostics
         world.uv_indices.reserve(triangles);
     }
     for (std::size_t i = 0; i < specs.size(); ++i) {
+        // Point lights a glTF file places move with its object (§13).
+        for (const PointLight& light : meshes[mesh_of[i]].lights) {
+            const Vec3 position = transform_point(specs[i].transform, light.position);
+            if (!is_finite(position))
+                json_fail(s, json_child(specs[i].pointer, "transform"), "a transformed light position is not finite");
+            scene.lights.push_back({position, light.intensity});
+        }
         append_object(scene, meshes[mesh_of[i]], specs[i], s);
         // Free each file's mesh after its last object: peak memory stays near two copies.
         if (last_use[mesh_of[i]] == i) meshes[mesh_of[i]] = LoadedMesh{};
@@ -351,12 +359,27 @@ Scene make_quicklook_scene(const std::filesystem::path& model, Diagnostics& diag
     scene.objects.push_back(SceneObject{model.filename().string(), model.string(), 0,
                                         static_cast<std::uint32_t>(scene.geometry.triangle_count())});
 
+    // A glTF file's own camera (its first) and point lights replace the
+    // automatic framing and lighting; its aspect ratio sets the image's
+    // height for the default width.
+    if (loaded.camera) {
+        const ModelCamera& c = *loaded.camera;
+        scene.camera.look_at = CameraLookAt{c.origin, c.origin + c.forward, c.up, c.yfov_degrees};
+        if (c.aspect > 0) {
+            const float height = std::round(static_cast<float>(scene.render.width) / c.aspect);
+            scene.render.height = static_cast<int>(std::clamp(height, 1.0f, static_cast<float>(kMaxImageSide)));
+        }
+    }
+    scene.lights = std::move(loaded.lights);
+
     // Far enough that the sphere fits the vertical field of view (the
     // horizontal one is wider for landscape images), with a 10 % margin.
     const float half_fov = kFovDegrees * 0.5f * std::numbers::pi_v<float> / 180.0f;
     const float distance = 1.1f * sphere.radius / std::sin(half_fov);
     const Vec3 view_dir = normalize(Vec3{0.0f, 0.35f, 1.0f});  // front, a little above
-    scene.camera.look_at = CameraLookAt{sphere.centre + distance * view_dir, sphere.centre, Vec3{0, 1, 0}, kFovDegrees};
+    if (!scene.camera.look_at)
+        scene.camera.look_at = CameraLookAt{sphere.centre + distance * view_dir, sphere.centre, Vec3{0, 1, 0}, kFovDegrees};
+    if (!scene.lights.empty()) return scene;
 
     // Three-point lighting around the camera, at a few radii from the model.
     auto light_at = [&](Vec3 direction, float distance_in_radii, float share) {

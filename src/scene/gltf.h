@@ -1,0 +1,115 @@
+// What the glTF 2.0 loader's parts share, private to src/scene (spec §13):
+// parsing with tinygltf behind guards (gltf_file.cpp), reading accessors
+// with every bound checked (gltf_accessors.cpp), decoding Draco-compressed
+// primitives (gltf_draco.cpp), materials and lights (gltf_materials.cpp);
+// gltf_loader.cpp walks the node tree and assembles the LoadedMesh.
+#pragma once
+
+// tinygltf's configuration, the same in every translation unit that sees
+// its classes (their default members depend on it): no stb_image in
+// tinygltf (sombra does not decode glTF images yet; the textures module
+// will do it itself), no external images read.
+#define TINYGLTF_NO_STB_IMAGE
+#define TINYGLTF_NO_STB_IMAGE_WRITE
+#define TINYGLTF_NO_EXTERNAL_IMAGE
+#include <tiny_gltf.h>
+
+#include <cstdint>
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/error.h"
+#include "core/vec2.h"
+#include "core/vec3.h"
+#include "scene/mesh.h"
+#include "scene/texture_refs.h"
+
+namespace sombra::gltf {
+
+// The extensions sombra reads. Any other listed in extensionsRequired is an
+// error; in extensionsUsed, a warning.
+inline constexpr const char* kDraco = "KHR_draco_mesh_compression";
+inline constexpr const char* kQuantization = "KHR_mesh_quantization";
+inline constexpr const char* kLights = "KHR_lights_punctual";
+inline constexpr const char* kIor = "KHR_materials_ior";
+inline constexpr const char* kEmissiveStrength = "KHR_materials_emissive_strength";
+inline constexpr const char* kTextureTransform = "KHR_texture_transform";
+
+// Reads and parses a .gltf or .glb file with tinygltf, after the checks that
+// keep hostile input away from it: the file's size, the GLB header and chunk
+// layout, at most one buffer in the BIN chunk, external files only inside the
+// file's folder and within a byte budget; images are not read. Then checks
+// asset.version and extensionsRequired. Throws Error(path, ...).
+tinygltf::Model parse_file(const std::filesystem::path& path, Diagnostics& diag);
+
+// Thrown for a feature that makes one primitive unusable but not the file
+// (sparse accessors): the loader skips the primitive with one warning.
+struct Unsupported {
+    std::string feature;
+};
+
+// The vertex attributes and indices a primitive needs, by what they mean:
+// which component types and counts each may have (glTF 2.0 §3.7.2.1, with
+// KHR_mesh_quantization's additions when the file uses it).
+enum class Semantic { Position, Normal, Tangent, Texcoord, Color };
+
+struct AccessorReader {
+    const tinygltf::Model& model;
+    std::string file;         // the path, for messages
+    bool quantized = false;   // the file lists KHR_mesh_quantization in extensionsUsed
+};
+
+// Accessor `index` as `components` floats per element (3 for positions and
+// normals, 2 for texture coordinates, 4 for tangents, 4 for colours: RGB
+// colours get alpha 1), normalised integers converted as glTF says. Checks
+// the index, the accessor's type and component type for `semantic`, and that
+// every byte read lies inside its buffer view and buffer, with the alignment
+// glTF requires. Throws Error(file, "accessor N (WHAT): ...") or Unsupported.
+std::vector<float> read_floats(const AccessorReader& r, int index, Semantic semantic, const std::string& what);
+
+// Accessor `index` as vertex indices (SCALAR, unsigned byte, short or int),
+// each checked < vertex_count. Same checks and errors as read_floats.
+std::vector<std::uint32_t> read_indices(const AccessorReader& r, int index, std::size_t vertex_count,
+                                        const std::string& what);
+
+// The element count of accessor `index` (checked to exist), for Draco
+// primitives, whose accessors have no data of their own.
+std::size_t accessor_count(const AccessorReader& r, int index, const std::string& what);
+
+// One triangle primitive in the file's coordinates, read and checked.
+struct PrimitiveData {
+    std::vector<Vec3> positions;
+    std::vector<Vec3> normals;           // empty, or one per position
+    std::vector<Vec2> uvs;               // empty, or one per position; sombra's convention (v = 0 at the bottom)
+    std::vector<std::uint32_t> indices;  // three per triangle, each < positions.size()
+    int material = -1;                   // index into the file's materials; -1: none
+};
+
+// Decodes a KHR_draco_mesh_compression primitive with Draco: the
+// extension's bufferView holds the compressed mesh, its "attributes" object
+// maps POSITION, NORMAL and TEXCOORD_0 to Draco attribute ids. Throws Error.
+PrimitiveData decode_draco(const AccessorReader& r, const tinygltf::Primitive& primitive,
+                           const tinygltf::Value& extension, const std::string& what);
+
+// Every material of the file as sombra's `pbr` (spec §11), in file order,
+// with its texture references; warns once that textures are not applied.
+struct Materials {
+    std::vector<Material> materials;
+    std::vector<MaterialTextureRefs> texture_refs;
+};
+Materials convert_materials(const tinygltf::Model& model, const std::string& file, Diagnostics& diag);
+
+// The KHR_lights_punctual light `index` as a point light's intensity (W/sr,
+// spec §13: colour × intensity / 683), or nothing for spot and directional
+// lights, whose type goes to `skipped_type`. Throws Error for a bad index or
+// non-finite or negative values.
+std::optional<Vec3> point_light_intensity(const tinygltf::Model& model, int index, const std::string& file,
+                                          std::string& skipped_type);
+
+// A JSON number that must be an integer in [lo, hi] (tinygltf's own
+// conversion of a huge double to int is undefined behaviour).
+std::optional<int> value_int(const tinygltf::Value& v, int lo, int hi);
+
+}  // namespace sombra::gltf

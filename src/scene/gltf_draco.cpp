@@ -1,0 +1,113 @@
+// KHR_draco_mesh_compression: the primitive's geometry is one Draco mesh in
+// a buffer view; the extension's "attributes" object maps glTF attribute
+// names to Draco attribute ids. The primitive's own accessors carry no
+// data then (only count, type, and for the decoder's output its meaning).
+#include <draco/compression/decode.h>
+
+#include <cmath>
+
+#include "scene/gltf.h"
+
+namespace sombra::gltf {
+
+namespace {
+
+// The Draco attribute id the extension gives `name`, or nothing.
+std::optional<std::uint32_t> draco_id(const tinygltf::Value& attributes, const char* name) {
+    if (!attributes.IsObject() || !attributes.Has(name)) return std::nullopt;
+    const std::optional<int> id = value_int(attributes.Get(name), 0, std::numeric_limits<int>::max());
+    if (!id) return std::nullopt;
+    return static_cast<std::uint32_t>(*id);
+}
+
+// One float vector per Draco point from attribute `id` (`components` each);
+// empty when the attribute is missing. Throws when it is unusable.
+std::vector<float> read_attribute(const draco::Mesh& mesh, std::optional<std::uint32_t> id, int components,
+                                  const std::string& file, const std::string& what, const char* name) {
+    if (!id) return {};
+    const draco::PointAttribute* att = mesh.GetAttributeByUniqueId(*id);
+    if (!att) throw Error(file, what + ": the Draco mesh has no attribute " + std::to_string(*id) + " for " + name);
+    if (att->num_components() < components)
+        throw Error(file, what + ": Draco attribute " + std::to_string(*id) + " (" + name + ") has " +
+                              std::to_string(att->num_components()) + " components, " + std::to_string(components) +
+                              " needed");
+    const std::size_t points = mesh.num_points();
+    if (!att->is_mapping_identity() && att->indices_map_size() < points)
+        throw Error(file, what + ": Draco attribute " + std::to_string(*id) + " maps fewer points than the mesh has");
+    std::vector<float> out(points * static_cast<std::size_t>(components));
+    for (std::size_t p = 0; p < points; ++p) {
+        const draco::AttributeValueIndex value = att->mapped_index(draco::PointIndex(static_cast<std::uint32_t>(p)));
+        float* dst = out.data() + p * static_cast<std::size_t>(components);
+        if (value.value() >= att->size() || !att->ConvertValue<float>(value, static_cast<std::int8_t>(components), dst))
+            throw Error(file, what + ": Draco attribute " + std::to_string(*id) + " (" + name + ") cannot be read");
+        for (int c = 0; c < components; ++c)
+            if (!std::isfinite(dst[c]))
+                throw Error(file, what + ": Draco attribute " + std::to_string(*id) + " (" + name + ") is not finite");
+    }
+    return out;
+}
+
+}  // namespace
+
+PrimitiveData decode_draco(const AccessorReader& r, const tinygltf::Primitive& primitive,
+                           const tinygltf::Value& extension, const std::string& what) {
+    const tinygltf::Model& model = r.model;
+    if (!extension.IsObject()) throw Error(r.file, what + ": " + kDraco + " is not an object");
+    const std::optional<int> view_index =
+        extension.Has("bufferView") ? value_int(extension.Get("bufferView"), 0, std::numeric_limits<int>::max())
+                                    : std::nullopt;
+    if (!view_index || static_cast<std::size_t>(*view_index) >= model.bufferViews.size())
+        throw Error(r.file, what + ": " + kDraco + " names no existing bufferView");
+    const tinygltf::BufferView& view = model.bufferViews[static_cast<std::size_t>(*view_index)];
+    if (view.buffer < 0 || static_cast<std::size_t>(view.buffer) >= model.buffers.size())
+        throw Error(r.file, what + ": the Draco bufferView names a buffer that does not exist");
+    const std::vector<unsigned char>& buffer = model.buffers[static_cast<std::size_t>(view.buffer)].data;
+    if (view.byteOffset > buffer.size() || view.byteLength > buffer.size() - view.byteOffset)
+        throw Error(r.file, what + ": the Draco bufferView overruns its buffer");
+
+    draco::DecoderBuffer in;
+    in.Init(reinterpret_cast<const char*>(buffer.data() + view.byteOffset), view.byteLength);
+    draco::Decoder decoder;
+    auto decoded = decoder.DecodeMeshFromBuffer(&in);
+    if (!decoded.ok()) throw Error(r.file, what + ": Draco cannot decode the mesh: " + decoded.status().error_msg_string());
+    const std::unique_ptr<draco::Mesh> mesh = std::move(decoded).value();
+    if (!mesh) throw Error(r.file, what + ": Draco cannot decode the mesh");
+
+    const tinygltf::Value& attributes = extension.Has("attributes") ? extension.Get("attributes") : tinygltf::Value();
+    if (!draco_id(attributes, "POSITION"))
+        throw Error(r.file, what + ": " + kDraco + " maps no POSITION attribute");
+    const std::vector<float> positions =
+        read_attribute(*mesh, draco_id(attributes, "POSITION"), 3, r.file, what, "POSITION");
+    const std::vector<float> normals = primitive.attributes.count("NORMAL")
+                                           ? read_attribute(*mesh, draco_id(attributes, "NORMAL"), 3, r.file, what, "NORMAL")
+                                           : std::vector<float>{};
+    const std::vector<float> uvs =
+        primitive.attributes.count("TEXCOORD_0")
+            ? read_attribute(*mesh, draco_id(attributes, "TEXCOORD_0"), 2, r.file, what, "TEXCOORD_0")
+            : std::vector<float>{};
+
+    PrimitiveData out;
+    out.material = primitive.material;
+    const std::size_t points = mesh->num_points();
+    out.positions.resize(points);
+    for (std::size_t i = 0; i < points; ++i) out.positions[i] = {positions[3 * i], positions[3 * i + 1], positions[3 * i + 2]};
+    if (!normals.empty()) {
+        out.normals.resize(points);
+        for (std::size_t i = 0; i < points; ++i) out.normals[i] = {normals[3 * i], normals[3 * i + 1], normals[3 * i + 2]};
+    }
+    if (!uvs.empty()) {
+        out.uvs.resize(points);
+        // glTF's v = 0 is the image's top row, sombra's (and OBJ's) the bottom.
+        for (std::size_t i = 0; i < points; ++i) out.uvs[i] = {uvs[2 * i], 1.0f - uvs[2 * i + 1]};
+    }
+    out.indices.reserve(std::size_t{mesh->num_faces()} * 3);
+    for (draco::FaceIndex f(0); f < mesh->num_faces(); ++f) {
+        for (const draco::PointIndex& p : mesh->face(f)) {
+            if (p.value() >= points) throw Error(r.file, what + ": a Draco face refers to a point that does not exist");
+            out.indices.push_back(p.value());
+        }
+    }
+    return out;
+}
+
+}  // namespace sombra::gltf

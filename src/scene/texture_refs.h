@@ -1,0 +1,55 @@
+// What a glTF material says about its textures (spec §12, §13), kept as plain
+// data for the texture module to apply. The glTF loader fills these; nothing
+// reads them yet: the images are not decoded and the renderer uses each
+// material's constant factors.
+#pragma once
+
+#include <string>
+
+#include "core/vec2.h"
+
+namespace sombra {
+
+// A glTF sampler's wrapS / wrapT.
+enum class TextureWrap { Repeat, ClampToEdge, MirroredRepeat };
+
+// One textureInfo of a glTF material.
+struct TextureRef {
+    int texture = -1;   // index into the file's textures; -1: the slot is empty
+    int image = -1;     // the texture's source image; -1 when it names none
+    std::string uri;    // the image's uri as written (relative to the file's folder); "" when embedded
+    int texcoord = 0;   // which TEXCOORD_n the lookup uses (KHR_texture_transform may override it)
+    TextureWrap wrap_s = TextureWrap::Repeat;
+    TextureWrap wrap_t = TextureWrap::Repeat;
+    // KHR_texture_transform, in glTF's uv convention (v = 0 at the image's top):
+    // uv' = translate(offset) · rotate(rotation) · scale(scale) · uv.
+    Vec2 offset{0, 0};
+    float rotation = 0;  // radians, counter-clockwise in uv
+    Vec2 scale{1, 1};
+    float strength = 1;  // normalTexture.scale, occlusionTexture.strength; 1 otherwise
+
+    bool present() const { return texture >= 0; }
+};
+
+// glTF alphaMode (spec §13: BLEND is treated as MASK with cutoff 0.5).
+enum class AlphaMode { Opaque, Mask, Blend };
+
+// Per material: every texture slot of glTF 2.0's metallic-roughness model and
+// what alpha needs besides the textures.
+struct MaterialTextureRefs {
+    TextureRef base_color;          // RGB times base_color; A is alpha
+    TextureRef metallic_roughness;  // roughness from G, metallic from B
+    TextureRef normal;              // tangent space
+    TextureRef emissive;            // times ke
+    TextureRef occlusion;           // ignored by the spec (§13), kept for completeness
+    AlphaMode alpha_mode = AlphaMode::Opaque;
+    float alpha_cutoff = 0.5f;      // MASK: cut out where alpha < cutoff
+    float base_alpha = 1.0f;        // baseColorFactor's A
+
+    bool any() const {
+        return base_color.present() || metallic_roughness.present() || normal.present() || emissive.present() ||
+               occlusion.present();
+    }
+};
+
+}  // namespace sombra
