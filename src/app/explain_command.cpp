@@ -46,7 +46,7 @@ void check_pixel(const CliOptions& o, const RenderSettings& s) {
 int run_explain(const CliOptions& o) {
     RenderProgress progress;
     InterruptWatcher interrupt(progress);  // first: before any other thread starts
-    try {
+    return reporting_errors(o, [&] {
         if (!o.svg.empty()) check_svg_path(o.svg);
         Diagnostics diag;
         const Scene scene = load_input(o.input, diag);
@@ -94,16 +94,7 @@ int run_explain(const CliOptions& o) {
         }
         std::cout << story << std::flush;
         return 0;
-    } catch (const Error& e) {
-        std::cerr << "sombra: error: " << one_line(e.where() + ": " + e.message()) << '\n';
-        return 1;
-    } catch (const std::bad_alloc&) {
-        std::cerr << "sombra: error: " << one_line(o.input) << ": out of memory\n";
-        return 1;
-    } catch (const std::exception& e) {
-        std::cerr << "sombra: error: " << one_line(o.input) << ": internal error: " << one_line(e.what()) << '\n';
-        return 1;
-    }
+    });
 }
 
 }  // namespace sombra

@@ -3,9 +3,12 @@
 #pragma once
 
 #include <filesystem>
+#include <iostream>
+#include <new>
 #include <string>
 
 #include "app/cli.h"
+#include "core/error.h"
 #include "render/lights.h"
 #include "scene/scene.h"
 #include "scene/scene_file.h"
@@ -30,5 +33,22 @@ LightSelection light_selection(const CliOptions& options);
 // Prints the loader's warnings, and the one about the direct integrator
 // meeting version-2 content (spec §10), to stderr.
 void print_warnings(const Diagnostics& diag, const Scene& scene, const RenderSettings& settings, const CliOptions& options);
+
+// Runs `body` (returning the exit status) and turns what it throws into the
+// one line of spec §1, "sombra: error: WHERE: WHAT", and exit status 1.
+template <class Body>
+int reporting_errors(const CliOptions& o, Body&& body) {
+    try {
+        return body();
+    } catch (const Error& e) {
+        std::cerr << "sombra: error: " << one_line(e.where() + ": " + e.message()) << '\n';
+    } catch (const std::bad_alloc&) {
+        std::cerr << "sombra: error: " << one_line(o.input) << ": out of memory\n";
+    } catch (const std::exception& e) {
+        // A bug, not the input's fault; still one line and no image.
+        std::cerr << "sombra: error: " << one_line(o.input) << ": internal error: " << one_line(e.what()) << '\n';
+    }
+    return 1;
+}
 
 }  // namespace sombra

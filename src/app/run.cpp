@@ -42,7 +42,7 @@ int run_render(const CliOptions& o) {
     const auto start = Clock::now();
     RenderProgress progress;
     InterruptWatcher interrupt(progress);  // first: before any other thread starts
-    try {
+    return reporting_errors(o, [&] {
         const std::filesystem::path output = o.output;
         // Fail before a long render, not after it.
         check_output_path(output);
@@ -104,17 +104,7 @@ int run_render(const CliOptions& o) {
         if (!o.stats_json.empty()) write_stats_json(o.stats_json, stats);
         if (!o.quiet) std::cerr << summary_line(stats, o.output) << '\n';
         return 0;
-    } catch (const Error& e) {
-        std::cerr << "sombra: error: " << one_line(e.where() + ": " + e.message()) << '\n';
-        return 1;
-    } catch (const std::bad_alloc&) {
-        std::cerr << "sombra: error: " << one_line(o.input) << ": out of memory\n";
-        return 1;
-    } catch (const std::exception& e) {
-        // A bug, not the input's fault; still one line and no image.
-        std::cerr << "sombra: error: " << one_line(o.input) << ": internal error: " << one_line(e.what()) << '\n';
-        return 1;
-    }
+    });
 }
 
 int run_sombra(int argc, const char* const* argv) {

@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <sstream>
 
+#include "core/base64.h"
 #include "explain/describe.h"
 #include "explain/explain.h"
 #include "explain/outline.h"
@@ -43,23 +44,6 @@ std::string escape_xml(const std::string& text) {
             case '"': out += "&quot;"; break;
             default: out += c;
         }
-    }
-    return out;
-}
-
-std::string base64(const std::vector<std::uint8_t>& bytes) {
-    static const char* const digits = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-    std::string out;
-    out.reserve((bytes.size() + 2) / 3 * 4);
-    for (std::size_t i = 0; i < bytes.size(); i += 3) {
-        const std::uint32_t b0 = bytes[i];
-        const std::uint32_t b1 = i + 1 < bytes.size() ? bytes[i + 1] : 0;
-        const std::uint32_t b2 = i + 2 < bytes.size() ? bytes[i + 2] : 0;
-        const std::uint32_t v = (b0 << 16) | (b1 << 8) | b2;
-        out += digits[(v >> 18) & 63];
-        out += digits[(v >> 12) & 63];
-        out += i + 1 < bytes.size() ? digits[(v >> 6) & 63] : '=';
-        out += i + 2 < bytes.size() ? digits[v & 63] : '=';
     }
     return out;
 }
@@ -292,9 +276,10 @@ private:
     }
 
     void rendered_image(ImageView image, float exposure, float left, float w, float h) {
+        const std::vector<std::uint8_t> png = encode_png_bytes(image, exposure);
         svg_ << "<image x=\"" << num(left) << "\" y=\"0\" width=\"" << num(w) << "\" height=\"" << num(h)
              << "\" preserveAspectRatio=\"none\" style=\"image-rendering:pixelated\" href=\"data:image/png;base64,"
-             << base64(encode_png_bytes(image, exposure)) << "\"/>\n";
+             << base64_encode(std::string_view(reinterpret_cast<const char*>(png.data()), png.size())) << "\"/>\n";
         const float s = w / static_cast<float>(image.width);
         const float px = left + s * static_cast<float>(r_.pixel_x), py = s * static_cast<float>(r_.pixel_y);
         const float size = std::max(s, 1.0f);

@@ -124,13 +124,23 @@ Scene blocked_scene() {
     return scene;
 }
 
+// The blocked scene's one pixel, traced with the recorder.
+struct BlockedStory {
+    Scene scene = blocked_scene();
+    Accel accel = make_accel(scene.geometry, AccelKind::Bvh);
+    RenderJob job = make_render_job(scene, accel, scene.render, 1);
+    SampleRecord record;
+    BlockedStory() {
+        RayCounters counters;
+        trace_pixel_sample(job, 0, 0, 0, counters, record);
+    }
+};
+
 TEST(ExplainRecord, NamesTheBlockerTheLightBehindAndEachFactorOfTheVisibleLight) {
-    const Scene scene = blocked_scene();
-    const Accel accel = make_accel(scene.geometry, AccelKind::Bvh);
-    const RenderJob job = make_render_job(scene, accel, scene.render, 1);
-    SampleRecord r;
-    RayCounters counters;
-    trace_pixel_sample(job, 0, 0, 0, counters, r);
+    const BlockedStory story;
+    const Scene& scene = story.scene;
+    const RenderJob& job = story.job;
+    const SampleRecord& r = story.record;
 
     ASSERT_EQ(r.vertices.size(), 1u);
     const VertexRecord& v = r.vertices[0];
@@ -181,14 +191,10 @@ TEST(ExplainRecord, NamesTheBlockerTheLightBehindAndEachFactorOfTheVisibleLight)
 }
 
 TEST(ExplainRecord, SvgShowsTheBlockedShadowRayInRedAndEmbedsTheImage) {
-    const Scene scene = blocked_scene();
-    const Accel accel = make_accel(scene.geometry, AccelKind::Bvh);
-    const RenderJob job = make_render_job(scene, accel, scene.render, 1);
-    SampleRecord r;
-    RayCounters counters;
-    trace_pixel_sample(job, 0, 0, 0, counters, r);
+    const BlockedStory story;
     const float pixel[3] = {0.1f, 0.2f, 0.3f};
-    const std::string svg = explain_svg(ExplainContext{scene, job, "test.json"}, r, ImageView{1, 1, pixel}, 0.0f);
+    const std::string svg =
+        explain_svg(ExplainContext{story.scene, story.job, "test.json"}, story.record, ImageView{1, 1, pixel}, 0.0f);
     EXPECT_EQ(svg.rfind("<svg", 0), 0u);
     EXPECT_NE(svg.find("</svg>"), std::string::npos);
     EXPECT_NE(svg.find("blocked by blocker.obj triangle"), std::string::npos);

@@ -12,27 +12,13 @@
 #include <vector>
 
 #include "core/vec2.h"
+#include "core/base64.h"
 #include "core/vec3.h"
 
 namespace sombra::gltf_test {
 
 inline constexpr int kByte = 5120, kUnsignedByte = 5121, kShort = 5122, kUnsignedShort = 5123, kUnsignedInt = 5125,
                      kFloat = 5126;
-
-inline std::string base64(const std::string& bytes) {
-    static const char* digits = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-    std::string out;
-    for (std::size_t i = 0; i < bytes.size(); i += 3) {
-        std::uint32_t n = std::uint32_t(std::uint8_t(bytes[i])) << 16;
-        if (i + 1 < bytes.size()) n |= std::uint32_t(std::uint8_t(bytes[i + 1])) << 8;
-        if (i + 2 < bytes.size()) n |= std::uint8_t(bytes[i + 2]);
-        out += digits[(n >> 18) & 63];
-        out += digits[(n >> 12) & 63];
-        out += i + 1 < bytes.size() ? digits[(n >> 6) & 63] : '=';
-        out += i + 2 < bytes.size() ? digits[n & 63] : '=';
-    }
-    return out;
-}
 
 struct GltfFile {
     nlohmann::json doc = {{"asset", {{"version", "2.0"}}}};
@@ -91,7 +77,7 @@ struct GltfFile {
     std::string gltf() const {
         nlohmann::json d = doc;
         if (!bin.empty() && !d.contains("buffers"))  // a test may have written its own
-            d["buffers"] = {{{"byteLength", bin.size()}, {"uri", "data:application/octet-stream;base64," + base64(bin)}}};
+            d["buffers"] = {{{"byteLength", bin.size()}, {"uri", "data:application/octet-stream;base64," + base64_encode(bin)}}};
         return d.dump();
     }
     std::string glb() const {
