@@ -126,6 +126,7 @@ private:
         j["bsdf_pdf"] = number(l.bsdf_pdf);
         j["mis_weight"] = number(l.mis_weight);
         j["cos_s"] = number(l.cos_s);
+        if (!l.environment) j["cos_light"] = number(l.cos_light);
         j["f_r"] = f_terms(l.f_diffuse, l.f_lobe, l.f);
         if (l.outcome == LightOutcome::Blocked) j["blocker"] = blocker(l.blocker);
         j["contribution"] = vec(l.contribution);

@@ -151,7 +151,9 @@ private:
         }
         out_ << "  sampled light: " << (l.environment ? std::string("the environment") : where(l.triangle)) << "\n";
         out_ << "    ω_i = " << readable(l.wi);
-        if (!l.environment) out_ << ", point " << readable(l.target) << ", distance " << readable(l.distance);
+        if (!l.environment)
+            out_ << ", point " << readable(l.target) << ", distance " << readable(l.distance) << ", |n_light·ω_i| = "
+                 << readable(l.cos_light);
         out_ << "\n    L_e = " << readable(l.radiance) << ", light pdf = " << readable(l.light_pdf)
              << " /sr, BSDF pdf = " << readable(l.bsdf_pdf) << " /sr\n";
         if (l.outcome == LightOutcome::Behind) {

@@ -69,6 +69,7 @@ struct SampledLightRecord {
     float bsdf_pdf = 0;              // the BSDF's density for the same direction
     float mis_weight = 0;            // power heuristic (1 when only lights are sampled)
     float cos_s = 0;                 // |n_s·ω_i|
+    float cos_light = 0;             // |n_light·ω_i| at the sampled point of an emitting triangle (0 for the environment)
     Vec3 f_diffuse, f_lobe, f;       // f_r split and whole
     LightOutcome outcome = LightOutcome::Visible;  // Behind (f_r = 0, no shadow ray), Blocked, or Visible
     BlockerRecord blocker;

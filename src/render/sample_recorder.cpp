@@ -93,6 +93,12 @@ void SampleRecorder::sampled_light(const LightSample* ls, const ShadingView& vie
         r.radiance = ls->radiance;
         r.light_pdf = ls->pdf;
         r.cos_s = std::fabs(dot(view.si.n_s, ls->wi));
+        if (!ls->at_infinity && ls->triangle < scene_.geometry.triangles.size()) {
+            const Index3& tri = scene_.geometry.triangles[ls->triangle];
+            const Vec3 p0 = scene_.geometry.positions[tri[0]];
+            const Vec3 n_light = normalize(cross(scene_.geometry.positions[tri[1]] - p0, scene_.geometry.positions[tri[2]] - p0));
+            r.cos_light = std::fabs(dot(n_light, ls->wi));
+        }
         const BsdfTerms terms = eval_bsdf_terms(view.material, view.bsdf_point, view.wo, ls->wi);
         r.f_diffuse = terms.diffuse;
         r.f_lobe = terms.lobe;
