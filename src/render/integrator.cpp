@@ -5,6 +5,7 @@
 #include "render/bsdf.h"
 #include "render/interaction.h"
 #include "render/point_lights.h"
+#include "render/shading.h"
 
 namespace sombra {
 
@@ -39,8 +40,9 @@ Vec3 trace_direct(const IntegratorContext& ctx, const Ray& ray, RayCounters& cou
     // A miss sees the background or the environment map (only seen, spec §10).
     if (!intersect(*ctx.accel, ray, hit)) return eval_environment(ctx.lights->environment, normalize(ray.dir));
 
-    const SurfaceInteraction si = make_surface_interaction(scene.geometry, ray, hit);
-    const Material& material = scene.materials[si.material];
+    SurfaceInteraction si = make_surface_interaction(scene.geometry, ray, hit);
+    Material textured;
+    const Material& material = resolve_material(scene, si, textured);
     const Vec3 wo = -normalize(ray.dir);
 
     // Emission is seen only directly (spec §4, §9).

@@ -50,9 +50,11 @@ struct TriangleMesh {
 // A mesh file as read from disk: geometry in the file's own coordinates and
 // the materials its faces refer to. Loaders always leave at least one
 // material when there are triangles (the default one for faces without).
+// Materials' TextureRefs index `textures`, the file's own table.
 struct LoadedMesh {
     TriangleMesh mesh;
     std::vector<Material> materials;
+    std::vector<Texture> textures{};
 };
 
 }  // namespace sombra

@@ -10,6 +10,7 @@
 #include "scene/hdr_image.h"
 #include "scene/material.h"
 #include "scene/mesh.h"
+#include "scene/texture.h"
 
 namespace sombra {
 
@@ -75,6 +76,7 @@ struct Scene {
     std::optional<EnvironmentMap> environment;  // when set, replaces `background`
     CameraSpec camera;
     std::vector<Material> materials;
+    std::vector<Texture> textures;  // the materials' TextureRefs index this table (spec §12)
     std::vector<PointLight> lights;
     TriangleMesh geometry;  // all objects, world space; material_ids index materials
 };
