@@ -63,9 +63,14 @@ Rgba texel(const Texture& t, int x, int y) {
 
 }  // namespace
 
-float srgb_to_linear(float c) {
-    const double v = c;
-    return static_cast<float>(v <= 0.04045 ? v / 12.92 : std::pow((v + 0.055) / 1.055, 2.4));
+namespace {
+double srgb_eotf(double c) { return c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4); }
+}  // namespace
+
+float srgb_to_linear(float c) { return static_cast<float>(srgb_eotf(c)); }
+
+float srgb_decode(unsigned code, unsigned max_code) {
+    return static_cast<float>(srgb_eotf(static_cast<double>(code) / static_cast<double>(max_code)));
 }
 
 Rgba eval_texture(const Texture& t, Vec2 uv, TextureWrap wrap_u, TextureWrap wrap_v) {

@@ -74,6 +74,9 @@ Texture decode_texture(std::span<const unsigned char> bytes, TextureEncoding enc
 // sRGB's electro-optical transfer function, exactly as IEC 61966-2-1 writes
 // it: c/12.92 up to 0.04045, else ((c + 0.055)/1.055)^2.4; c in [0, 1].
 float srgb_to_linear(float c);
+// The same for an integer code of an image with values 0 … max_code (255 or
+// 65535): the formula evaluated in double at code / max_code, then rounded.
+float srgb_decode(unsigned code, unsigned max_code);
 
 // A texture's RGBA at a point: grey images give r = g = b; images without
 // alpha give a = 1.

@@ -142,10 +142,9 @@ Texture decode_stb(std::span<const unsigned char> bytes, Format format, const ch
     if (sixteen) {
         const auto* v = static_cast<const std::uint16_t*>(pixels);
         for (std::size_t i = 0; i < count; ++i) {
-            const float x = static_cast<float>(v[i]) / 65535.0f;
             t.texels[i] = is_colour_channel(encoding, static_cast<int>(i % static_cast<std::size_t>(channels)), channels)
-                              ? srgb_to_linear(x)
-                              : x;
+                              ? srgb_decode(v[i], 65535)
+                              : static_cast<float>(v[i]) / 65535.0f;
         }
         return t;
     }
@@ -153,7 +152,7 @@ Texture decode_stb(std::span<const unsigned char> bytes, Format format, const ch
     std::array<float, 256> data{}, colour{};
     for (int c = 0; c < 256; ++c) {
         data[c] = static_cast<float>(c) / 255.0f;
-        colour[c] = srgb_to_linear(static_cast<float>(c) / 255.0f);
+        colour[c] = srgb_decode(static_cast<unsigned>(c), 255);
     }
     const auto* v = static_cast<const unsigned char*>(pixels);
     for (std::size_t i = 0; i < count; ++i) {
