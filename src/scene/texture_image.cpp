@@ -17,6 +17,7 @@
 #include "scene/hdr_image.h"
 #include "scene/scene.h"
 #include "scene/texture.h"
+#include "scene/texture_image.h"
 
 namespace sombra {
 
@@ -103,11 +104,15 @@ bool is_colour_channel(TextureEncoding encoding, int channel, int channels) {
 // A one-line reason from stb ("Corrupt PNG", "bad huffman code"...).
 std::string stb_reason() {
     const char* reason = stbi_failure_reason();
-    return reason ? reason : "unknown reason";
+    if (!reason) return "unknown reason";
+    if (std::string_view(reason) == "outofdata") return "the data ends too early (truncated?)";
+    return reason;
 }
 
 Texture decode_stb(std::span<const unsigned char> bytes, Format format, const char* format_name,
                    TextureEncoding encoding, const std::string& where) {
+    if (format == Format::Jpeg)
+        if (const std::string problem = jpeg_huffman_problem(bytes); !problem.empty()) throw Error(where, problem);
     MemorySource source{bytes};
     int width = 0, height = 0, channels = 0;
     if (!stbi_info_from_callbacks(&kCallbacks, &source, &width, &height, &channels))
