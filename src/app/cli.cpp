@@ -27,6 +27,35 @@ std::string one_line(std::string text) {
     return text;
 }
 
+// The options of §1 that decide what is rendered; `render` and `explain` share them.
+void add_render_options(CLI::App& command, CliOptions& o) {
+    command.add_option("--width", o.width, "Image width in pixels (overrides the scene)");
+    command.add_option("--height", o.height, "Image height in pixels (overrides the scene)");
+    command.add_option("--spp", o.spp, "Samples per pixel (overrides the scene)");
+    command.add_option("--seed", o.seed, "Random seed, a non-negative integer (overrides the scene)")
+        ->check(CLI::NonNegativeNumber);
+    command.add_option("--threads", o.threads, "Worker threads; 0 = all hardware threads")
+        ->check(CLI::Range(0, kMaxThreads))
+        ->capture_default_str();
+    command.add_option("--exposure", o.exposure, "Multiply radiance by 2^E before PNG encoding")
+        ->check(CLI::Number)
+        ->capture_default_str();
+    command.add_option("--accel", o.accel, "Acceleration structure: " + accel_list())
+        ->check([](const std::string& name) {
+            return parse_accel_kind(name) ? std::string{} : "unknown accelerator '" + name + "' (available: " + accel_list() + ")";
+        })
+        ->capture_default_str();
+    command.add_option("--integrator", o.integrator, "direct (point lights, spec §4) or path (path tracing; overrides the scene)")
+        ->check(CLI::IsMember({"direct", "path"}));
+    command.add_option("--max-depth", o.max_depth, "Most scattering events on a path, 0 to 1024 (path; overrides the scene)")
+        ->check(CLI::Range(0, kMaxDepth));
+    command.add_option("--light-tree", o.light_tree,
+                       "Choose emitters by a light tree: auto (from 8 emitters on), on, or off (in proportion to power)")
+        ->check(CLI::IsMember({"auto", "on", "off"}))
+        ->capture_default_str();
+    command.add_flag("-q,--quiet", o.quiet, "No progress bar, no summary");
+}
+
 }  // namespace
 
 CliParse parse_command_line(int argc, const char* const* argv) {
@@ -39,32 +68,18 @@ CliParse parse_command_line(int argc, const char* const* argv) {
     render->add_option("input", o.input, "Scene file (.json) or model (.obj, .ply)")->required();
     render->add_option("-o,--output", o.output, "Image to write: .png (8-bit sRGB), .pfm or .exr (linear)")
         ->capture_default_str();
-    render->add_option("--width", o.width, "Image width in pixels (overrides the scene)");
-    render->add_option("--height", o.height, "Image height in pixels (overrides the scene)");
-    render->add_option("--spp", o.spp, "Samples per pixel (overrides the scene)");
-    render->add_option("--seed", o.seed, "Random seed, a non-negative integer (overrides the scene)")
-        ->check(CLI::NonNegativeNumber);
-    render->add_option("--threads", o.threads, "Worker threads; 0 = all hardware threads")
-        ->check(CLI::Range(0, kMaxThreads))
-        ->capture_default_str();
-    render->add_option("--exposure", o.exposure, "Multiply radiance by 2^E before PNG encoding")
-        ->check(CLI::Number)
-        ->capture_default_str();
-    render->add_option("--accel", o.accel, "Acceleration structure: " + accel_list())
-        ->check([](const std::string& name) {
-            return parse_accel_kind(name) ? std::string{} : "unknown accelerator '" + name + "' (available: " + accel_list() + ")";
-        })
-        ->capture_default_str();
-    render->add_option("--integrator", o.integrator, "direct (point lights, spec §4) or path (path tracing; overrides the scene)")
-        ->check(CLI::IsMember({"direct", "path"}));
-    render->add_option("--max-depth", o.max_depth, "Most scattering events on a path, 0 to 1024 (path; overrides the scene)")
-        ->check(CLI::Range(0, kMaxDepth));
-    render->add_option("--light-tree", o.light_tree,
-                       "Choose emitters by a light tree: auto (from 8 emitters on), on, or off (in proportion to power)")
-        ->check(CLI::IsMember({"auto", "on", "off"}))
-        ->capture_default_str();
+    add_render_options(*render, o);
     render->add_option("--stats-json", o.stats_json, "Write the run's statistics as JSON to FILE");
-    render->add_flag("-q,--quiet", o.quiet, "No progress bar, no summary");
+
+    CLI::App* explain = app.add_subcommand(
+        "explain", "Tell the story of one pixel: every term of the rendering equation behind its value");
+    explain->add_option("input", o.input, "Scene file (.json) or model (.obj, .ply)")->required();
+    explain->add_option("x", o.pixel_x, "Pixel column, 0 at the left")->required();
+    explain->add_option("y", o.pixel_y, "Pixel row, 0 at the top")->required();
+    explain->add_option("--sample", o.sample, "Which of the pixel's samples, 0 to spp - 1")->capture_default_str();
+    explain->add_flag("--json", o.json, "Print the story as one JSON object");
+    explain->add_option("--svg", o.svg, "Also draw the story (the path in the scene, beside the render) into FILE");
+    add_render_options(*explain, o);
 
     try {
         app.parse(argc, argv);
@@ -78,9 +93,12 @@ CliParse parse_command_line(int argc, const char* const* argv) {
         std::cout << e.what() << '\n';
         return {std::nullopt, 0};
     } catch (const CLI::ParseError& e) {
-        std::cerr << "sombra: error: command line: " << one_line(e.what()) << " (see 'sombra render --help')\n";
+        const bool explaining = argc > 1 && std::string_view(argv[1]) == "explain";
+        std::cerr << "sombra: error: command line: " << one_line(e.what()) << " (see 'sombra "
+                  << (explaining ? "explain" : "render") << " --help')\n";
         return {std::nullopt, 2};
     }
+    o.command = app.got_subcommand(explain) ? Command::Explain : Command::Render;
     return {o, 0};
 }
 

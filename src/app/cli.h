@@ -7,7 +7,14 @@
 
 namespace sombra {
 
+// Which subcommand runs.
+enum class Command {
+    Render,   // sombra render: the image
+    Explain,  // sombra explain: the story of one pixel's sample (spec §14)
+};
+
 struct CliOptions {
+    Command command = Command::Render;
     std::string input;                 // scene .json, or a model .obj/.ply for the quick look
     std::string output = "render.png";
     std::optional<int> width, height, spp;
@@ -20,6 +27,12 @@ struct CliOptions {
     std::string light_tree = "auto";        // "auto", "on" or "off": how path chooses among emitters
     std::string stats_json;            // empty = none
     bool quiet = false;
+
+    // sombra explain SCENE X Y [--sample K] [--json] [--svg FILE]
+    int pixel_x = 0, pixel_y = 0;  // column, row (spec §3); checked against the image size after loading
+    int sample = 0;                // which of the pixel's samples; checked against spp after loading
+    bool json = false;             // print JSON instead of text
+    std::string svg;               // empty = no picture
 };
 
 // What parsing decided: run a render, or exit now with `exit_code` after

@@ -12,11 +12,13 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <string>
 #include <thread>
+#include <vector>
 
 namespace sombra::cli_test {
 
@@ -61,6 +63,27 @@ inline std::string shell_quote(const std::string& text) {
     std::string quoted = "'";
     for (char c : text) quoted += c == '\'' ? std::string("'\\''") : std::string(1, c);
     return quoted + "'";
+}
+
+struct Pfm {
+    int width = 0, height = 0;
+    std::vector<float> rgb;
+};
+
+// Reads the little-endian PFM sombra writes ("PF\nW H\n-1.0\n" + floats, rows
+// bottom to top); empty when the file is not one.
+inline Pfm read_pfm(const fs::path& path) {
+    const std::string bytes = read_text(path);
+    Pfm image;
+    std::istringstream header(bytes);
+    std::string magic, scale;
+    header >> magic >> image.width >> image.height >> scale;
+    const std::size_t floats = std::size_t(std::max(image.width, 0)) * std::size_t(std::max(image.height, 0)) * 3;
+    const std::size_t data = static_cast<std::size_t>(header.tellg()) + 1;
+    if (magic != "PF" || bytes.size() != data + floats * 4) return {};
+    image.rgb.resize(floats);
+    std::memcpy(image.rgb.data(), bytes.data() + data, floats * 4);
+    return image;
 }
 
 class CliFixture : public ::testing::Test {

@@ -21,26 +21,6 @@ constexpr long kSmallMemoryKib = 1L << 20;
 // The square's four corners, for OBJ files that add to it.
 const std::string kSquareVertices = "v -1 -1 0\nv 1 -1 0\nv 1 1 0\nv -1 1 0\n";
 
-struct Pfm {
-    int width = 0, height = 0;
-    std::vector<float> rgb;
-};
-
-// Reads the little-endian PFM sombra writes ("PF\nW H\n-1.0\n" + floats).
-Pfm read_pfm(const fs::path& path) {
-    const std::string bytes = read_text(path);
-    Pfm image;
-    std::istringstream header(bytes);
-    std::string magic, scale;
-    header >> magic >> image.width >> image.height >> scale;
-    const std::size_t floats = std::size_t(std::max(image.width, 0)) * std::size_t(std::max(image.height, 0)) * 3;
-    const std::size_t data = static_cast<std::size_t>(header.tellg()) + 1;
-    if (magic != "PF" || bytes.size() != data + floats * 4) return {};
-    image.rgb.resize(floats);
-    std::memcpy(image.rgb.data(), bytes.data() + data, floats * 4);
-    return image;
-}
-
 class Hostile : public CliFixture {
 protected:
     // The fixture's scene with `mesh` in place of the square.

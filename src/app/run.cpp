@@ -9,6 +9,7 @@
 
 #include "accel/accel.h"
 #include "app/interrupt.h"
+#include "app/prepare.h"
 #include "app/progress.h"
 #include "app/stats.h"
 #include "core/error.h"
@@ -25,44 +26,6 @@ using Clock = std::chrono::steady_clock;
 
 double seconds_since(Clock::time_point start) {
     return std::chrono::duration<double>(Clock::now() - start).count();
-}
-
-std::string lower_extension(const std::filesystem::path& path) {
-    std::string ext = path.extension().string();
-    for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-    return ext;
-}
-
-// Each message stays one line whatever the paths in it hold: control
-// characters (a newline or NUL in a file name) are shown as '?'.
-std::string one_line(std::string text) {
-    for (char& c : text)
-        if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) c = '?';
-    return text;
-}
-
-Scene load_input(const std::filesystem::path& input, Diagnostics& diag) {
-    const std::string ext = lower_extension(input);
-    if (ext == ".json") return load_scene_file(input, diag);
-    if (ext == ".obj" || ext == ".ply") return make_quicklook_scene(input, diag);
-    throw Error(input.string(), "unknown input type '" + ext + "' (expected a scene .json, or a model .obj or .ply)");
-}
-
-// Applies the command line's overrides to the scene's render settings,
-// checking each against the same limits as the scene file's values (which
-// the loader already checked, so a problem names the option that caused it).
-RenderSettings resolve_settings(const RenderSettings& scene_settings, const CliOptions& o) {
-    RenderSettings s = scene_settings;
-    auto check = [&s](const char* option) {
-        if (const std::string problem = render_settings_problem(s); !problem.empty()) throw Error(option, problem);
-    };
-    if (o.width) { s.width = *o.width; check("--width"); }
-    if (o.height) { s.height = *o.height; check("--height"); }
-    if (o.spp) { s.spp = *o.spp; check("--spp"); }
-    if (o.seed) s.seed = *o.seed;
-    if (o.integrator) s.integrator = *o.integrator == "path" ? IntegratorKind::Path : IntegratorKind::Direct;
-    if (o.max_depth) { s.max_depth = *o.max_depth; check("--max-depth"); }
-    return s;
 }
 
 // The statistics file's folder must exist: found out before the render, not after.
@@ -90,24 +53,15 @@ int run_render(const CliOptions& o) {
         const auto load_start = Clock::now();
         Scene scene = load_input(o.input, diag);
         stats.load_seconds = seconds_since(load_start);
-        for (const std::string& w : diag.warnings) std::cerr << "sombra: warning: " << one_line(w) << '\n';
-
         const RenderSettings settings = resolve_settings(scene.render, o);
-        // After the overrides: --integrator path silences it, --integrator direct may cause it.
-        if (settings.integrator == IntegratorKind::Direct && needs_path_integrator(scene))
-            std::cerr << "sombra: warning: " << one_line(o.input)
-                      << ": the direct integrator lights with point lights only: quad lights and the environment "
-                         "are only seen, mirror and glass reflect nothing from point lights; use --integrator path\n";
+        print_warnings(diag, scene, settings, o);
         const AccelKind kind = *parse_accel_kind(o.accel);  // the command line checked the name
 
         const auto build_start = Clock::now();
         const Accel accel = make_accel(scene.geometry, kind);
         stats.build_seconds = seconds_since(build_start);
 
-        const LightSelection selection = o.light_tree == "on"    ? LightSelection::Tree
-                                         : o.light_tree == "off" ? LightSelection::Power
-                                                                 : LightSelection::Automatic;
-        const RenderJob job = make_render_job(scene, accel, settings, o.threads, selection);
+        const RenderJob job = make_render_job(scene, accel, settings, o.threads, light_selection(o));
 
         interrupt.set_phase(InterruptWatcher::Phase::Rendering);
         const auto render_start = Clock::now();
@@ -166,6 +120,7 @@ int run_render(const CliOptions& o) {
 int run_sombra(int argc, const char* const* argv) {
     const CliParse parsed = parse_command_line(argc, argv);
     if (!parsed.options) return parsed.exit_code;
+    if (parsed.options->command == Command::Explain) return run_explain(*parsed.options);
     return run_render(*parsed.options);
 }
 

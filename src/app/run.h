@@ -1,5 +1,5 @@
-// The whole run of `sombra render`: scene file → loaded scene → acceleration
-// structure → integrator → film → image file.
+// The whole run of `sombra render` (scene file → loaded scene → acceleration
+// structure → integrator → film → image file) and of `sombra explain`.
 #pragma once
 
 #include "app/cli.h"
@@ -11,6 +11,12 @@ namespace sombra {
 // "sombra: error: WHERE: WHAT" to stderr). Warnings go to stderr as
 // "sombra: warning: WHERE: WHAT".
 int run_render(const CliOptions& options);
+
+// Runs `sombra explain` (spec §14): prints the story of one sample of one
+// pixel (text, or JSON with --json) to stdout and, with --svg, draws it.
+// Exit status as run_render: 1 for a wrong input or a pixel or sample
+// outside the image.
+int run_explain(const CliOptions& options);
 
 // Parses the command line and runs it: what main() does.
 int run_sombra(int argc, const char* const* argv);

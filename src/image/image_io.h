@@ -4,7 +4,9 @@
 // run never leaves a partial file or spoils an existing one.
 #pragma once
 
+#include <cstdint>
 #include <filesystem>
+#include <vector>
 
 namespace sombra {
 
@@ -31,5 +33,9 @@ void check_output_path(const std::filesystem::path& path);
 // Pixels with a non-finite channel are written as black in every format.
 // Throws Error(path, ...) on failure, leaving any earlier file at `path` untouched.
 void write_image(const std::filesystem::path& path, ImageView image, float exposure);
+
+// The bytes of the PNG file write_image would write for `image` (for
+// embedding, e.g. in `sombra explain`'s SVG). Throws Error("png", ...) on failure.
+std::vector<std::uint8_t> encode_png_bytes(ImageView image, float exposure);
 
 }  // namespace sombra

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <csetjmp>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <string>
 #include <utility>
@@ -74,24 +75,37 @@ bool encode_png(std::FILE* out, png_uint_32 width, png_uint_32 height, png_bytep
 
 }  // namespace
 
-void write_png(const std::filesystem::path& file, ImageView image, float exposure) {
-    const auto width = static_cast<std::size_t>(image.width);
-    const auto height = static_cast<std::size_t>(image.height);
-    const float scale = std::exp2(exposure);
+namespace {
 
-    std::vector<png_byte> bytes(width * height * 3);
-    for (std::size_t pixel = 0; pixel < width * height; ++pixel) {
+// 8-bit sRGB RGB bytes of the image, row-major, top row first.
+std::vector<png_byte> srgb_bytes(ImageView image, float exposure) {
+    const auto pixels = static_cast<std::size_t>(image.width) * static_cast<std::size_t>(image.height);
+    const float scale = std::exp2(exposure);
+    std::vector<png_byte> bytes(pixels * 3);
+    for (std::size_t pixel = 0; pixel < pixels; ++pixel) {
         if (!pixel_is_finite(image.rgb, pixel)) continue;  // stays black
         for (std::size_t c = 0; c < 3; ++c)
             bytes[3 * pixel + c] = encode_srgb8(image.rgb[3 * pixel + c] * scale);
     }
-    std::vector<png_bytep> rows(height);
-    for (std::size_t j = 0; j < height; ++j) rows[j] = bytes.data() + j * width * 3;
+    return bytes;
+}
+
+std::vector<png_bytep> row_pointers(std::vector<png_byte>& bytes, ImageView image) {
+    std::vector<png_bytep> rows(static_cast<std::size_t>(image.height));
+    for (std::size_t j = 0; j < rows.size(); ++j) rows[j] = bytes.data() + j * static_cast<std::size_t>(image.width) * 3;
+    return rows;
+}
+
+}  // namespace
+
+void write_png(const std::filesystem::path& file, ImageView image, float exposure) {
+    std::vector<png_byte> bytes = srgb_bytes(image, exposure);
+    std::vector<png_bytep> rows = row_pointers(bytes, image);
 
     OutputFile out = open_for_writing(file);
     PngFailure failure{};
     errno = 0;
-    if (!encode_png(out.get(), static_cast<png_uint_32>(width), static_cast<png_uint_32>(height), rows.data(),
+    if (!encode_png(out.get(), static_cast<png_uint_32>(image.width), static_cast<png_uint_32>(image.height), rows.data(),
                     &failure)) {
         // libpng says only "Write Error" when fwrite fails; the OS knows why.
         if (std::strcmp(failure.message, "Write Error") == 0 && failure.saved_errno != 0)
@@ -99,6 +113,24 @@ void write_png(const std::filesystem::path& file, ImageView image, float exposur
         throw Error(file.string(), std::string("png: ") + failure.message);
     }
     finish_writing(std::move(out));
+}
+
+std::vector<std::uint8_t> encode_png_bytes(ImageView image, float exposure) {
+    std::vector<png_byte> bytes = srgb_bytes(image, exposure);
+    std::vector<png_bytep> rows = row_pointers(bytes, image);
+    // A memory stream lets the file encoder write into a buffer.
+    char* buffer = nullptr;
+    std::size_t size = 0;
+    std::FILE* stream = open_memstream(&buffer, &size);
+    if (stream == nullptr) throw std::bad_alloc();
+    PngFailure failure{};
+    const bool ok = encode_png(stream, static_cast<png_uint_32>(image.width), static_cast<png_uint_32>(image.height),
+                               rows.data(), &failure);
+    std::fclose(stream);  // sets buffer and size
+    std::vector<std::uint8_t> png(buffer, buffer + (ok ? size : 0));
+    std::free(buffer);
+    if (!ok) throw Error("png", failure.message);
+    return png;
 }
 
 }  // namespace sombra

@@ -5,15 +5,14 @@
 #include <numbers>
 
 #include "render/brdf.h"
+#include "render/bsdf_lobes.h"
+#include "render/bsdf_pbr.h"
 #include "render/microfacet.h"
 
 namespace sombra {
 namespace {
 
 constexpr float kPi = std::numbers::pi_v<float>;
-
-// 2(w·n)n − w: w mirrored about the unit normal n.
-Vec3 reflect(Vec3 w, Vec3 n) { return 2.0f * dot(w, n) * n - w; }
 
 float mean(Vec3 v) { return (v.x + v.y + v.z) * (1.0f / 3.0f); }
 
@@ -46,19 +45,12 @@ float pdf_phong(const Material& m, const BsdfPoint& p, Vec3 wo, Vec3 wi) {
     return pdf;
 }
 
-// Cosine-weighted direction around +z: Malley's method, z = sqrt(1 − u1) > 0.
-Vec3 sample_cosine(float u1, float u2) {
-    const float r = std::sqrt(u1);
-    const float phi = 2.0f * kPi * u2;
-    return {r * std::cos(phi), r * std::sin(phi), std::sqrt(std::max(0.0f, 1.0f - u1))};
-}
-
 // Diffuse and Phong: their f is eval_brdf's, the weight f·|cos|/pdf.
 bool sample_phong(const Material& m, const BsdfPoint& p, Vec3 wo, float u_lobe, float u1, float u2, BsdfSample& out) {
     const float pd = m.type == MaterialType::Phong ? phong_diffuse_probability(m) : 1.0f;
     Vec3 wi;
     if (u_lobe < pd) {
-        wi = p.frame.to_world(sample_cosine(u1, u2));
+        wi = p.frame.to_world(sample_cosine_hemisphere(u1, u2));
     } else {
         const Vec3 r_o = normalize(reflect(wo, p.n_s));
         const float cos_a = std::pow(1.0f - u1, 1.0f / (m.shininess + 1.0f));  // in (0, 1]
@@ -90,20 +82,7 @@ Vec3 eval_ggx(Vec3 ks, float alpha, Vec3 wo, Vec3 wi) {
     return F * (0.25f * ggx_d(h, alpha) * g);
 }
 
-float pdf_ggx(float alpha, Vec3 wo, Vec3 wi) {
-    if (wo.z <= 0.0f || wi.z <= 0.0f) return 0.0f;
-    const Vec3 h = normalize(wi + wo);
-    return 0.25f * ggx_d(h, alpha) * ggx_g1_over_cos(wo, alpha);
-}
-
 // --- Delta lobes ------------------------------------------------------------
-
-bool sample_specular_reflection(const BsdfPoint& p, Vec3 wo, Vec3 weight, float pdf, BsdfSample& out) {
-    const Vec3 wi = reflect(wo, p.n_s);
-    if (dot(p.n_g, wi) <= 0.0f || !(max_component(weight) > 0.0f)) return false;
-    out = BsdfSample{wi, weight, pdf, true, false};
-    return true;
-}
 
 bool sample_dielectric(const Material& m, const BsdfPoint& p, Vec3 wo, float u_lobe, BsdfSample& out) {
     const float cos_i = dot(wo, p.n_s);
@@ -133,6 +112,7 @@ bool is_delta_bsdf(const Material& m) {
         case MaterialType::Mirror:
         case MaterialType::Dielectric: return true;
         case MaterialType::Conductor: return conductor_alpha(m) < kDeltaAlpha;
+        case MaterialType::Pbr: return is_delta_pbr(m);
         case MaterialType::Diffuse:
         case MaterialType::Phong: return false;
     }
@@ -160,10 +140,24 @@ Vec3 eval_bsdf(const Material& m, const BsdfPoint& p, Vec3 wo, Vec3 wi) {
             if (alpha < kDeltaAlpha) return Vec3{0.0f};
             return eval_ggx(m.ks, alpha, p.frame.to_local(wo), p.frame.to_local(wi));
         }
+        case MaterialType::Pbr: return eval_pbr(m, p, wo, wi);
         case MaterialType::Mirror:
         case MaterialType::Dielectric: return Vec3{0.0f};
     }
     return Vec3{0.0f};
+}
+
+BsdfTerms eval_bsdf_terms(const Material& m, const BsdfPoint& p, Vec3 wo, Vec3 wi) {
+    if (dot(p.n_g, wi) <= 0.0f) return {Vec3{0.0f}, Vec3{0.0f}};
+    switch (m.type) {
+        case MaterialType::Diffuse: return {eval_lambert(m.kd), Vec3{0.0f}};
+        case MaterialType::Phong: return {eval_lambert(m.kd), m.ks * eval_phong_lobe(p.n_s, wi, wo, m.shininess)};
+        case MaterialType::Conductor: return {Vec3{0.0f}, eval_bsdf(m, p, wo, wi)};
+        case MaterialType::Pbr: return eval_pbr_terms(m, p, wo, wi);
+        case MaterialType::Mirror:
+        case MaterialType::Dielectric: return {Vec3{0.0f}, Vec3{0.0f}};
+    }
+    return {Vec3{0.0f}, Vec3{0.0f}};
 }
 
 float pdf_bsdf(const Material& m, const BsdfPoint& p, Vec3 wo, Vec3 wi) {
@@ -174,8 +168,9 @@ float pdf_bsdf(const Material& m, const BsdfPoint& p, Vec3 wo, Vec3 wi) {
         case MaterialType::Conductor: {
             const float alpha = conductor_alpha(m);
             if (alpha < kDeltaAlpha) return 0.0f;
-            return pdf_ggx(alpha, p.frame.to_local(wo), p.frame.to_local(wi));
+            return ggx_reflection_pdf(p.frame.to_local(wo), p.frame.to_local(wi), alpha);
         }
+        case MaterialType::Pbr: return pdf_pbr(m, p, wo, wi);
         case MaterialType::Mirror:
         case MaterialType::Dielectric: return 0.0f;
     }
@@ -190,6 +185,7 @@ bool sample_bsdf(const Material& m, const BsdfPoint& p, Vec3 wo, float u_lobe, f
             if (dot(wo, p.n_s) <= 0.0f) return false;
             return sample_specular_reflection(p, wo, m.kr, 1.0f, out);
         case MaterialType::Dielectric: return sample_dielectric(m, p, wo, u_lobe, out);
+        case MaterialType::Pbr: return sample_pbr(m, p, wo, u_lobe, u1, u2, out);
         case MaterialType::Conductor: {
             const Vec3 wo_l = p.frame.to_local(wo);
             if (wo_l.z <= 0.0f) return false;
@@ -202,7 +198,7 @@ bool sample_bsdf(const Material& m, const BsdfPoint& p, Vec3 wo, float u_lobe, f
             if (dot(p.n_g, wi) <= 0.0f) return false;
             // The pdf of the world direction, exactly as pdf_bsdf computes it (the
             // peak of a sharp lobe is sensitive to the frame's rounding).
-            const float pdf = pdf_ggx(alpha, wo_l, p.frame.to_local(wi));
+            const float pdf = ggx_reflection_pdf(wo_l, p.frame.to_local(wi), alpha);
             if (!(pdf > 0.0f)) return false;
             // f·cos θ_i / pdf = F·G1(ωi): D and G1(ωo)/cos θ_o cancel.
             out = BsdfSample{wi, fresnel_schlick(m.ks, dot(wo_l, h)) * ggx_g1(wi_l, alpha), pdf, false, false};

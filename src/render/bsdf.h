@@ -27,6 +27,15 @@
 //    Sampled by visible normals (Heitz 2018): pdf = D(h)·G1(ωo) / (4 cos θ_o), weight
 //    F·G1(ωi). Directions drawn below n_s are failures, so the pdf integrates to ≤ 1.
 //    α < 1e-3 is a delta mirror with weight F(cos θ_o) (as pbrt-v4).
+//  - Pbr (§11, glTF 2.0 Appendix B; render/bsdf_pbr.cpp): f = (1 − m)(1 − F_d)·c/π + ((1 − m)F_d + m·F_c)·V·D,
+//    c = base_color, m = metallic, α = roughness², F_d Schlick from f0 = ((1 − ior)/(1 + ior))²,
+//    F_c Schlick from f0 = c, both at ωo·h; V the height-correlated Smith visibility
+//    G2/(4 cos θ_i cos θ_o) (microfacet.h). Sampled by a mixture: GGX visible normals with
+//    probability P_s(cos θ_o) (Fresnel-weighted specular against diffuse albedo, in [0.25, 0.9],
+//    1 for a black diffuse part), else cosine-weighted; pdf = P_s·D(h)G1(ωo)/(4 cos θ_o) +
+//    (1 − P_s)·cos θ_i/π, weight f·cos θ_i/pdf. α < 1e-3: the specular part is a delta mirror
+//    of weight ((1 − m)F_d + m·F_c)(cos θ_o)/P_s, chosen with probability P_s (BsdfSample::pdf);
+//    eval and pdf hold the diffuse part only, and the material is delta only when m = 1.
 // Non-delta lobes need cos θ_o > 0 and cos θ_i > 0 in the shading frame,
 // except Diffuse and Phong, whose f is eval_brdf's wherever wi is on wo's side of n_g.
 // Delta lobes need cos θ_o > 0 (a bumpy n_s facing away from wo gives false).
@@ -58,8 +67,17 @@ struct BsdfSample {
 };
 
 // f(wo, wi) in 1/sr of the non-delta lobes (0 for Mirror, Dielectric and
-// smooth Conductor); 0 where the no-light-leak rule says so.
+// smooth Conductor; a smooth Pbr's diffuse part); 0 where the no-light-leak rule says so.
 Vec3 eval_bsdf(const Material& m, const BsdfPoint& p, Vec3 wo, Vec3 wi);
+
+// f(wo, wi) split as spec §4 and §14 name its parts, for `sombra explain`:
+// the diffuse term (kd/π) and the lobe (Phong's specular lobe, or the
+// microfacet lobe). Their sum is eval_bsdf's value up to float rounding;
+// the integrators use eval_bsdf's.
+struct BsdfTerms {
+    Vec3 diffuse, lobe;
+};
+BsdfTerms eval_bsdf_terms(const Material& m, const BsdfPoint& p, Vec3 wo, Vec3 wi);
 
 // Solid-angle density (1/sr) with which sample_bsdf draws wi: non-delta lobes
 // only, 0 for a delta material and wherever sample_bsdf never succeeds.
@@ -72,10 +90,10 @@ float pdf_bsdf(const Material& m, const BsdfPoint& p, Vec3 wo, Vec3 wi);
 bool sample_bsdf(const Material& m, const BsdfPoint& p, Vec3 wo, float u_lobe, float u1, float u2, BsdfSample& out);
 
 // True when every lobe of m is a delta (Mirror, Dielectric, Conductor with
-// α = roughness² < 1e-3): lights cannot be sampled for it.
+// α = roughness² < 1e-3, Pbr with that α and metallic 1): lights cannot be sampled for it.
 bool is_delta_bsdf(const Material& m);
 
-// The roughness α below which a Conductor is a delta mirror.
+// The roughness α below which a Conductor, or a Pbr's specular part, is a delta mirror.
 inline constexpr float kDeltaAlpha = 1e-3f;
 
 // Exact unpolarised Fresnel reflectance of a smooth dielectric interface for

@@ -10,6 +10,7 @@
 #include "accel/accel.h"
 #include "core/ray.h"
 #include "render/lights.h"
+#include "render/sample_record.h"
 #include "render/sampler.h"
 #include "scene/scene.h"
 
@@ -55,9 +56,15 @@ struct IntegratorContext {
 // visible point light's I/|c−x|² · f · |n_s·ω_i|. Never returns NaN or Inf:
 // a non-finite result is counted in counters.nonfinite_samples and returned as 0.
 Vec3 trace_direct(const IntegratorContext& ctx, const Ray& ray, RayCounters& counters);
+// The same, compiled from the same code, writing every term into `record`
+// (`sombra explain`); returns exactly what the function above returns.
+Vec3 trace_direct(const IntegratorContext& ctx, const Ray& ray, RayCounters& counters, SampleRecord& record);
 
 // The path integrator's estimate of the same radiance (spec §10), drawing
 // its random numbers from `samples`. Never NaN or Inf (as trace_direct).
 Vec3 trace_path(const IntegratorContext& ctx, const Ray& ray, SampleStream& samples, RayCounters& counters);
+// The same, writing every vertex into `record`; returns exactly what the function above returns.
+Vec3 trace_path(const IntegratorContext& ctx, const Ray& ray, SampleStream& samples, RayCounters& counters,
+                SampleRecord& record);
 
 }  // namespace sombra

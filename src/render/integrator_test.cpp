@@ -149,6 +149,26 @@ TEST(Integrator, PhongHighlightMatchesTheFormula) {
     EXPECT_NEAR(l.x, 10.0 / 4.0 * f, 1e-5);
 }
 
+TEST(Integrator, PbrHighlightMatchesAppendixB) {
+    // ωi = ωo = n: h = n, so D = 1/(πα²), V = 1/4 and both Fresnel factors
+    // are their f0: f = (1 − m)((1 − 0.04)·c/π + 0.04·V·D) + m·c·V·D.
+    Scene scene = plane_under_point_light({0, 2, 0}, {10, 10, 10}, Vec3{0.3f});
+    Material& m = scene.materials[0];
+    m.type = MaterialType::Pbr;
+    m.base_color = {0.9f, 0.5f, 0.2f};
+    m.metallic = 0.3f;
+    m.roughness = 0.4f;
+    RayCounters counters;
+    const Accel accel = make_accel(scene.geometry, AccelKind::Bvh);
+    const Vec3 l = trace_direct(scene, accel, Ray{{0, 1, 0}, {0, -1, 0}}, counters);
+    const double alpha = 0.16, vd = 0.25 / (kPi * alpha * alpha);
+    for (int c = 0; c < 3; ++c) {
+        const double base = m.base_color[c];
+        const double f = 0.7 * (0.96 * base / kPi + 0.04 * vd) + 0.3 * base * vd;
+        EXPECT_NEAR(l[c], 10.0 / 4.0 * f, 1e-5 * f);
+    }
+}
+
 TEST(Integrator, EmissionIsSeenDirectlyFromBothSides) {
     Scene scene = plane_under_point_light({0, 5, 0}, {0, 0, 0}, Vec3{0.5f});
     scene.materials[0].ke = {1, 2, 3};

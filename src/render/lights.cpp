@@ -147,6 +147,7 @@ bool sample_light(const LightSet& lights, const Scene& scene, Vec3 x, Vec3 n, fl
         out.wi = es.direction;
         out.at_infinity = true;
         out.pdf = choice * es.pdf;
+        out.triangle = 0xffffffffu;
         return max_component(out.radiance) > 0.0f;
     }
 
@@ -184,6 +185,7 @@ bool sample_light(const LightSet& lights, const Scene& scene, Vec3 x, Vec3 n, fl
     out.target = y;
     out.at_infinity = false;
     out.pdf = choice * pdf;
+    out.triangle = triangle;
     return true;
 }
 

@@ -68,6 +68,7 @@ struct LightSample {
     Vec3 target;     // the sampled point on an emitter (for the shadow ray); unused for the environment
     bool at_infinity = false;  // environment: the shadow ray has no end
     float pdf = 0;   // solid-angle density, including the probability of choosing this light
+    std::uint32_t triangle = 0xffffffffu;  // the emitter triangle sampled (all ones for the environment)
 };
 
 // Samples one emitter or the environment for the point x with unit shading

@@ -7,6 +7,7 @@
 // (the BSDF treats α < 1e-3 as a delta mirror and never calls these with it).
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 
@@ -57,6 +58,28 @@ inline Vec3 sample_ggx_vndf(Vec3 wo, float alpha, float u1, float u2) {
     // Project onto the hemisphere and unstretch.
     const Vec3 nh = p1 * t1 + p2 * t2 + std::sqrt(std::max(0.0f, 1.0f - p1 * p1 - p2 * p2)) * vh;
     return normalize(Vec3{alpha * nh.x, alpha * nh.y, std::max(1e-9f, nh.z)});
+}
+
+// The solid-angle density of ωi = ωo mirrored about an h drawn by
+// sample_ggx_vndf: D_wo(h) / (4 ωo·h) = D(h)·G1(ωo) / (4 cos θ_o). 0 unless
+// both directions are above the shading plane.
+inline float ggx_reflection_pdf(Vec3 wo, Vec3 wi, float alpha) {
+    if (wo.z <= 0.0f || wi.z <= 0.0f) return 0.0f;
+    const Vec3 h = normalize(wi + wo);
+    return 0.25f * ggx_d(h, alpha) * ggx_g1_over_cos(wo, alpha);
+}
+
+// The height-correlated Smith visibility term of spec §11's pbr (the glTF 2.0
+// specification's Appendix B, "Specular BRDF"): V = G2 / (4 cos θ_i cos θ_o)
+// with G2 = 1 / (1 + Λ(ωi) + Λ(ωo)) (Heitz 2014), which simplifies to
+// 1 / (2 (cos θ_o sqrt(α² + (1 − α²) cos²θ_i) + cos θ_i sqrt(α² + (1 − α²) cos²θ_o))).
+// α² + (1 − α²) z² is written z² + α² (x² + y²), as in ggx_g1_over_cos. Both
+// directions must be above the shading plane (z > 0); the result is finite there for α > 0.
+inline float ggx_v_height_correlated(Vec3 wo, Vec3 wi, float alpha) {
+    const float a2 = alpha * alpha;
+    const float root_i = std::sqrt(wi.z * wi.z + a2 * std::max(0.0f, wi.x * wi.x + wi.y * wi.y));
+    const float root_o = std::sqrt(wo.z * wo.z + a2 * std::max(0.0f, wo.x * wo.x + wo.y * wo.y));
+    return 0.5f / (wo.z * root_i + wi.z * root_o);
 }
 
 // Schlick's Fresnel of spec §11: F = f0 + (1 − f0)(1 − cos)⁵, cos clamped to [0, 1].

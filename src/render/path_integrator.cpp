@@ -11,6 +11,7 @@
 #include "render/integrator.h"
 #include "render/interaction.h"
 #include "render/point_lights.h"
+#include "render/sample_recorder.h"
 #include "render/shading.h"
 
 namespace sombra {
@@ -22,28 +23,40 @@ constexpr int kRouletteStart = 3;
 
 // One sampled emitter or environment direction, MIS-weighted against the
 // BSDF's density for the same direction (spec §10's next-event estimation).
-Vec3 sample_one_light(const IntegratorContext& ctx, const SurfaceInteraction& si, const Material& material,
-                      const BsdfPoint& bsdf_point, Vec3 wo, float u_choice, SampleStream::Pair u, RayCounters& counters) {
+template <class Recorder>
+Vec3 sample_one_light(const IntegratorContext& ctx, const ShadingView& view, float u_choice, SampleStream::Pair u,
+                      RayCounters& counters, Recorder& recorder) {
+    const SurfaceInteraction& si = view.si;
     LightSample ls;
-    if (!sample_light(*ctx.lights, *ctx.scene, si.position, si.n_s, u_choice, u.u1, u.u2, ls)) return Vec3{0.0f};
-    const Vec3 f = eval_bsdf(material, bsdf_point, wo, ls.wi) * std::fabs(dot(si.n_s, ls.wi));
-    if (!(max_component(f) > 0.0f)) return Vec3{0.0f};
+    if (!sample_light(*ctx.lights, *ctx.scene, si.position, si.n_s, u_choice, u.u1, u.u2, ls)) {
+        recorder.sampled_light(nullptr, view, nullptr, false, 0.0f, 0.0f, Vec3{0.0f});
+        return Vec3{0.0f};
+    }
+    const Vec3 f = eval_bsdf(view.material, view.bsdf_point, view.wo, ls.wi) * std::fabs(dot(si.n_s, ls.wi));
+    if (!(max_component(f) > 0.0f)) {
+        recorder.sampled_light(&ls, view, nullptr, false, 0.0f, 0.0f, Vec3{0.0f});
+        return Vec3{0.0f};
+    }
 
     const Vec3 origin = spawn_origin(si, ls.wi);
     ++counters.shadow_rays;
     // Toward an emitter the ray stops just short of the sampled point, so
     // that the emitter itself does not count as its own occluder.
     const Ray shadow = ls.at_infinity ? Ray{origin, ls.wi} : Ray{origin, ls.target - origin, 1.0f - 1e-4f};
-    if (occluded(*ctx.accel, shadow)) return Vec3{0.0f};
-    const float weight = ctx.strategy == LightStrategy::Mis
-                             ? power_heuristic(ls.pdf, pdf_bsdf(material, bsdf_point, wo, ls.wi))
-                             : 1.0f;
-    return f * ls.radiance * (weight / ls.pdf);
+    if (occluded(*ctx.accel, shadow)) {
+        recorder.sampled_light(&ls, view, &shadow, true, 0.0f, 0.0f, Vec3{0.0f});
+        return Vec3{0.0f};
+    }
+    const float bsdf_pdf = ctx.strategy == LightStrategy::Mis ? pdf_bsdf(view.material, view.bsdf_point, view.wo, ls.wi) : 0.0f;
+    const float weight = ctx.strategy == LightStrategy::Mis ? power_heuristic(ls.pdf, bsdf_pdf) : 1.0f;
+    const Vec3 contribution = f * ls.radiance * (weight / ls.pdf);
+    recorder.sampled_light(&ls, view, &shadow, false, bsdf_pdf, weight, contribution);
+    return contribution;
 }
 
-}  // namespace
-
-Vec3 trace_path(const IntegratorContext& ctx, const Ray& camera_ray, SampleStream& samples, RayCounters& counters) {
+template <class Recorder>
+Vec3 trace_path_recorded(const IntegratorContext& ctx, const Ray& camera_ray, SampleStream& samples, RayCounters& counters,
+                         Recorder& recorder) {
     const Scene& scene = *ctx.scene;
     const LightSet& lights = *ctx.lights;
     ++counters.camera_rays;
@@ -75,25 +88,35 @@ Vec3 trace_path(const IntegratorContext& ctx, const Ray& camera_ray, SampleStrea
             const Vec3 dir = normalize(ray.dir);
             const Vec3 le = eval_environment(lights.environment, dir);
             if (max_component(le) > 0.0f) {
-                const float w = previous_delta ? 1.0f : bounce_weight(previous_pdf, pdf_light_environment(lights, dir));
+                const float light_pdf = previous_delta ? 0.0f : pdf_light_environment(lights, dir);
+                const float w = previous_delta ? 1.0f : bounce_weight(previous_pdf, light_pdf);
                 radiance += beta * le * w;
+                recorder.escaped(ray, beta, le, w, previous_delta ? 0.0f : previous_pdf, light_pdf);
+            } else {
+                recorder.escaped(ray, beta, le, 1.0f, 0.0f, 0.0f);
             }
+            recorder.end(depth == 0 ? "the camera ray left the scene" : "the ray left the scene");
             break;
         }
 
         SurfaceInteraction si = make_surface_interaction(scene.geometry, ray, hit);
         const Material& material = resolve_material(scene, si, textured);
         const Vec3 wo = -normalize(ray.dir);
+        recorder.surface(ray, hit, si, beta);
 
         const Vec3 le = emitted_radiance(material, si);
         if (max_component(le) > 0.0f) {
-            const float w = previous_delta ? 1.0f
-                                           : bounce_weight(previous_pdf, pdf_light_triangle(lights, scene, si.triangle,
-                                                                                            previous_position, previous_normal,
-                                                                                            si.position));
+            const float light_pdf = previous_delta ? 0.0f
+                                                   : pdf_light_triangle(lights, scene, si.triangle, previous_position,
+                                                                        previous_normal, si.position);
+            const float w = previous_delta ? 1.0f : bounce_weight(previous_pdf, light_pdf);
             radiance += beta * le * w;
+            recorder.emission(le, w, previous_delta ? 0.0f : previous_pdf, light_pdf, beta * le * w);
         }
-        if (depth >= ctx.max_depth) break;
+        if (depth >= ctx.max_depth) {
+            recorder.end("max_depth scattering events reached");
+            break;
+        }
 
         const BsdfPoint bsdf_point = make_bsdf_point(si.n_g, si.n_s, si.outside);
         // Every vertex draws the same dimensions whether it uses them or
@@ -104,16 +127,27 @@ Vec3 trace_path(const IntegratorContext& ctx, const Ray& camera_ray, SampleStrea
         const SampleStream::Pair u_bsdf = samples.next_2d();
         const float u_roulette = samples.next_1d();
 
+        const ShadingView view{si, material, bsdf_point, wo};
         if (!is_delta_bsdf(material)) {
-            add_point_lights(scene, *ctx.accel, si, material, bsdf_point, wo, beta, radiance, counters);
+            add_point_lights(scene, *ctx.accel, si, material, bsdf_point, wo, beta, radiance, counters, recorder);
             if (lights.has_sampled_lights() && ctx.strategy != LightStrategy::BsdfOnly)
-                radiance += beta * sample_one_light(ctx, si, material, bsdf_point, wo, u_choice, u_light, counters);
+                radiance += beta * sample_one_light(ctx, view, u_choice, u_light, counters, recorder);
+        } else {
+            recorder.delta_material();
         }
 
         BsdfSample bs;
-        if (!sample_bsdf(material, bsdf_point, wo, u_lobe, u_bsdf.u1, u_bsdf.u2, bs)) break;
+        if (!sample_bsdf(material, bsdf_point, wo, u_lobe, u_bsdf.u1, u_bsdf.u2, bs)) {
+            recorder.bounce(nullptr, view, beta);
+            recorder.end("the BSDF sampled no direction");
+            break;
+        }
         beta = beta * bs.weight;
-        if (!(max_component(beta) > 0.0f)) break;
+        recorder.bounce(&bs, view, beta);
+        if (!(max_component(beta) > 0.0f)) {
+            recorder.end("the throughput became zero");
+            break;
+        }
         if (bs.transmission && material.type == MaterialType::Dielectric)
             eta_scale *= si.outside ? material.ior * material.ior : 1.0f / (material.ior * material.ior);
         previous_delta = bs.delta;
@@ -127,17 +161,38 @@ Vec3 trace_path(const IntegratorContext& ctx, const Ray& camera_ray, SampleStrea
         if (depth + 1 > kRouletteStart) {
             const float q = std::min(1.0f, max_component(beta) * eta_scale);
             if (q < 1.0f) {
-                if (u_roulette >= q) break;
-                beta = beta / q;
+                const bool survived = !(u_roulette >= q);
+                if (survived) beta = beta / q;
+                recorder.roulette(q, u_roulette, survived, beta);
+                if (!survived) {
+                    recorder.end("Russian roulette ended the path");
+                    break;
+                }
             }
         }
     }
 
-    if (!is_finite(radiance)) {
+    const bool finite = is_finite(radiance);
+    if (!finite) {
         ++counters.nonfinite_samples;
-        return Vec3{0.0f};
+        radiance = Vec3{0.0f};
     }
+    recorder.value(radiance, !finite);
     return radiance;
+}
+
+}  // namespace
+
+Vec3 trace_path(const IntegratorContext& ctx, const Ray& ray, SampleStream& samples, RayCounters& counters) {
+    NoRecorder none;
+    return trace_path_recorded(ctx, ray, samples, counters, none);
+}
+
+Vec3 trace_path(const IntegratorContext& ctx, const Ray& ray, SampleStream& samples, RayCounters& counters,
+                SampleRecord& record) {
+    SampleRecorder recorder(*ctx.scene, *ctx.accel, record);
+    record.path = true;
+    return trace_path_recorded(ctx, ray, samples, counters, recorder);
 }
 
 }  // namespace sombra

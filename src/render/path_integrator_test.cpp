@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "render/integrator.h"
+#include "render/pbr_test_util.h"
 #include "render/render.h"
 #include "scene/scene_file.h"
 #include "render/test_meshes.h"
@@ -136,6 +137,42 @@ TEST(PathIntegrator, WhiteFurnaceMirrorAndGlassSpheres) {
         for (const Vec3 target : {Vec3{0, 0, 0}, Vec3{0.5f, 0.3f, 0}, Vec3{0.9f, 0.1f, 0}}) {
             const Estimate e = run.estimate({0.1f, 0.2f, 5}, target, 2000, 5);
             expect_agrees(e, 1.0, type == MaterialType::Mirror ? "mirror furnace" : "glass furnace");
+        }
+    }
+}
+
+TEST(PathIntegrator, PbrPlaneUnderAConstantSkyShowsItsAlbedo) {
+    // Under a sky of radiance 1 a plane reflects its directional albedo
+    // ∫ f cos θ_i dω_i at the view angle: next-event estimation of the sky
+    // and BSDF sampling, MIS-weighted with the pbr pdf, against quadrature of
+    // the glTF Appendix B formulas (render/pbr_test_util.h).
+    struct Case {
+        Vec3 base;
+        float metallic, roughness;
+    };
+    const Case cases[] = {{Vec3{1.0f}, 0.0f, 0.3f}, {{0.8f, 0.5f, 0.2f}, 0.5f, 0.6f}, {Vec3{0.7f}, 0.0f, 0.0f},
+                          {Vec3{0.9f}, 1.0f, 1.0f}};
+    std::uint64_t seed = 40;
+    for (const Case& c : cases) {
+        Scene scene;
+        scene.background = Vec3{1.0f};
+        Material m;
+        m.type = MaterialType::Pbr;
+        m.base_color = c.base;
+        m.metallic = c.metallic;
+        m.roughness = c.roughness;
+        scene.materials.push_back(m);
+        add_quad(scene.geometry, {-50, 0, -50}, {-50, 0, 50}, {50, 0, 50}, {50, 0, -50}, 0);
+        const PathRun run{scene, 8};
+        for (const double theta : {10.0, 50.0, 75.0}) {
+            const double t = theta * kPi / 180;
+            const Vec3 eye{static_cast<float>(std::sin(t)), static_cast<float>(std::cos(t)), 0};
+            const Estimate e = run.estimate(eye, {0, 0, 0}, 6000, ++seed);
+            const pbr_reference::Params p{c.base.x, c.metallic, c.roughness, 1.5};
+            const pbr_reference::Quadrature q = pbr_reference::albedo_with_error(p, std::acos(static_cast<double>(normalize(eye).y)), 400);
+            EXPECT_LT(std::fabs(e.mean() - q.value), kZ * e.standard_error() + q.error)
+                << "r " << c.roughness << " m " << c.metallic << " at " << theta << "°: " << e.mean() << " ± "
+                << e.standard_error() << ", quadrature " << q.value;
         }
     }
 }

@@ -19,23 +19,27 @@ namespace {
 // and are large enough that scheduling costs nothing.
 constexpr int kTileSize = 16;
 
+template <class... Record>
+Vec3 trace_sample(const RenderJob& job, const IntegratorContext& ctx, std::uint64_t key, int i, int j, std::uint32_t k,
+                  RayCounters& counters, Record&... record) {
+    const RenderSettings& s = job.settings;
+    const PixelSample offset = pixel_sample(k, static_cast<std::uint32_t>(s.spp), key);
+    const float x = static_cast<float>(i) + offset.x;
+    const float y = static_cast<float>(j) + offset.y;
+    const Ray ray = camera_ray(job.camera, image_plane_s(x, s.width), image_plane_t(y, s.height));
+    if (s.integrator == IntegratorKind::Path) {
+        SampleStream samples{key, k, static_cast<std::uint32_t>(s.spp)};
+        return trace_path(ctx, ray, samples, counters, record...);
+    }
+    return trace_direct(ctx, ray, counters, record...);
+}
+
 Vec3 render_pixel(const RenderJob& job, const IntegratorContext& ctx, int i, int j, RayCounters& counters) {
     const RenderSettings& s = job.settings;
     const auto spp = static_cast<std::uint32_t>(s.spp);
     const std::uint64_t key = pixel_key(s.seed, i, j, s.width);
     Vec3 sum{0.0f};
-    for (std::uint32_t k = 0; k < spp; ++k) {
-        const PixelSample offset = pixel_sample(k, spp, key);
-        const float x = static_cast<float>(i) + offset.x;
-        const float y = static_cast<float>(j) + offset.y;
-        const Ray ray = camera_ray(job.camera, image_plane_s(x, s.width), image_plane_t(y, s.height));
-        if (s.integrator == IntegratorKind::Path) {
-            SampleStream samples{key, k, spp};
-            sum += trace_path(ctx, ray, samples, counters);
-        } else {
-            sum += trace_direct(ctx, ray, counters);
-        }
-    }
+    for (std::uint32_t k = 0; k < spp; ++k) sum += trace_sample(job, ctx, key, i, j, k, counters);
     return sum / static_cast<float>(spp);
 }
 
@@ -57,11 +61,32 @@ RenderJob make_render_job(const Scene& scene, const Accel& accel, const RenderSe
     return job;
 }
 
+IntegratorContext make_integrator_context(const RenderJob& job) {
+    return IntegratorContext{job.scene, job.accel, &job.lights, job.settings.max_depth};
+}
+
+Vec3 trace_pixel_sample(const RenderJob& job, int i, int j, int k, RayCounters& counters, SampleRecord& record) {
+    const RenderSettings& s = job.settings;
+    const std::uint64_t key = pixel_key(s.seed, i, j, s.width);
+    const PixelSample offset = pixel_sample(static_cast<std::uint32_t>(k), static_cast<std::uint32_t>(s.spp), key);
+    record.pixel_x = i;
+    record.pixel_y = j;
+    record.sample = k;
+    record.offset_x = offset.x;
+    record.offset_y = offset.y;
+    record.s = image_plane_s(static_cast<float>(i) + offset.x, s.width);
+    record.t = image_plane_t(static_cast<float>(j) + offset.y, s.height);
+    const Ray ray = camera_ray(job.camera, record.s, record.t);
+    record.origin = ray.origin;
+    record.direction = ray.dir;
+    return trace_sample(job, make_integrator_context(job), key, i, j, static_cast<std::uint32_t>(k), counters, record);
+}
+
 RenderOutput render_image(const RenderJob& job, RenderProgress& progress) {
     RenderOutput out;
     out.film = Film(job.settings.width, job.settings.height);
     tbb::combinable<RayCounters> per_thread;
-    const IntegratorContext ctx{job.scene, job.accel, &job.lights, job.settings.max_depth};
+    const IntegratorContext ctx = make_integrator_context(job);
     const auto spp = static_cast<std::uint64_t>(job.settings.spp);
 
     const int threads = job.threads > 0 ? job.threads : tbb::task_arena::automatic;

@@ -38,6 +38,14 @@ struct RenderJob {
 RenderJob make_render_job(const Scene& scene, const Accel& accel, const RenderSettings& settings, int threads = 0,
                           LightSelection light_selection = LightSelection::Automatic);
 
+// What the integrators read for `job`.
+IntegratorContext make_integrator_context(const RenderJob& job);
+
+// Sample k (0 … spp − 1) of pixel (i, j), exactly as render_image computes
+// it (the pixel is the average of these values, summed in order of k), with
+// every term written into `record` (render/sample_record.h).
+Vec3 trace_pixel_sample(const RenderJob& job, int i, int j, int k, RayCounters& counters, SampleRecord& record);
+
 struct RenderOutput {
     Film film;
     RayCounters counters;

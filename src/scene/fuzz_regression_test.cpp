@@ -152,15 +152,20 @@ TEST_F(FuzzRegression, HarnessSceneMeshesLoad) {
 }
 
 // fuzz_texture found it: a JPEG Huffman table whose 16 code counts add up
-// to more than 256 made Debian's stb_image write past its tables.
+// to more than 256 made Debian's stb_image write past its tables; then the
+// same behind 0xff fill bytes before the start-of-image marker, which stb
+// accepts and the first guard did not take for a JPEG.
 TEST_F(FuzzRegression, JpegHuffmanCountsOverTheTableAreRefused) {
-    const fs::path file = kRegressions / "texture" / "jpeg-huffman-counts-over-256.jpg";
-    const fs::path path = fuzz::stage_input(fuzz::Target::Texture, read_bytes(file), folder);
-    try {
-        read_texture_file(path, TextureEncoding::Color);
-        FAIL() << "decoded a JPEG with an oversized Huffman table";
-    } catch (const Error& e) {
-        EXPECT_NE(e.message().find("bad JPEG Huffman table: its code counts add up to"), std::string::npos) << e.what();
+    for (const char* name : {"jpeg-huffman-counts-over-256.jpg", "jpeg-huffman-overflow-after-fill-bytes.jpg"}) {
+        SCOPED_TRACE(name);
+        const fs::path path = fuzz::stage_input(fuzz::Target::Texture, read_bytes(kRegressions / "texture" / name), folder);
+        try {
+            read_texture_file(path, TextureEncoding::Color);
+            ADD_FAILURE() << "decoded a JPEG with an oversized Huffman table";
+        } catch (const Error& e) {
+            EXPECT_NE(e.message().find("bad JPEG Huffman table: its code counts add up to"), std::string::npos)
+                << e.what();
+        }
     }
 }
 

@@ -17,6 +17,7 @@ enum class MaterialType {
     Mirror,      // perfect specular reflection, reflectance kr (§11)
     Dielectric,  // smooth glass: Fresnel reflection and refraction, ior, kt (§11)
     Conductor,   // GGX microfacet metal, Schlick Fresnel from ks, roughness (§11)
+    Pbr,         // glTF 2.0 metallic–roughness: base_color, metallic, roughness, ior (§11)
 };
 
 // Marks a material parameter without a texture.
@@ -37,8 +38,8 @@ struct TextureRef {
 // the material's constant (the scale, 1 when a file gives none) times the
 // texel's RGB; a textured scalar's is the constant times the chosen channel.
 struct MaterialTextures {
-    TextureRef kd, ks, kr, kt, ke;  // RGB parameters (see kRgbTextureSlots)
-    TextureRef roughness;           // scalar parameters (see kScalarTextureSlots)
+    TextureRef kd, ks, kr, kt, ke, base_color;  // RGB parameters (see kRgbTextureSlots)
+    TextureRef roughness, metallic;             // scalar parameters (see kScalarTextureSlots)
     // Tangent-space normal map (OpenGL convention, +y toward increasing v):
     // data, n = 2·texel − 1. Wins over the bump map.
     TextureRef normal_map;
@@ -61,8 +62,10 @@ struct Material {
     Vec3 ke{0.0f};        // emitted radiance (two-sided unless emits_front_only)
     Vec3 kr{1.0f};        // Mirror reflectance, each channel in [0, 1]
     Vec3 kt{1.0f};        // Dielectric transmission tint, each channel in [0, 1]
-    float ior = 1.5f;     // Dielectric index of refraction inside, > 1 (outside is 1)
-    float roughness = 0;  // Conductor roughness r in [0, 1]; GGX α = r²
+    float ior = 1.5f;     // Dielectric index of refraction inside, > 1 (outside is 1); Pbr: sets f0 = ((1 − ior)/(1 + ior))²
+    float roughness = 0;  // Conductor and Pbr roughness r in [0, 1]; GGX α = r²
+    Vec3 base_color{1.0f};  // Pbr base colour, each channel in [0, 1]: diffuse albedo, and f0 of the metal
+    float metallic = 0.0f;  // Pbr metalness m in [0, 1]: the mix (1 − m)·dielectric + m·metal
     // Quad lights (§10) emit only toward the side their winding normal
     // (v1 − v0) × (v2 − v0) points to, and are black from behind.
     bool emits_front_only = false;
@@ -88,6 +91,7 @@ inline constexpr RgbTextureSlot kRgbTextureSlots[] = {
     {"kd", &Material::kd, &MaterialTextures::kd, true}, {"ks", &Material::ks, &MaterialTextures::ks, true},
     {"kr", &Material::kr, &MaterialTextures::kr, true}, {"kt", &Material::kt, &MaterialTextures::kt, true},
     {"ke", &Material::ke, &MaterialTextures::ke, false},
+    {"base_color", &Material::base_color, &MaterialTextures::base_color, true},
 };
 struct ScalarTextureSlot {
     const char* key;
@@ -96,6 +100,7 @@ struct ScalarTextureSlot {
 };
 inline constexpr ScalarTextureSlot kScalarTextureSlots[] = {
     {"roughness", &Material::roughness, &MaterialTextures::roughness},
+    {"metallic", &Material::metallic, &MaterialTextures::metallic},
 };
 
 // True when some slot, the normal map, the bump map or the alpha of `t` is set.
@@ -112,7 +117,8 @@ inline bool any_texture(const MaterialTextures& t) {
 // name's copy would cost per ray. The binding lists every field, so that a
 // field added to Material fails to compile here until it is copied too.
 inline void copy_parameters(const Material& from, Material& to) {
-    const auto& [name, type, kd, ks, shininess, ke, kr, kt, ior, roughness, emits_front_only, textures, textured] = from;
+    const auto& [name, type, kd, ks, shininess, ke, kr, kt, ior, roughness, base_color, metallic, emits_front_only,
+                 textures, textured] = from;
     static_cast<void>(name);
     to.type = type;
     to.kd = kd;
@@ -123,6 +129,8 @@ inline void copy_parameters(const Material& from, Material& to) {
     to.kt = kt;
     to.ior = ior;
     to.roughness = roughness;
+    to.base_color = base_color;
+    to.metallic = metallic;
     to.emits_front_only = emits_front_only;
     to.textures = textures;
     to.textured = textured;

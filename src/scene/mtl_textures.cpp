@@ -39,11 +39,21 @@ void MtlTextureReader::apply(const tinyobj::material_t& mtl, const fs::path& mtl
         ref = load(name, options, TextureEncoding::Color, folder, mtl_path);
         if (ref.is_set()) value = Vec3{1.0f};
     };
-    colour(mtl.diffuse_texname, mtl.diffuse_texopt, m.kd, t.kd);
+    if (m.type == MaterialType::Pbr) colour(mtl.diffuse_texname, mtl.diffuse_texopt, m.base_color, t.base_color);
+    else colour(mtl.diffuse_texname, mtl.diffuse_texopt, m.kd, t.kd);
     if (m.type == MaterialType::Mirror) colour(mtl.specular_texname, mtl.specular_texopt, m.kr, t.kr);
     else if (m.type == MaterialType::Phong) colour(mtl.specular_texname, mtl.specular_texopt, m.ks, t.ks);
     colour(mtl.emissive_texname, mtl.emissive_texopt, m.ke, t.ke);
 
+    if (m.type == MaterialType::Pbr) {  // map_Pr, map_Pm: grey data replacing Pr, Pm
+        const auto scalar = [&](const std::string& name, const tinyobj::texture_option_t& options, float& value,
+                                TextureRef& ref) {
+            ref = load(name, options, TextureEncoding::Data, folder, mtl_path);
+            if (ref.is_set()) value = 1.0f;
+        };
+        scalar(mtl.roughness_texname, mtl.roughness_texopt, m.roughness, t.roughness);
+        scalar(mtl.metallic_texname, mtl.metallic_texopt, m.metallic, t.metallic);
+    }
     t.alpha = load(mtl.alpha_texname, mtl.alpha_texopt, TextureEncoding::Data, folder, mtl_path);
     if (t.alpha.is_set()) {
         const int channels = table_[t.alpha.texture].channels;

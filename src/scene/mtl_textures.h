@@ -18,6 +18,8 @@ namespace sombra {
 //  - map_Kd, map_Ks, map_Ke: colour textures that replace Kd, Ks (kr for
 //    illum 5), Ke (scale 1: a textured MTL colour is the texture, as Blender's
 //    importer reads it; MTL files often leave Kd at a placeholder or out);
+//    For a pbr material (Pr/Pm) map_Kd textures base_color, and map_Pr,
+//    map_Pm (grey data) replace roughness and metallic;
 //  - map_d: the cut-out alpha (its A channel, else its first), cutoff 0.5;
 //  - bump / map_Bump: a height map, its -bm multiplier the bump scale;
 //  - norm: a tangent-space normal map.

@@ -1,7 +1,7 @@
-// OBJ (+MTL) → LoadedMesh (spec §5, §9). sombra's own parser (obj_parse.h)
+// OBJ (+MTL) → LoadedMesh (spec §5, §9, §11). sombra's own parser (obj_parse.h)
 // reads the geometry; tinyobjloader's LoadMtl reads the MTL files it names
-// (MtlBesideObj below), whose parameters become sombra's diffuse and Phong
-// materials; MeshBuilder (mesh_builder.h) splits polygons and drops what would
+// (MtlBesideObj below), whose parameters become sombra's diffuse, Phong,
+// mirror, dielectric and pbr materials; MeshBuilder (mesh_builder.h) splits polygons and drops what would
 // poison the renderer. tinyobjloader's LoadObj was replaced because parsing
 // was most of a run's time (docs/performance.md, "OBJ parser").
 #include "scene/mesh_file.h"
@@ -16,6 +16,7 @@
 #include <limits>
 #include <map>
 #include <set>
+#include <sstream>
 #include <string>
 #include <string_view>
 #include <unordered_map>
@@ -25,6 +26,7 @@
 #include "core/format.h"
 #include "scene/material.h"
 #include "scene/mesh_builder.h"
+#include "scene/mtl_scan.h"
 #include "scene/mtl_textures.h"
 #include "scene/obj_parse.h"
 
@@ -45,18 +47,28 @@ public:
         return i < sources_.size() ? sources_[i] : fallback;
     }
 
+    // Which of Pr and Pm material i states (tinyobjloader reads their values
+    // but not whether they were there); neither if unknown.
+    MtlPbrKeys pbr_keys(std::size_t i) const { return i < pbr_keys_.size() ? pbr_keys_[i] : MtlPbrKeys{}; }
+
 private:
     std::filesystem::path folder_;
     std::vector<std::string> sources_;
+    std::vector<MtlPbrKeys> pbr_keys_;
 };
 
 // illum 5 → mirror with kr = Ks; illum 7 → dielectric with ior = Ni (1.5
 // when Ni is missing or <= 1) and kt = Tf (1 when Tf is missing, which
-// tinyobjloader reports as 0 0 0); otherwise Kd → kd; Ks > 0 in any channel
+// tinyobjloader reports as 0 0 0); else Pr or Pm → pbr (below); otherwise Kd → kd; Ks > 0 in any channel
 // → Phong with ks and shininess Ns, else diffuse (spec §5, §11). Ke → ke.
 // Colours are clamped to [0, 1] (Ke only to >= 0, it is a radiance) and Ns
 // to [0, kMaxMtlShininess], each with a warning at `where`.
-Material material_from_mtl(const tinyobj::material_t& mtl, const std::string& where, Diagnostics& diag);
+//
+// `Pr` or `Pm` (the PBR extension; `pbr` says which were given) → pbr with
+// base_color = Kd, roughness = Pr and metallic = Pm, a missing one 0 (what
+// tinyobjloader gives, spec §9), each clamped to [0, 1] with a warning, and
+// ior = Ni (1.5 when Ni is missing or <= 1).
+Material material_from_mtl(const tinyobj::material_t& mtl, MtlPbrKeys pbr, const std::string& where, Diagnostics& diag);
 
 inline constexpr float kMaxMtlShininess = 1e6f;
 
@@ -93,18 +105,43 @@ bool MtlBesideObj::operator()(const std::string& name, std::vector<tinyobj::mate
     const std::filesystem::path path = folder_ / name;
     std::error_code ec;
     // Only regular files: a folder or a device named by mtllib must not block or fail oddly.
-    std::ifstream in;
-    if (std::filesystem::is_regular_file(path, ec)) in.open(path);
-    if (!in.is_open()) {
+    std::ifstream file;
+    if (std::filesystem::is_regular_file(path, ec)) file.open(path, std::ios::binary);
+    if (!file.is_open()) {
         if (warn) *warn += "material file '" + name + "' not found beside the OBJ (" + path.string() + ")\n";
         return false;
     }
+    std::ostringstream text;
+    text << file.rdbuf();
+    const std::string mtl_text = std::move(text).str();
+    std::istringstream in(mtl_text);
+    const std::size_t first = materials->size();
     tinyobj::LoadMtl(name_to_index, materials, &in, warn, err);
     sources_.resize(materials->size(), path.string());
+    std::vector<MtlPbrKeys> keys = scan_mtl_pbr_keys(mtl_text);
+    // The scan follows LoadMtl's rules; should they ever disagree, no material is taken for pbr.
+    if (keys.size() != materials->size() - first) keys.assign(materials->size() - first, MtlPbrKeys{});
+    pbr_keys_.resize(first, MtlPbrKeys{});
+    pbr_keys_.insert(pbr_keys_.end(), keys.begin(), keys.end());
     return true;
 }
 
-Material material_from_mtl(const tinyobj::material_t& mtl, const std::string& where, Diagnostics& diag) {
+
+namespace {
+
+// An MTL scalar clamped to [0, 1] (NaN becomes 0), with a warning when it changed.
+float clamp_unit(tinyobj::real_t value, const char* key, const tinyobj::material_t& mtl, const std::string& where,
+                 Diagnostics& diag) {
+    const float v = static_cast<float>(value);
+    const float clamped = std::isnan(v) ? 0.0f : std::clamp(v, 0.0f, 1.0f);
+    if (!(clamped == v))
+        diag.warn(where, "material '" + mtl.name + "': " + key + " " + format_number(value) + " clamped to [0, 1]");
+    return clamped;
+}
+
+}  // namespace
+
+Material material_from_mtl(const tinyobj::material_t& mtl, MtlPbrKeys pbr, const std::string& where, Diagnostics& diag) {
     Material m;
     m.name = mtl.name;
     m.kd = clamp_rgb(mtl.diffuse, 1, "Kd", mtl, where, diag);
@@ -120,6 +157,13 @@ Material material_from_mtl(const tinyobj::material_t& mtl, const std::string& wh
         m.ior = ni > 1 && std::isfinite(ni) ? ni : 1.5f;
         const Vec3 tf = clamp_rgb(mtl.transmittance, 1, "Tf", mtl, where, diag);
         m.kt = max_component(tf) > 0 ? tf : Vec3{1.0f};
+    } else if (pbr.roughness || pbr.metallic) {
+        m.type = MaterialType::Pbr;
+        m.base_color = m.kd;
+        m.roughness = clamp_unit(mtl.roughness, "Pr", mtl, where, diag);
+        m.metallic = clamp_unit(mtl.metallic, "Pm", mtl, where, diag);
+        const float ni = static_cast<float>(mtl.ior);
+        m.ior = ni > 1 && std::isfinite(ni) ? ni : 1.5f;
     } else if (max_component(ks) > 0 || !mtl.specular_texname.empty()) {  // map_Ks: textured Phong (mtl_textures.h)
         m.type = MaterialType::Phong;
         m.ks = ks;
@@ -301,7 +345,7 @@ LoadedMesh load_obj(const std::filesystem::path& path, Diagnostics& diag) {
     materials.reserve(mtl.materials.size() + 1);
     for (std::size_t i = 0; i < mtl.materials.size(); ++i) {
         const std::string& source = mtl.reader.source(i, where);
-        materials.push_back(material_from_mtl(mtl.materials[i], source, diag));
+        materials.push_back(material_from_mtl(mtl.materials[i], mtl.reader.pbr_keys(i), source, diag));
         texture_reader.apply(mtl.materials[i], source, materials.back());
     }
     LoadedMesh loaded = builder.finish(std::move(materials), diag);

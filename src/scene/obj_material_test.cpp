@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include "scene/mesh_file.h"
+#include "scene/mtl_scan.h"
 #include "scene/polygon_test_files.h"
 
 namespace sombra {
@@ -192,6 +193,77 @@ TEST(ObjMaterials, Illum5IsAMirrorAndIllum7Glass) {
     EXPECT_EQ(low.ke, (Vec3{1, 2, 3}));
 
     EXPECT_EQ(material_of(loaded, 4).type, MaterialType::Phong);
+}
+
+// MTL's PBR extension (spec §11): Pr or Pm makes a pbr material with
+// base_color = Kd, roughness = Pr, metallic = Pm (a missing one 0, as
+// tinyobjloader gives it), ior = Ni when > 1; illum 5 and 7 still win.
+TEST(ObjMaterials, PrAndPmMakeAPbrMaterial) {
+    TempFolder folder;
+    folder.write("m.mtl",
+                 "newmtl plastic\nKd 0.8 0.1 0.1\nKs 0.5 0.5 0.5\nNi 1.45\nPr 0.3\nPm 0\n"
+                 "newmtl rough_only\r\nKd 0.2 0.3 0.4\r\n  Pr\t0.6  \r\n"
+                 "newmtl metal_only\nKd 0.9 0.8 0.5\nPm 1\n"
+                 "newmtl smooth\nPr 0\nPm 0\n"
+                 "newmtl mirror\nKs 1 1 1\nPm 1\nillum 5\n"
+                 "newmtl out_of_range\nKd 0.5 0.5 0.5\nPr 1.5\nPm -2\n"
+                 "newmtl phong\nKd 0.2 0.2 0.2\nKs 0.5 0.5 0.5\n# Pr 0.5\nPrx 0.5\nmap_Pr r.png\n");
+    const fs::path obj = folder.write("m.obj",
+                                      "mtllib m.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\n"
+                                      "usemtl plastic\nf 1 2 3\nusemtl rough_only\nf 1 2 3\nusemtl metal_only\nf 1 2 3\n"
+                                      "usemtl smooth\nf 1 2 3\nusemtl mirror\nf 1 2 3\nusemtl out_of_range\nf 1 2 3\n"
+                                      "usemtl phong\nf 1 2 3\n");
+    Diagnostics diag;
+    const LoadedMesh loaded = load_obj(obj, diag);
+    ASSERT_EQ(loaded.mesh.triangle_count(), 7u);
+
+    const Material& plastic = material_of(loaded, 0);
+    EXPECT_EQ(plastic.type, MaterialType::Pbr);
+    EXPECT_EQ(plastic.base_color, (Vec3{0.8f, 0.1f, 0.1f}));
+    EXPECT_EQ(plastic.roughness, 0.3f);
+    EXPECT_EQ(plastic.metallic, 0.0f);
+    EXPECT_FLOAT_EQ(plastic.ior, 1.45f);
+
+    const Material& rough = material_of(loaded, 1);  // CRLF lines, blanks around
+    EXPECT_EQ(rough.type, MaterialType::Pbr);
+    EXPECT_EQ(rough.base_color, (Vec3{0.2f, 0.3f, 0.4f}));
+    EXPECT_EQ(rough.roughness, 0.6f);
+    EXPECT_EQ(rough.metallic, 0.0f);
+    EXPECT_EQ(rough.ior, 1.5f);  // no Ni
+
+    const Material& metal = material_of(loaded, 2);
+    EXPECT_EQ(metal.type, MaterialType::Pbr);
+    EXPECT_EQ(metal.metallic, 1.0f);
+    EXPECT_EQ(metal.roughness, 0.0f);  // Pr missing: tinyobjloader's 0
+
+    const Material& smooth = material_of(loaded, 3);  // stated, even as zeros
+    EXPECT_EQ(smooth.type, MaterialType::Pbr);
+    EXPECT_EQ(smooth.base_color, Vec3{0.0f});  // Kd missing: tinyobjloader's 0
+
+    EXPECT_EQ(material_of(loaded, 4).type, MaterialType::Mirror);
+
+    const Material& clamped = material_of(loaded, 5);
+    EXPECT_EQ(clamped.type, MaterialType::Pbr);
+    EXPECT_EQ(clamped.roughness, 1.0f);
+    EXPECT_EQ(clamped.metallic, 0.0f);
+    ASSERT_EQ(diag.warnings.size(), 2u);
+    EXPECT_NE(diag.warnings[0].find("material 'out_of_range': Pr 1.5 clamped to [0, 1]"), std::string::npos) << diag.warnings[0];
+    EXPECT_NE(diag.warnings[1].find("material 'out_of_range': Pm -2 clamped to [0, 1]"), std::string::npos) << diag.warnings[1];
+
+    EXPECT_EQ(material_of(loaded, 6).type, MaterialType::Phong);  // a comment, Prx and map_Pr are not Pr
+}
+
+TEST(ObjMaterials, PbrKeyScanFollowsTinyobjloadersMaterialOrder) {
+    // Keys before the first newmtl belong to no material; "newmtl" alone names
+    // none (the blank after it is trimmed), so its keys go to the one before;
+    // the last material is always added.
+    const std::vector<MtlPbrKeys> keys = scan_mtl_pbr_keys(
+        "Pr 0.5\nnewmtl a\nPm 1\nnewmtl \nPr 1\nnewmtl b\rPr 0.1\rnewmtl c\n\tPm\t0.2");
+    ASSERT_EQ(keys.size(), 3u);
+    EXPECT_TRUE(keys[0].roughness && keys[0].metallic);
+    EXPECT_TRUE(keys[1].roughness && !keys[1].metallic);
+    EXPECT_TRUE(!keys[2].roughness && keys[2].metallic);
+    EXPECT_EQ(scan_mtl_pbr_keys("").size(), 1u);
 }
 
 }  // namespace

@@ -70,6 +70,15 @@ struct EnvironmentMap {
     float rotate_y_degrees = 0;
 };
 
+// Where a range of the world's triangles came from: one entry of the scene
+// file's "objects" or one quad light (for messages and `sombra explain`).
+struct SceneObject {
+    std::string name;  // the scene file's JSON pointer ("/objects/2", "/lights/1"), or the model's file name
+    std::string file;  // the mesh file (empty for a quad light)
+    std::uint32_t first_triangle = 0;  // its triangles are first_triangle … first_triangle + triangle_count − 1
+    std::uint32_t triangle_count = 0;
+};
+
 struct Scene {
     RenderSettings render;
     Vec3 background{0.0f};
@@ -79,7 +88,11 @@ struct Scene {
     std::vector<Texture> textures;  // the materials' TextureRefs index this table (spec §12)
     std::vector<PointLight> lights;
     TriangleMesh geometry;  // all objects, world space; material_ids index materials
+    std::vector<SceneObject> objects;  // in triangle order, covering geometry's triangles
 };
+
+// The object triangle `triangle` of scene.geometry belongs to (nullptr if none does).
+const SceneObject* object_of_triangle(const Scene& scene, std::uint32_t triangle);
 
 // True when the scene holds version-2 content that the direct integrator
 // cannot light with (spec §10): quad lights (materials that emit from the

@@ -1,4 +1,5 @@
 // Questions about a loaded scene's content that the app asks before rendering.
+#include <algorithm>
 #include <vector>
 
 #include "scene/scene.h"
@@ -16,6 +17,15 @@ bool needs_path_integrator(const Scene& scene) {
         if (m.emits_front_only || m.type == MaterialType::Mirror || m.type == MaterialType::Dielectric) return true;
     }
     return false;
+}
+
+const SceneObject* object_of_triangle(const Scene& scene, std::uint32_t triangle) {
+    // Objects are in triangle order: the last one starting at or before `triangle`.
+    const auto it = std::upper_bound(scene.objects.begin(), scene.objects.end(), triangle,
+                                     [](std::uint32_t t, const SceneObject& o) { return t < o.first_triangle; });
+    if (it == scene.objects.begin()) return nullptr;
+    const SceneObject& object = *(it - 1);
+    return triangle - object.first_triangle < object.triangle_count ? &object : nullptr;
 }
 
 }  // namespace sombra

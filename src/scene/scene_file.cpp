@@ -33,6 +33,7 @@ struct ObjectSpec {
     fs::path path;                          // the mesh file, relative to the working directory
     std::optional<std::uint32_t> material;  // override: index into Scene::materials
     Transform transform;
+    bool is_quad_light = false;  // a quad light: no file behind it
 };
 
 ObjectSpec read_object(const SceneJson& s, const Json& v, std::string_view pointer, const fs::path& scene_path,
@@ -76,6 +77,9 @@ void append_object(Scene& scene, const LoadedMesh& loaded, const ObjectSpec& spe
     const TriangleMesh& in = loaded.mesh;
     const std::string mesh_name = spec.path.string();
 
+    scene.objects.push_back(SceneObject{spec.pointer, spec.is_quad_light ? std::string{} : mesh_name,
+                                        static_cast<std::uint32_t>(out.triangles.size()),
+                                        static_cast<std::uint32_t>(in.triangles.size())});
     const auto position_base = static_cast<std::uint32_t>(out.positions.size());
     for (const Vec3 p : in.positions) {
         const Vec3 q = transform_point(spec.transform, p);
@@ -257,7 +261,7 @@ Scene load_scene_text(const std::string& text, const fs::path& path, Diagnostics
     std::vector<ObjectSpec> quad_specs;
     for (const QuadLight& q : lights.quads) {
         quad_meshes.push_back(make_quad_light_mesh(q));
-        quad_specs.push_back(ObjectSpec{q.pointer, "quad light " + q.pointer, std::nullopt, Transform{}});
+        quad_specs.push_back(ObjectSpec{q.pointer, "quad light " + q.pointer, std::nullopt, Transform{}, true});
     }
 
     // Load everything first so the world arrays are sized once, exactly. A
@@ -357,6 +361,8 @@ Scene make_quicklook_scene(const std::filesystem::path& model, Diagnostics& diag
     scene.textures = std::move(loaded.textures);
     for (Material& m : scene.materials) m.textured = any_texture(m.textures);
     scene.geometry = std::move(loaded.mesh);
+    scene.objects.push_back(SceneObject{model.filename().string(), model.string(), 0,
+                                        static_cast<std::uint32_t>(scene.geometry.triangle_count())});
 
     // Far enough that the sphere fits the vertical field of view (the
     // horizontal one is wider for landscape images), with a 10 % margin.

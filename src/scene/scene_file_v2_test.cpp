@@ -1,5 +1,5 @@
 // Scene files, version 2 (spec §10, §11): render.integrator and max_depth,
-// mirror, dielectric and conductor materials, quad lights, environment maps
+// mirror, dielectric, conductor and pbr materials, quad lights, environment maps
 // (with the clamp_negative extension), and winding under mirroring transforms.
 #include <gtest/gtest.h>
 #include <unistd.h>
@@ -114,6 +114,33 @@ TEST_F(SceneV2, MaterialsOfVersionTwo) {
     EXPECT_EQ(water.kt, (Vec3{0.5f, 1, 1}));
 }
 
+TEST_F(SceneV2, PbrMaterialIsRead) {
+    const Scene s = load(scene(R"("materials": {
+        "plastic": {"type": "pbr", "base_color": [0.8, 0.1, 0.1], "metallic": 0, "roughness": 0.3},
+        "steel": {"type": "pbr", "base_color": [0.6, 0.6, 0.65], "metallic": 1, "roughness": 0.5, "ior": 2.5,
+                  "ke": [0.1, 0, 0]}})"));
+    ASSERT_EQ(s.materials.size(), 3u);  // in name order, then tri.obj's default
+    const Material& plastic = s.materials[0];
+    EXPECT_EQ(plastic.name, "plastic");
+    EXPECT_EQ(plastic.type, MaterialType::Pbr);
+    EXPECT_EQ(plastic.base_color, (Vec3{0.8f, 0.1f, 0.1f}));
+    EXPECT_EQ(plastic.metallic, 0.0f);
+    EXPECT_EQ(plastic.roughness, 0.3f);
+    EXPECT_EQ(plastic.ior, 1.5f);  // the default
+    EXPECT_EQ(plastic.ke, Vec3{0.0f});
+    const Material& steel = s.materials[1];
+    EXPECT_EQ(steel.type, MaterialType::Pbr);
+    EXPECT_EQ(steel.metallic, 1.0f);
+    EXPECT_EQ(steel.roughness, 0.5f);
+    EXPECT_EQ(steel.ior, 2.5f);
+    EXPECT_EQ(steel.ke, (Vec3{0.1f, 0, 0}));
+    EXPECT_TRUE(diag.warnings.empty());
+    // The ends of the ranges are allowed, and a pbr material does not ask for the path integrator.
+    const Scene ends = load(with_material(R"({"type": "pbr", "base_color": [0, 0, 1], "metallic": 1, "roughness": 0})"));
+    EXPECT_EQ(ends.materials[0].roughness, 0.0f);
+    EXPECT_FALSE(needs_path_integrator(ends));
+}
+
 TEST_F(SceneV2, HostileValuesNameWhereAndWhat) {
     const std::string name = scene_path.string();
     const struct {
@@ -141,8 +168,37 @@ TEST_F(SceneV2, HostileValuesNameWhereAndWhat) {
         {with_material(R"({"type": "mirror", "kr": [1, 1, 1], "kd": [1, 1, 1]})"),
          ": /materials/m/kd: 'kd' applies only to diffuse and phong materials, not mirror"},
         {with_material(R"({"type": "mirror", "kr": [1, 1, 1], "shine": 1})"), ": /materials/m/shine: unknown key 'shine'"},
-        {with_material(R"({"type": "pbr", "base_color": [1, 1, 1]})"),
-         ": /materials/m/type: material type 'pbr' is not supported yet"},
+        {with_material(R"({"type": "pbr", "base_color": [1, 1, 1]})"), ": /materials/m/metallic: missing required key 'metallic'"},
+        {with_material(R"({"type": "pbr", "metallic": 0, "roughness": 0.5})"),
+         ": /materials/m/base_color: missing required key 'base_color'"},
+        {with_material(R"({"type": "pbr", "base_color": [1, 1, 1], "metallic": 0})"),
+         ": /materials/m/roughness: missing required key 'roughness'"},
+        {with_material(R"({"type": "pbr", "base_color": [1, 1.2, 1], "metallic": 0, "roughness": 0.5})"),
+         ": /materials/m/base_color: base_color components must lie in [0, 1]"},
+        {with_material(R"({"type": "pbr", "base_color": [1, 1], "metallic": 0, "roughness": 0.5})"),
+         ": /materials/m/base_color: "},
+        {with_material(R"({"type": "pbr", "base_color": [1, 1, 1], "metallic": 1.01, "roughness": 0.5})"),
+         ": /materials/m/metallic: metallic must lie in [0, 1]"},
+        {with_material(R"({"type": "pbr", "base_color": [1, 1, 1], "metallic": -0.5, "roughness": 0.5})"),
+         ": /materials/m/metallic: metallic must lie in [0, 1]"},
+        {with_material(R"({"type": "pbr", "base_color": [1, 1, 1], "metallic": "1", "roughness": 0.5})"),
+         ": /materials/m/metallic: expected a number"},
+        {with_material(R"({"type": "pbr", "base_color": [1, 1, 1], "metallic": 0, "roughness": 2})"),
+         ": /materials/m/roughness: roughness must lie in [0, 1]"},
+        {with_material(R"({"type": "pbr", "base_color": [1, 1, 1], "metallic": 0, "roughness": 0.5, "ior": 1})"),
+         ": /materials/m/ior: ior must be greater than 1"},
+        {with_material(R"({"type": "pbr", "base_color": [1, 1, 1], "metallic": 0, "roughness": 0.5, "ior": 1e39})"),
+         ": /materials/m/ior: number out of range"},
+        {with_material(R"({"type": "pbr", "base_color": [1, 1, 1], "metallic": 0, "roughness": 0.5, "kd": [1, 1, 1]})"),
+         ": /materials/m/kd: 'kd' applies only to diffuse and phong materials, not pbr"},
+        {with_material(R"({"type": "pbr", "base_color": [1, 1, 1], "metallic": 0, "roughness": 0.5, "emissive": [1, 1, 1]})"),
+         ": /materials/m/emissive: unknown key 'emissive'"},
+        {with_material(R"({"type": "conductor", "ks": [1, 1, 1], "roughness": 0.5, "metallic": 1})"),
+         ": /materials/m/metallic: 'metallic' applies only to pbr materials, not conductor"},
+        {with_material(R"({"type": "dielectric", "roughness": 0.5})"),
+         ": /materials/m/roughness: 'roughness' applies only to conductor and pbr materials, not dielectric"},
+        {with_material(R"({"type": "metal"})"),
+         ": /materials/m/type: unknown material type 'metal' (expected 'diffuse', 'phong', 'mirror', 'dielectric', 'conductor' or 'pbr')"},
         {with_light(R"({"type": "quad", "corner": [0, 0, 0], "edge1": [1, 0, 0], "edge2": [2, 0, 0], "radiance": [1, 1, 1]})"),
          ": /lights/0: quad light edges 'edge1' and 'edge2' are parallel"},
         {with_light(R"({"type": "quad", "corner": [0, 0, 0], "edge1": [0, 0, 0], "edge2": [0, 1, 0], "radiance": [1, 1, 1]})"),

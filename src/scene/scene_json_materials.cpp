@@ -19,8 +19,9 @@ const TypeKeys kTypes[] = {
     {"mirror", {"type", "kr", "ke", "normal_map", "alpha"}},
     {"dielectric", {"type", "ior", "kt", "ke", "normal_map", "alpha"}},
     {"conductor", {"type", "ks", "roughness", "ke", "normal_map", "alpha"}},
+    {"pbr", {"type", "base_color", "metallic", "roughness", "ior", "ke", "normal_map", "alpha"}},
 };
-constexpr const char* kTypeList = "'diffuse', 'phong', 'mirror', 'dielectric' or 'conductor'";
+constexpr const char* kTypeList = "'diffuse', 'phong', 'mirror', 'dielectric', 'conductor' or 'pbr'";
 
 // The keys of another type that `type` does not take: "'ks' applies only to
 // phong and conductor materials" says more than "unknown key".
@@ -46,13 +47,18 @@ void read_phong(const SceneJson& s, const Json& v, std::string_view pointer, Mat
         json_warn(s, pointer, "kd + ks exceeds 1 in some channel: the material reflects more light than it receives");
 }
 
-void read_dielectric(const SceneJson& s, const Json& v, std::string_view pointer, Material& m,
-                     SceneTextures& textures) {
+// `ior` when given (the default stays 1.5): greater than 1, the outside being vacuum.
+void read_optional_ior(const SceneJson& s, const Json& v, std::string_view pointer, Material& m) {
     if (const Json* ior = find_member(v, "ior")) {
         const std::string p = json_child(pointer, "ior");
         m.ior = read_float(s, *ior, p);
         if (!(m.ior > 1)) json_fail(s, p, "ior must be greater than 1 (the outside is vacuum, ior 1)");
     }
+}
+
+void read_dielectric(const SceneJson& s, const Json& v, std::string_view pointer, Material& m,
+                     SceneTextures& textures) {
+    read_optional_ior(s, v, pointer, m);
     read_texturable(s, v, pointer, "kt", false, m, textures);
 }
 
@@ -62,13 +68,19 @@ void read_conductor(const SceneJson& s, const Json& v, std::string_view pointer,
     read_texturable(s, v, pointer, "roughness", true, m, textures);
 }
 
+// The glTF metallic–roughness material (§11): all but ior required.
+void read_pbr(const SceneJson& s, const Json& v, std::string_view pointer, Material& m, SceneTextures& textures) {
+    read_texturable(s, v, pointer, "base_color", true, m, textures);
+    read_texturable(s, v, pointer, "metallic", true, m, textures);
+    read_texturable(s, v, pointer, "roughness", true, m, textures);
+    read_optional_ior(s, v, pointer, m);
+}
+
 Material read_material(const SceneJson& s, const std::string& name, const Json& v, std::string_view pointer,
                        SceneTextures& textures) {
     expect_object(s, v, pointer);
     const std::string type_pointer = json_child(pointer, "type");
     const std::string& type = read_string(s, require_member(s, v, pointer, "type"), type_pointer);
-    if (type == "pbr")
-        json_fail(s, type_pointer, "material type 'pbr' is not supported yet (expected " + std::string(kTypeList) + ")");
     const TypeKeys* keys = nullptr;
     for (const TypeKeys& t : kTypes)
         if (type == t.type) keys = &t;
@@ -90,9 +102,12 @@ Material read_material(const SceneJson& s, const std::string& name, const Json& 
     } else if (type == "dielectric") {
         m.type = MaterialType::Dielectric;
         read_dielectric(s, v, pointer, m, textures);
-    } else {
+    } else if (type == "conductor") {
         m.type = MaterialType::Conductor;
         read_conductor(s, v, pointer, m, textures);
+    } else {
+        m.type = MaterialType::Pbr;
+        read_pbr(s, v, pointer, m, textures);
     }
     read_texturable(s, v, pointer, "ke", false, m, textures);
     read_material_maps(s, v, pointer, m, textures);

@@ -82,6 +82,20 @@ TEST_F(SceneTextures, ScalarsNormalMapsAndAlpha) {
     EXPECT_EQ(warned, 1u);
 }
 
+TEST_F(SceneTextures, PbrTakesBaseColourAndGltfStyleMetallicRoughness) {
+    const Scene s = load(R"({"m": {"type": "pbr", "base_color": {"texture": "rb.png", "scale": [1, 0.5, 1]},
+                                   "roughness": {"texture": "g16.png", "channel": "g"},
+                                   "metallic": {"texture": "g16.png", "channel": "b", "scale": 0.75}}})");
+    const Material& m = s.materials[0];
+    EXPECT_TRUE(m.textured);
+    EXPECT_EQ(m.base_color, (Vec3{1, 0.5f, 1}));
+    EXPECT_EQ(m.textures.roughness.texture, m.textures.metallic.texture);  // one decoding
+    EXPECT_EQ(m.textures.roughness.channel, 1);
+    EXPECT_EQ(m.textures.metallic.channel, 2);
+    EXPECT_EQ(m.metallic, 0.75f);
+    EXPECT_EQ(s.textures.size(), 2u);
+}
+
 TEST_F(SceneTextures, UntexturedMaterialsStayUntextured) {
     const Scene s = load(R"({"m": {"type": "diffuse", "kd": [0.5, 0.5, 0.5]}})");
     EXPECT_FALSE(s.materials[0].textured);

@@ -40,7 +40,10 @@ bool starts_with(std::span<const unsigned char> bytes, std::string_view magic) {
 // other format's signature is given to stb's TGA reader, which checks the header.
 Sniffed sniff(std::span<const unsigned char> bytes) {
     if (starts_with(bytes, "\x89PNG\r\n\x1a\n")) return {Format::Png, "PNG"};
-    if (starts_with(bytes, "\xff\xd8\xff")) return {Format::Jpeg, "JPEG"};
+    // stb's JPEG reader skips 0xff fill bytes before the start-of-image marker.
+    std::size_t fill = 0;
+    while (fill < bytes.size() && bytes[fill] == 0xff) ++fill;
+    if (fill > 0 && fill < bytes.size() && bytes[fill] == 0xd8) return {Format::Jpeg, "JPEG"};
     if (starts_with(bytes, "BM")) return {Format::Bmp, "BMP"};
     // Formats stb would read too, but spec §12 does not list: refused by name.
     if (starts_with(bytes, "GIF8")) return {Format::Unsupported, "a GIF image"};

@@ -42,7 +42,9 @@ int next_marker(Reader& r, bool in_scan) {
 }  // namespace
 
 std::string jpeg_huffman_problem(std::span<const unsigned char> bytes) {
-    Reader r{bytes, 2};  // after the start-of-image marker
+    Reader r{bytes, 0};
+    while (r.get8() == 0xff) {
+    }  // fill bytes, then the start-of-image marker (0xd8)
     bool in_scan = false;
     for (;;) {
         const int m = next_marker(r, in_scan);

@@ -1,0 +1,109 @@
+// `sombra explain SCENE X Y`: load and build as `render` does, trace the one
+// sample with a recorder, and tell its story (spec §14).
+#include <unistd.h>
+
+#include <algorithm>
+#include <fstream>
+#include <iostream>
+
+#include "accel/accel.h"
+#include "app/interrupt.h"
+#include "app/prepare.h"
+#include "app/progress.h"
+#include "app/run.h"
+#include "core/error.h"
+#include "explain/explain.h"
+#include "image/atomic_file.h"
+#include "render/render.h"
+
+namespace sombra {
+
+namespace {
+
+// The picture's file must be writable, found out before the work.
+void check_svg_path(const std::filesystem::path& path) {
+    std::string ext = path.extension().string();
+    for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    if (ext != ".svg") throw Error(path.string(), "the picture is an SVG file: the name must end in .svg");
+    const std::filesystem::path folder = path.parent_path().empty() ? "." : path.parent_path();
+    std::error_code ec;
+    if (!std::filesystem::is_directory(folder, ec)) throw Error(path.string(), "folder '" + folder.string() + "' does not exist");
+    if (std::filesystem::is_directory(path, ec)) throw Error(path.string(), "is a folder");
+}
+
+void check_pixel(const CliOptions& o, const RenderSettings& s) {
+    const std::string where = "pixel (" + std::to_string(o.pixel_x) + ", " + std::to_string(o.pixel_y) + ")";
+    if (o.pixel_x < 0 || o.pixel_x >= s.width || o.pixel_y < 0 || o.pixel_y >= s.height)
+        throw Error(where, "outside the " + std::to_string(s.width) + "x" + std::to_string(s.height) + " image (columns 0 to " +
+                               std::to_string(s.width - 1) + ", rows 0 to " + std::to_string(s.height - 1) + ")");
+    if (o.sample < 0 || o.sample >= s.spp)
+        throw Error("--sample", "sample " + std::to_string(o.sample) + " does not exist: the pixel has " + std::to_string(s.spp) +
+                                    " sample" + (s.spp == 1 ? "" : "s") + " (0 to " + std::to_string(s.spp - 1) + ")");
+}
+
+}  // namespace
+
+int run_explain(const CliOptions& o) {
+    RenderProgress progress;
+    InterruptWatcher interrupt(progress);  // first: before any other thread starts
+    try {
+        if (!o.svg.empty()) check_svg_path(o.svg);
+        Diagnostics diag;
+        const Scene scene = load_input(o.input, diag);
+        const RenderSettings settings = resolve_settings(scene.render, o);
+        print_warnings(diag, scene, settings, o);
+        check_pixel(o, settings);
+
+        const Accel accel = make_accel(scene.geometry, *parse_accel_kind(o.accel));
+        const RenderJob job = make_render_job(scene, accel, settings, o.threads, light_selection(o));
+        SampleRecord record;
+        RayCounters counters;
+        trace_pixel_sample(job, o.pixel_x, o.pixel_y, o.sample, counters, record);
+
+        const ExplainContext context{scene, job, o.input};
+        // The whole story is made before any of it is printed or written.
+        const std::string story = o.json ? explain_json(context, record) : explain_text(context, record);
+
+        if (!o.svg.empty()) {
+            RenderJob preview = job;
+            preview.settings.spp = picture_spp(settings);
+            interrupt.set_phase(InterruptWatcher::Phase::Rendering);
+            RenderOutput rendered;
+            {
+                const bool show = !o.quiet && isatty(STDERR_FILENO);
+                ProgressBar bar(progress,
+                                static_cast<std::uint64_t>(settings.width) * static_cast<std::uint64_t>(settings.height) *
+                                    static_cast<std::uint64_t>(preview.settings.spp),
+                                show);
+                rendered = render_image(preview, progress);
+            }
+            if (rendered.cancelled) {
+                const int sig = interrupt.signal_received();
+                std::cerr << "sombra: error: " << signal_name(sig) << ": interrupted, nothing written\n";
+                return interrupted_exit_status(sig);
+            }
+            interrupt.set_phase(InterruptWatcher::Phase::Writing);
+            const std::string picture = explain_svg(
+                context, record, ImageView{rendered.film.width, rendered.film.height, rendered.film.rgb.data()}, o.exposure);
+            write_file_atomically(o.svg, [&picture](const std::filesystem::path& temp) {
+                std::ofstream out(temp, std::ios::binary);
+                out << picture;
+                out.close();
+                if (!out) throw Error(temp.string(), "write failed");
+            });
+        }
+        std::cout << story << std::flush;
+        return 0;
+    } catch (const Error& e) {
+        std::cerr << "sombra: error: " << one_line(e.where() + ": " + e.message()) << '\n';
+        return 1;
+    } catch (const std::bad_alloc&) {
+        std::cerr << "sombra: error: " << one_line(o.input) << ": out of memory\n";
+        return 1;
+    } catch (const std::exception& e) {
+        std::cerr << "sombra: error: " << one_line(o.input) << ": internal error: " << one_line(e.what()) << '\n';
+        return 1;
+    }
+}
+
+}  // namespace sombra

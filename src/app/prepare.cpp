@@ -1,0 +1,60 @@
+#include "app/prepare.h"
+
+#include <cctype>
+#include <iostream>
+
+#include "core/error.h"
+
+namespace sombra {
+
+namespace {
+
+std::string lower_extension(const std::filesystem::path& path) {
+    std::string ext = path.extension().string();
+    for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    return ext;
+}
+
+}  // namespace
+
+std::string one_line(std::string text) {
+    for (char& c : text)
+        if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) c = '?';
+    return text;
+}
+
+Scene load_input(const std::filesystem::path& input, Diagnostics& diag) {
+    const std::string ext = lower_extension(input);
+    if (ext == ".json") return load_scene_file(input, diag);
+    if (ext == ".obj" || ext == ".ply") return make_quicklook_scene(input, diag);
+    throw Error(input.string(), "unknown input type '" + ext + "' (expected a scene .json, or a model .obj or .ply)");
+}
+
+RenderSettings resolve_settings(const RenderSettings& scene_settings, const CliOptions& o) {
+    RenderSettings s = scene_settings;
+    auto check = [&s](const char* option) {
+        if (const std::string problem = render_settings_problem(s); !problem.empty()) throw Error(option, problem);
+    };
+    if (o.width) { s.width = *o.width; check("--width"); }
+    if (o.height) { s.height = *o.height; check("--height"); }
+    if (o.spp) { s.spp = *o.spp; check("--spp"); }
+    if (o.seed) s.seed = *o.seed;
+    if (o.integrator) s.integrator = *o.integrator == "path" ? IntegratorKind::Path : IntegratorKind::Direct;
+    if (o.max_depth) { s.max_depth = *o.max_depth; check("--max-depth"); }
+    return s;
+}
+
+LightSelection light_selection(const CliOptions& o) {
+    return o.light_tree == "on" ? LightSelection::Tree : o.light_tree == "off" ? LightSelection::Power : LightSelection::Automatic;
+}
+
+void print_warnings(const Diagnostics& diag, const Scene& scene, const RenderSettings& settings, const CliOptions& o) {
+    for (const std::string& w : diag.warnings) std::cerr << "sombra: warning: " << one_line(w) << '\n';
+    // After the overrides: --integrator path silences it, --integrator direct may cause it.
+    if (settings.integrator == IntegratorKind::Direct && needs_path_integrator(scene))
+        std::cerr << "sombra: warning: " << one_line(o.input)
+                  << ": the direct integrator lights with point lights only: quad lights and the environment "
+                     "are only seen, mirror and glass reflect nothing from point lights; use --integrator path\n";
+}
+
+}  // namespace sombra

@@ -1,0 +1,67 @@
+#include "explain/describe.h"
+
+#include <cstdio>
+
+#include "core/format.h"
+
+namespace sombra {
+
+std::string material_type_name(MaterialType type) {
+    switch (type) {
+        case MaterialType::Diffuse: return "diffuse";
+        case MaterialType::Phong: return "phong";
+        case MaterialType::Mirror: return "mirror";
+        case MaterialType::Dielectric: return "dielectric";
+        case MaterialType::Conductor: return "conductor";
+        case MaterialType::Pbr: return "pbr";
+    }
+    return "?";
+}
+
+std::vector<MaterialParameter> material_parameters(const Material& m) {
+    auto rgb = [](Vec3 v) { return std::vector<float>{v.x, v.y, v.z}; };
+    std::vector<MaterialParameter> p;
+    switch (m.type) {
+        case MaterialType::Diffuse: p = {{"kd", rgb(m.kd)}}; break;
+        case MaterialType::Phong: p = {{"kd", rgb(m.kd)}, {"ks", rgb(m.ks)}, {"shininess", {m.shininess}}}; break;
+        case MaterialType::Mirror: p = {{"kr", rgb(m.kr)}}; break;
+        case MaterialType::Dielectric: p = {{"ior", {m.ior}}, {"kt", rgb(m.kt)}}; break;
+        case MaterialType::Conductor: p = {{"ks", rgb(m.ks)}, {"roughness", {m.roughness}}}; break;
+        case MaterialType::Pbr:
+            p = {{"base_color", rgb(m.base_color)}, {"metallic", {m.metallic}}, {"roughness", {m.roughness}}, {"ior", {m.ior}}};
+            break;
+    }
+    if (is_emissive(m)) p.push_back({"ke", rgb(m.ke)});
+    return p;
+}
+
+TriangleOrigin triangle_origin(const Scene& scene, std::uint32_t triangle) {
+    const SceneObject* object = object_of_triangle(scene, triangle);
+    if (!object) return {"?", "", triangle};
+    return {object->name, object->file, triangle - object->first_triangle};
+}
+
+const char* outcome_name(LightOutcome outcome) {
+    switch (outcome) {
+        case LightOutcome::Behind: return "behind";
+        case LightOutcome::OnSurface: return "on_surface";
+        case LightOutcome::Blocked: return "blocked";
+        case LightOutcome::Visible: return "visible";
+    }
+    return "?";
+}
+
+std::string readable(float v) {
+    if (v == 0.0f) return "0";  // also −0: a learner need not meet signed zeros
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%.4g", static_cast<double>(v));
+    return buf;
+}
+
+std::string readable(Vec3 v) { return "(" + readable(v.x) + ", " + readable(v.y) + ", " + readable(v.z) + ")"; }
+
+std::string exact(float v) { return format_number(v); }
+
+std::string exact(Vec3 v) { return "(" + exact(v.x) + ", " + exact(v.y) + ", " + exact(v.z) + ")"; }
+
+}  // namespace sombra

@@ -1,0 +1,43 @@
+// `sombra explain` (spec §14): the story of one sample of one pixel, told
+// from the SampleRecord that the integrators wrote while computing it
+// (render/sample_record.h), as text for a reader, JSON for scripts and an
+// SVG picture of the path in the scene beside the rendered image.
+#pragma once
+
+#include <string>
+
+#include "image/image_io.h"
+#include "render/render.h"
+#include "render/sample_record.h"
+#include "scene/scene.h"
+
+namespace sombra {
+
+// What the story is about: the scene, the job that rendered it (image size,
+// spp, integrator…) and the file the scene came from.
+struct ExplainContext {
+    const Scene& scene;
+    const RenderJob& job;
+    std::string scene_file;
+};
+
+// The story as readable text, one section per step, ending with the value.
+std::string explain_text(const ExplainContext& context, const SampleRecord& record);
+
+// The same as one JSON object: "pixel", "sample", "value" (the exact floats),
+// "camera_ray", "hit" (null on a miss), "lights" (the first vertex's), and
+// "vertices" (every vertex; one under `direct`).
+std::string explain_json(const ExplainContext& context, const SampleRecord& record);
+
+// The samples per pixel of the render drawn beside the story: the scene's,
+// at most 16. The picture needs only to show the scene, and a 4096-spp
+// scene's explanation should not take as long as its render.
+inline int picture_spp(const RenderSettings& settings) { return settings.spp < 16 ? settings.spp : 16; }
+
+// A picture of the story: the scene's outlines seen from beside the camera
+// with the camera, the path, the lights and the shadow rays (blocked ones
+// red, with the blocker marked), next to `image` (the render) with the pixel
+// marked. `image` is the render at picture_spp samples. A complete SVG document.
+std::string explain_svg(const ExplainContext& context, const SampleRecord& record, ImageView image, float exposure);
+
+}  // namespace sombra

@@ -1,0 +1,186 @@
+// The story as one JSON object. Floats are written as the doubles they
+// convert to exactly, so "value" reads back to the very floats the render
+// computed.
+#include <cmath>
+#include <nlohmann/json.hpp>
+
+#include "explain/describe.h"
+#include "explain/explain.h"
+
+namespace sombra {
+
+namespace {
+
+using Json = nlohmann::ordered_json;
+
+Json number(float v) {
+    if (std::isinf(v)) return v > 0 ? "inf" : "-inf";  // JSON has no infinity (an environment light's distance)
+    return static_cast<double>(v);
+}
+Json vec(Vec3 v) { return Json::array({number(v.x), number(v.y), number(v.z)}); }
+
+class JsonStory {
+public:
+    JsonStory(const ExplainContext& context, const SampleRecord& record) : c_(context), r_(record) {}
+
+    Json build() const {
+        const RenderSettings& s = c_.job.settings;
+        Json j;
+        j["pixel"] = {r_.pixel_x, r_.pixel_y};
+        j["sample"] = r_.sample;
+        j["value"] = vec(r_.value);
+        j["scene"] = c_.scene_file;
+        j["width"] = s.width;
+        j["height"] = s.height;
+        j["spp"] = s.spp;
+        j["seed"] = s.seed;
+        j["integrator"] = r_.path ? "path" : "direct";
+        if (r_.path) j["max_depth"] = s.max_depth;
+        j["camera_ray"] = {{"pixel_offset", {number(r_.offset_x), number(r_.offset_y)}},
+                           {"s", number(r_.s)},
+                           {"t", number(r_.t)},
+                           {"origin", vec(r_.origin)},
+                           {"direction", vec(r_.direction)}};
+        const VertexRecord* first = r_.vertices.empty() ? nullptr : &r_.vertices.front();
+        j["hit"] = first && first->hit ? hit(first->surface) : Json(nullptr);
+        j["lights"] = first ? lights(*first) : Json::array();
+        Json vertices = Json::array();
+        for (const VertexRecord& v : r_.vertices) vertices.push_back(vertex(v));
+        j["vertices"] = vertices;
+        j["end"] = r_.end;
+        j["nonfinite"] = r_.nonfinite;
+        return j;
+    }
+
+private:
+    Json where(std::uint32_t triangle) const {
+        const TriangleOrigin o = triangle_origin(c_.scene, triangle);
+        return {{"object", o.object}, {"file", o.file}, {"triangle", o.triangle}, {"scene_triangle", triangle}};
+    }
+
+    Json material(std::uint32_t index) const {
+        const Material& m = c_.scene.materials[index];
+        Json j = {{"name", m.name}, {"type", material_type_name(m.type)}};
+        for (const MaterialParameter& p : material_parameters(m)) {
+            if (p.value.size() == 3)
+                j[p.name] = vec(Vec3{p.value[0], p.value[1], p.value[2]});
+            else
+                j[p.name] = number(p.value[0]);
+        }
+        return j;
+    }
+
+    Json hit(const HitRecord& h) const {
+        Json j = where(h.triangle);
+        j["t"] = number(h.t);
+        j["distance"] = number(h.distance);
+        j["barycentric"] = {number(h.b1), number(h.b2)};
+        j["x"] = vec(h.position);
+        j["n_g"] = vec(h.n_g);
+        j["n_s"] = vec(h.n_s);
+        j["outside"] = h.outside;
+        j["material"] = material(h.material);
+        return j;
+    }
+
+    static Json f_terms(Vec3 diffuse, Vec3 lobe, Vec3 f) { return {{"diffuse", vec(diffuse)}, {"lobe", vec(lobe)}, {"total", vec(f)}}; }
+
+    Json blocker(const BlockerRecord& b) const {
+        Json j = where(b.triangle);
+        j["distance"] = number(b.distance);
+        return j;
+    }
+
+    Json point_light(const PointLightRecord& l) const {
+        const PointLight& light = c_.scene.lights[l.light];
+        Json j = {{"type", "point"},
+                  {"index", l.light},
+                  {"position", vec(light.position)},
+                  {"intensity", vec(light.intensity)},
+                  {"outcome", outcome_name(l.outcome)}};
+        if (l.outcome != LightOutcome::OnSurface) {
+            j["omega_i"] = vec(l.wi);
+            j["distance"] = number(l.distance);
+            j["cos_g"] = number(l.cos_g);
+            j["cos_s"] = number(l.cos_s);
+            j["incident"] = vec(l.incident);
+            j["f_r"] = f_terms(l.f_diffuse, l.f_lobe, l.f);
+        }
+        if (l.outcome == LightOutcome::Blocked) j["blocker"] = blocker(l.blocker);
+        j["contribution"] = vec(l.contribution);
+        return j;
+    }
+
+    Json sampled_light(const SampledLightRecord& l) const {
+        if (!l.sampled) return {{"type", "sampled"}, {"outcome", "none"}, {"contribution", vec(l.contribution)}};
+        Json j = {{"type", l.environment ? "environment" : "emitter"}};
+        if (!l.environment) {
+            j["emitter"] = where(l.triangle);
+            j["point"] = vec(l.target);
+        }
+        j["outcome"] = outcome_name(l.outcome);
+        j["omega_i"] = vec(l.wi);
+        j["distance"] = number(l.distance);
+        j["radiance"] = vec(l.radiance);
+        j["light_pdf"] = number(l.light_pdf);
+        j["bsdf_pdf"] = number(l.bsdf_pdf);
+        j["mis_weight"] = number(l.mis_weight);
+        j["cos_s"] = number(l.cos_s);
+        j["f_r"] = f_terms(l.f_diffuse, l.f_lobe, l.f);
+        if (l.outcome == LightOutcome::Blocked) j["blocker"] = blocker(l.blocker);
+        j["contribution"] = vec(l.contribution);
+        return j;
+    }
+
+    Json lights(const VertexRecord& v) const {
+        Json list = Json::array();
+        for (const PointLightRecord& l : v.point_lights) list.push_back(point_light(l));
+        if (r_.path && v.hit && !v.delta_material && c_.job.lights.has_sampled_lights())
+            list.push_back(sampled_light(v.sampled_light));
+        return list;
+    }
+
+    static Json emission(const EmissionRecord& e) {
+        return {{"radiance", vec(e.radiance)},
+                {"mis_weight", number(e.mis_weight)},
+                {"bsdf_pdf", number(e.bsdf_pdf)},
+                {"light_pdf", number(e.light_pdf)},
+                {"contribution", vec(e.contribution)}};
+    }
+
+    Json vertex(const VertexRecord& v) const {
+        Json j = {{"depth", v.depth},
+                  {"ray", {{"origin", vec(v.ray_origin)}, {"direction", vec(v.ray_dir)}}},
+                  {"throughput", vec(v.throughput)}};
+        j["hit"] = v.hit ? hit(v.surface) : Json(nullptr);
+        j["emission"] = emission(v.emission);
+        if (!v.hit) return j;
+        j["delta_material"] = v.delta_material;
+        j["lights"] = lights(v);
+        const BounceRecord& b = v.bounce;
+        if (r_.path && b.sampled) {
+            Json bounce = {{"omega_i", vec(b.wi)},      {"f_r", vec(b.f)},
+                           {"pdf", number(b.pdf)},      {"delta", b.delta},
+                           {"transmission", b.transmission}, {"weight", vec(b.weight)},
+                           {"throughput", vec(b.throughput)}};
+            if (b.roulette)
+                bounce["roulette"] = {{"q", number(b.roulette_q)},
+                                      {"u", number(b.roulette_u)},
+                                      {"survived", b.survived},
+                                      {"throughput", vec(b.throughput_after)}};
+            j["bounce"] = bounce;
+        }
+        return j;
+    }
+
+    const ExplainContext& c_;
+    const SampleRecord& r_;
+};
+
+}  // namespace
+
+std::string explain_json(const ExplainContext& context, const SampleRecord& record) {
+    return JsonStory(context, record).build().dump(2) + "\n";
+}
+
+}  // namespace sombra

@@ -1,0 +1,200 @@
+// `sombra explain` tells the truth: the value it reports is the render's,
+// bit for bit, and the terms it lists add up to that value, for a thousand
+// random pixels of every shared scene under both integrators.
+#include "explain/explain.h"
+
+#include <gtest/gtest.h>
+
+#include <bit>
+#include <cstring>
+#include <filesystem>
+#include <nlohmann/json.hpp>
+#include <random>
+
+#include "explain/describe.h"
+#include "render/test_meshes.h"
+#include "scene/scene_file.h"
+
+namespace sombra {
+namespace {
+
+const std::filesystem::path kShared = SOMBRA_SHARED_DIR;
+const std::filesystem::path kSource = SOMBRA_SOURCE_DIR;
+
+bool same_bits(Vec3 a, Vec3 b) { return std::memcmp(&a, &b, sizeof a) == 0; }
+
+std::string show(Vec3 v) { return exact(v); }
+
+// The terms a record lists, added in the order the integrator added them.
+Vec3 sum_of_terms(const SampleRecord& r) {
+    Vec3 sum{0.0f};
+    for (const VertexRecord& v : r.vertices) {
+        if (v.emission.present) sum += v.emission.contribution;
+        for (const PointLightRecord& l : v.point_lights) sum += l.contribution;
+        if (v.sampled_light.sampled) sum += v.sampled_light.contribution;
+    }
+    return sum;
+}
+
+// Renders `scene` at `settings`, then re-traces `pixel_count` random pixels'
+// every sample with the recorder: each pixel's average must be the film's
+// value to the last bit, and each sample's terms must add up to its value.
+void expect_explain_matches_render(const Scene& scene, const RenderSettings& settings, int pixel_count, const char* what) {
+    const Accel accel = make_accel(scene.geometry, AccelKind::Bvh);
+    const RenderJob job = make_render_job(scene, accel, settings, 2);
+    RenderProgress progress;
+    const RenderOutput out = render_image(job, progress);
+    ASSERT_FALSE(out.cancelled);
+
+    std::mt19937 rng(12345);
+    std::uniform_int_distribution<int> column(0, settings.width - 1), row(0, settings.height - 1);
+    int mismatches = 0, unbalanced = 0, with_terms = 0;
+    for (int n = 0; n < pixel_count; ++n) {
+        const int i = column(rng), j = row(rng);
+        Vec3 sum{0.0f};
+        for (int k = 0; k < settings.spp; ++k) {
+            SampleRecord record;
+            RayCounters counters;
+            const Vec3 value = trace_pixel_sample(job, i, j, k, counters, record);
+            EXPECT_TRUE(same_bits(value, record.value));
+            EXPECT_EQ(record.pixel_x, i);
+            EXPECT_EQ(record.sample, k);
+            if (!record.nonfinite) {
+                with_terms += max_component(value) > 0.0f;
+                if (!same_bits(sum_of_terms(record), value) && ++unbalanced <= 3)
+                    ADD_FAILURE() << what << " pixel (" << i << ", " << j << ") sample " << k << ": terms add to "
+                                  << show(sum_of_terms(record)) << ", value " << show(value);
+            }
+            sum += value;
+        }
+        const Vec3 pixel = sum / static_cast<float>(settings.spp);
+        if (!same_bits(pixel, out.film.at(i, j)) && ++mismatches <= 3)
+            ADD_FAILURE() << what << " pixel (" << i << ", " << j << "): explain " << show(pixel) << ", render "
+                          << show(out.film.at(i, j));
+    }
+    EXPECT_EQ(mismatches, 0) << what;
+    EXPECT_EQ(unbalanced, 0) << what;
+    EXPECT_GT(with_terms, pixel_count / 10) << what << ": too few lit samples for the check to mean anything";
+}
+
+RenderSettings scaled_down(const RenderSettings& s, int factor, IntegratorKind integrator, int spp) {
+    RenderSettings r = s;
+    r.width = std::max(1, s.width / factor);
+    r.height = std::max(1, s.height / factor);
+    r.integrator = integrator;
+    r.spp = spp;
+    return r;
+}
+
+class ExplainSharedScene : public ::testing::TestWithParam<const char*> {};
+
+TEST_P(ExplainSharedScene, ValueIsTheRenderedSampleBitForBit) {
+    const std::filesystem::path file = kShared / "scenes" / GetParam();
+    if (!std::filesystem::exists(file)) GTEST_SKIP() << "shared/ not found at " << kShared << ": " << file << " is missing";
+    Diagnostics diag;
+    const Scene scene = load_scene_file(file, diag);
+    expect_explain_matches_render(scene, scaled_down(scene.render, 8, IntegratorKind::Direct, 1), 1000, "direct, 1 spp");
+    expect_explain_matches_render(scene, scaled_down(scene.render, 8, IntegratorKind::Path, 3), 1000, "path, 3 spp");
+}
+
+INSTANTIATE_TEST_SUITE_P(SharedScenes, ExplainSharedScene,
+                         ::testing::Values("bunny.json", "cornell.json", "phong.json", "manylights.json", "dragon.json"));
+
+// The repository's path-tracing scenes: quad lights (MIS), glass, metal, Russian roulette.
+TEST(ExplainRepoScene, PathTracedScenesMatchTheRender) {
+    for (const char* name : {"cornell-box-path.json", "spheres.json"}) {
+        Diagnostics diag;
+        const Scene scene = load_scene_file(kSource / "scenes" / name, diag);
+        expect_explain_matches_render(scene, scaled_down(scene.render, 8, IntegratorKind::Path, 4), 1000, name);
+    }
+}
+
+// A ground quad (object 0) under a small blocker quad (object 1), lit by two
+// point lights: one straight above (blocked), one below the ground (behind),
+// seen by a 1×1 camera from the side, looking past the blocker at the ground in its shadow.
+Scene blocked_scene() {
+    Scene scene;
+    scene.materials = {Material{"ground", MaterialType::Diffuse, Vec3{0.5f}}, Material{"blocker", MaterialType::Diffuse, Vec3{0.2f}}};
+    testing::add_quad(scene.geometry, {-2, 0, -2}, {-2, 0, 2}, {2, 0, 2}, {2, 0, -2}, 0);
+    testing::add_quad(scene.geometry, {-0.5f, 1, -0.5f}, {-0.5f, 1, 0.5f}, {0.5f, 1, 0.5f}, {0.5f, 1, -0.5f}, 1);
+    scene.objects = {SceneObject{"/objects/0", "ground.obj", 0, 2}, SceneObject{"/objects/1", "blocker.obj", 2, 2}};
+    scene.lights = {PointLight{{0, 3, 0}, Vec3{10.0f}}, PointLight{{0, -1, 0}, Vec3{10.0f}}, PointLight{{1.5f, 2, 0}, Vec3{8.0f}}};
+    scene.camera.look_at = CameraLookAt{{3, 2, 0.1f}, {0.1f, 0, 0.1f}, {0, 1, 0}, 10};
+    scene.render = RenderSettings{1, 1, 1, 0};
+    return scene;
+}
+
+TEST(ExplainRecord, NamesTheBlockerTheLightBehindAndEachFactorOfTheVisibleLight) {
+    const Scene scene = blocked_scene();
+    const Accel accel = make_accel(scene.geometry, AccelKind::Bvh);
+    const RenderJob job = make_render_job(scene, accel, scene.render, 1);
+    SampleRecord r;
+    RayCounters counters;
+    trace_pixel_sample(job, 0, 0, 0, counters, r);
+
+    ASSERT_EQ(r.vertices.size(), 1u);
+    const VertexRecord& v = r.vertices[0];
+    ASSERT_TRUE(v.hit);
+    EXPECT_LT(v.surface.triangle, 2u);  // the ground
+    EXPECT_NEAR(v.surface.distance, std::sqrt(2.9f * 2.9f + 4.0f), 1e-4f);
+    ASSERT_EQ(v.point_lights.size(), 3u);
+
+    const PointLightRecord& above = v.point_lights[0];
+    EXPECT_EQ(above.outcome, LightOutcome::Blocked);
+    EXPECT_TRUE(above.blocker.triangle == 2 || above.blocker.triangle == 3) << above.blocker.triangle;
+    // The blocker is 1 above the ground: the ray to (0, 3, 0) meets it a third of its way up.
+    EXPECT_NEAR(above.blocker.distance, length(Vec3{-0.1f, 3, -0.1f}) / 3.0f, 1e-4f);
+    EXPECT_EQ(above.contribution, Vec3{0.0f});
+
+    EXPECT_EQ(v.point_lights[1].outcome, LightOutcome::Behind);
+
+    // The visible light: each factor as spec §4 writes it.
+    const PointLightRecord& side = v.point_lights[2];
+    ASSERT_EQ(side.outcome, LightOutcome::Visible);
+    const Vec3 to_light = scene.lights[2].position - v.surface.position;
+    const float d2 = dot(to_light, to_light);
+    EXPECT_NEAR(side.distance, std::sqrt(d2), 1e-5f);
+    EXPECT_NEAR(side.incident.x, 8.0f / d2, 1e-5f);
+    EXPECT_NEAR(side.f_diffuse.x, 0.5f / 3.14159265f, 1e-6f);
+    EXPECT_EQ(side.f_lobe, Vec3{0.0f});
+    EXPECT_NEAR(side.cos_s, to_light.y / std::sqrt(d2), 1e-5f);
+    EXPECT_NEAR(side.contribution.x, side.incident.x * side.f.x * side.cos_s, 1e-6f);
+    EXPECT_TRUE(same_bits(r.value, side.contribution));
+
+    // The text and the JSON say the same.
+    const ExplainContext context{scene, job, "test.json"};
+    const std::string text = explain_text(context, r);
+    EXPECT_NE(text.find("BLOCKED: the shadow ray meets /objects/1 (blocker.obj)"), std::string::npos) << text;
+    EXPECT_NE(text.find("BEHIND"), std::string::npos) << text;
+    const nlohmann::json j = nlohmann::json::parse(explain_json(context, r));
+    EXPECT_EQ(j["pixel"], nlohmann::json::array({0, 0}));
+    EXPECT_EQ(j["sample"], 0);
+    EXPECT_EQ(j["hit"]["object"], "/objects/0");
+    EXPECT_EQ(j["lights"][0]["outcome"], "blocked");
+    EXPECT_EQ(j["lights"][0]["blocker"]["object"], "/objects/1");
+    EXPECT_EQ(j["lights"][1]["outcome"], "behind");
+    EXPECT_EQ(j["lights"][2]["outcome"], "visible");
+    // "value" reads back to the very floats.
+    const Vec3 value{static_cast<float>(j["value"][0].get<double>()), static_cast<float>(j["value"][1].get<double>()),
+                     static_cast<float>(j["value"][2].get<double>())};
+    EXPECT_TRUE(same_bits(value, r.value));
+}
+
+TEST(ExplainRecord, SvgShowsTheBlockedShadowRayInRedAndEmbedsTheImage) {
+    const Scene scene = blocked_scene();
+    const Accel accel = make_accel(scene.geometry, AccelKind::Bvh);
+    const RenderJob job = make_render_job(scene, accel, scene.render, 1);
+    SampleRecord r;
+    RayCounters counters;
+    trace_pixel_sample(job, 0, 0, 0, counters, r);
+    const float pixel[3] = {0.1f, 0.2f, 0.3f};
+    const std::string svg = explain_svg(ExplainContext{scene, job, "test.json"}, r, ImageView{1, 1, pixel}, 0.0f);
+    EXPECT_EQ(svg.rfind("<svg", 0), 0u);
+    EXPECT_NE(svg.find("</svg>"), std::string::npos);
+    EXPECT_NE(svg.find("blocked by blocker.obj triangle"), std::string::npos);
+    EXPECT_NE(svg.find("#d0202a"), std::string::npos);  // the blocked ray's red
+    EXPECT_NE(svg.find("data:image/png;base64,iVBORw0KGgo"), std::string::npos);  // a PNG's signature, base64
+}
+
+}  // namespace
+}  // namespace sombra

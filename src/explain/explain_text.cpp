@@ -1,0 +1,220 @@
+// The story as text: written for a student who has just read the
+// assignment, so each number comes with the name of the term it is.
+#include <sstream>
+
+#include "explain/describe.h"
+#include "explain/explain.h"
+
+namespace sombra {
+
+namespace {
+
+class Story {
+public:
+    Story(const ExplainContext& context, const SampleRecord& record) : c_(context), r_(record) {}
+
+    std::string tell() {
+        header();
+        camera_ray();
+        for (const VertexRecord& v : r_.vertices) vertex(v);
+        total();
+        return out_.str();
+    }
+
+private:
+    void header() {
+        const RenderSettings& s = c_.job.settings;
+        out_ << "Pixel (" << r_.pixel_x << ", " << r_.pixel_y << "), sample " << r_.sample << " of " << s.spp << ", of "
+             << c_.scene_file << " at " << s.width << "x" << s.height << ", "
+             << (r_.path ? "path integrator, max_depth " + std::to_string(s.max_depth) : std::string("direct integrator"))
+             << ", seed " << s.seed << "\n";
+    }
+
+    void camera_ray() {
+        const Camera& cam = c_.job.camera;
+        out_ << "\nCamera ray\n";
+        out_ << "  position in the pixel  (" << readable(r_.offset_x) << ", " << readable(r_.offset_y) << ")"
+             << (c_.job.settings.spp == 1 ? "  (the centre: one sample per pixel)" : "") << "\n";
+        out_ << "  image plane            s = " << readable(r_.s) << ", t = " << readable(r_.t)
+             << "  (s = 1 − 2(i + x)/W, t = 1 − 2(j + y)/H)\n";
+        out_ << "  origin o               " << readable(r_.origin) << "\n";
+        out_ << "  direction d            s·l + t·u + f = " << readable(r_.direction) << "\n";
+        out_ << "      with l = " << readable(cam.left) << ", u = " << readable(cam.up) << ", f = " << readable(cam.forward)
+             << "\n";
+    }
+
+    std::string where(std::uint32_t triangle) const {
+        const TriangleOrigin o = triangle_origin(c_.scene, triangle);
+        std::string s = o.object;
+        if (!o.file.empty()) s += " (" + o.file + ")";
+        const Material& m = c_.scene.materials[c_.scene.geometry.material_ids[triangle]];
+        return s + ", triangle " + std::to_string(o.triangle) + ", material \"" + m.name + "\"";
+    }
+
+    std::string material_text(std::uint32_t index) const {
+        const Material& m = c_.scene.materials[index];
+        std::string s = "\"" + m.name + "\": " + material_type_name(m.type);
+        for (const MaterialParameter& p : material_parameters(m)) {
+            s += ", " + p.name + " = ";
+            s += p.value.size() == 3 ? readable(Vec3{p.value[0], p.value[1], p.value[2]}) : readable(p.value[0]);
+        }
+        return s;
+    }
+
+    void vertex(const VertexRecord& v) {
+        const bool first = v.depth == 0;
+        if (r_.path) {
+            out_ << "\nVertex " << v.depth << (first ? " (what the camera ray meets)" : "") << "\n";
+            if (!first)
+                out_ << "  ray      from " << readable(v.ray_origin) << " along " << readable(v.ray_dir) << "\n";
+            out_ << "  throughput β = " << readable(v.throughput)
+                 << (first ? "" : "  (the product of f·|cos|/pdf of the bounces so far)") << "\n";
+        } else {
+            out_ << "\nHit\n";
+        }
+        if (!v.hit) {
+            out_ << "  nothing: the ray leaves the scene and sees the "
+                 << (c_.scene.environment ? "environment map" : "background") << "\n";
+            emission(v.emission, "environment");
+            return;
+        }
+        const HitRecord& h = v.surface;
+        out_ << "  object   " << where(h.triangle) << "\n";
+        out_ << "  t        " << readable(h.t) << " (distance " << readable(h.distance) << ")\n";
+        out_ << "  x        " << readable(h.position) << "\n";
+        out_ << "  n_g      " << readable(h.n_g) << "  (geometric normal, turned to face the ray)\n";
+        out_ << "  n_s      " << readable(h.n_s)
+             << (h.n_s == h.n_g ? "  (shading normal: the same, no vertex normals)" : "  (shading normal: blended vertex normals)")
+             << "\n";
+        out_ << "  ω_o      " << readable(-v.ray_dir) << "  (towards the viewer)\n";
+        out_ << "  material " << material_text(h.material) << "\n";
+        emission(v.emission, "emission");
+
+        if (v.delta_material) {
+            out_ << "  lights   none: a perfectly specular surface reflects a point light in one direction only,\n"
+                    "           never towards this viewer (its BRDF is a delta)\n";
+        } else if (v.point_lights.empty() && c_.scene.lights.empty()) {
+            out_ << "  point lights: none in the scene\n";
+        }
+        for (const PointLightRecord& l : v.point_lights) point_light(l, v.throughput);
+        if (r_.path && !v.delta_material) sampled_light(v.sampled_light);
+        if (r_.path) bounce(v);
+    }
+
+    void emission(const EmissionRecord& e, const char* what) {
+        if (!e.present) {
+            out_ << "  " << what << " L_e = 0\n";
+            return;
+        }
+        out_ << "  " << what << " L_e = " << readable(e.radiance);
+        if (e.bsdf_pdf > 0.0f)
+            out_ << ", MIS weight " << readable(e.mis_weight) << " (BSDF pdf " << readable(e.bsdf_pdf)
+                 << " vs light pdf " << readable(e.light_pdf) << ")";
+        out_ << "\n    adds β·L_e·w = " << readable(e.contribution) << "\n";
+    }
+
+    void point_light(const PointLightRecord& l, Vec3 beta) {
+        const PointLight& light = c_.scene.lights[l.light];
+        out_ << "  point light " << l.light << " at " << readable(light.position) << ", I = " << readable(light.intensity)
+             << "\n";
+        if (l.outcome == LightOutcome::OnSurface) {
+            out_ << "    sits exactly on x: it lights nothing\n";
+            return;
+        }
+        out_ << "    ω_i = " << readable(l.wi) << ", |c − x| = " << readable(l.distance) << ", n_g·ω_i = " << readable(l.cos_g)
+             << "\n";
+        if (l.outcome == LightOutcome::Behind) {
+            out_ << "    BEHIND the surface (n_g·ω_i ≤ 0): no contribution\n";
+            return;
+        }
+        if (l.outcome == LightOutcome::Blocked) {
+            out_ << "    BLOCKED: the shadow ray meets " << where(l.blocker.triangle) << " at distance "
+                 << readable(l.blocker.distance) << ", before the light\n";
+            out_ << "    (unblocked it would give I/|c−x|² = " << readable(l.incident) << ", f_r = " << readable(l.f)
+                 << ", |n_s·ω_i| = " << readable(l.cos_s) << ")\n";
+            return;
+        }
+        out_ << "    visible\n";
+        out_ << "    I/|c−x|²   = " << readable(l.incident) << "\n";
+        out_ << "    f_r        = " << readable(l.f) << " = diffuse " << readable(l.f_diffuse) << " + lobe "
+             << readable(l.f_lobe) << "\n";
+        out_ << "    |n_s·ω_i|  = " << readable(l.cos_s) << "\n";
+        if (r_.path) out_ << "    β          = " << readable(beta) << "\n";
+        out_ << "    product    = " << readable(l.contribution) << "\n";
+    }
+
+    void sampled_light(const SampledLightRecord& l) {
+        if (!l.sampled) {
+            if (!c_.job.lights.has_sampled_lights()) return;
+            out_ << "  sampled light: none this time (the sample fell on a light's dark side or carries nothing)\n";
+            return;
+        }
+        out_ << "  sampled light: " << (l.environment ? std::string("the environment") : where(l.triangle)) << "\n";
+        out_ << "    ω_i = " << readable(l.wi);
+        if (!l.environment) out_ << ", point " << readable(l.target) << ", distance " << readable(l.distance);
+        out_ << "\n    L_e = " << readable(l.radiance) << ", light pdf = " << readable(l.light_pdf)
+             << " /sr, BSDF pdf = " << readable(l.bsdf_pdf) << " /sr\n";
+        if (l.outcome == LightOutcome::Behind) {
+            out_ << "    BEHIND the surface (n_g·ω_i ≤ 0): f_r = 0, no shadow ray, no contribution\n";
+            return;
+        }
+        if (l.outcome == LightOutcome::Blocked) {
+            out_ << "    BLOCKED: the shadow ray meets " << where(l.blocker.triangle) << " at distance "
+                 << readable(l.blocker.distance) << "\n";
+            return;
+        }
+        if (l.f == Vec3{0.0f}) {
+            out_ << "    f_r = 0 in this direction: no shadow ray, no contribution\n";
+            return;
+        }
+        out_ << "    f_r = " << readable(l.f) << " = diffuse " << readable(l.f_diffuse) << " + lobe " << readable(l.f_lobe)
+             << ", |n_s·ω_i| = " << readable(l.cos_s) << "\n";
+        out_ << "    MIS weight w = " << readable(l.mis_weight) << " (power heuristic)\n";
+        out_ << "    adds β·f_r·|n_s·ω_i|·L_e·w/pdf = " << readable(l.contribution) << "\n";
+    }
+
+    void bounce(const VertexRecord& v) {
+        const BounceRecord& b = v.bounce;
+        if (&v == &r_.vertices.back() && !b.sampled && r_.end.find("max_depth") != std::string::npos) return;
+        if (!b.sampled) {
+            if (&v == &r_.vertices.back()) out_ << "  bounce: the BSDF sampled no direction\n";
+            return;
+        }
+        out_ << "  bounce: ω_i = " << readable(b.wi) << (b.delta ? " (specular)" : "")
+             << (b.transmission ? " (refracted)" : "") << "\n";
+        if (b.delta)
+            out_ << "    lobe chosen with probability " << readable(b.pdf) << ", weight " << readable(b.weight) << "\n";
+        else
+            out_ << "    f_r = " << readable(b.f) << ", pdf = " << readable(b.pdf) << " /sr, weight f_r·|cos|/pdf = "
+                 << readable(b.weight) << "\n";
+        out_ << "    throughput β = " << readable(b.throughput) << "\n";
+        if (b.roulette) {
+            out_ << "    Russian roulette: survival probability q = " << readable(b.roulette_q) << ", drew u = "
+                 << readable(b.roulette_u) << (b.survived ? " < q: survives, β/q = " + readable(b.throughput_after)
+                                                          : " ≥ q: the path ends")
+                 << "\n";
+        }
+    }
+
+    void total() {
+        out_ << "\nThe path ends: " << r_.end << "\n";
+        out_ << "\nValue of this sample\n";
+        if (r_.nonfinite) out_ << "  the sum was not a finite number; it counts as 0 (nonfinite_samples)\n";
+        out_ << "  L = " << exact(r_.value) << "\n";
+        const int spp = c_.job.settings.spp;
+        if (spp == 1)
+            out_ << "  with one sample per pixel this is the pixel's value in the rendered image (linear RGB)\n";
+        else
+            out_ << "  the pixel's value is the average of its " << spp << " samples (sombra explain ... --sample K shows each)\n";
+    }
+
+    const ExplainContext& c_;
+    const SampleRecord& r_;
+    std::ostringstream out_;
+};
+
+}  // namespace
+
+std::string explain_text(const ExplainContext& context, const SampleRecord& record) { return Story(context, record).tell(); }
+
+}  // namespace sombra

@@ -1,0 +1,104 @@
+// An independent reference for tests of spec §11's `pbr` material: the glTF
+// 2.0 specification's Appendix B written out in double precision, in its own
+// notation (N, V, L, H and the Heaviside χ⁺), from the formulas of the
+// specification rather than from render/microfacet.h. One colour channel at a
+// time. Header-only and for tests.
+#pragma once
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+namespace sombra::pbr_reference {
+
+struct Params {
+    double base = 1;       // base_color, one channel
+    double metallic = 0;
+    double roughness = 0.5;
+    double ior = 1.5;
+};
+
+struct Dir {
+    double x, y, z;
+};
+
+inline double dot(Dir a, Dir b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+inline double heaviside(double x) { return x > 0 ? 1.0 : 0.0; }
+
+// Appendix B's material = mix(dielectric_brdf, metal_brdf, metallic) for
+// unit V (towards the viewer) and L (towards the light), N = +z; 0 unless
+// both are above the surface. Roughness must be > 0 (a rough lobe).
+inline double brdf(const Params& p, Dir v, Dir l) {
+    if (v.z <= 0 || l.z <= 0) return 0;
+    constexpr double pi = std::numbers::pi;
+    const double a = p.roughness * p.roughness, a2 = a * a;
+    Dir h{v.x + l.x, v.y + l.y, v.z + l.z};
+    const double len = std::sqrt(dot(h, h));
+    h = {h.x / len, h.y / len, h.z / len};
+    const double n_h = h.z, n_l = l.z, n_v = v.z, v_h = dot(v, h), l_h = dot(l, h);
+    const double d_term = a2 * heaviside(n_h) / (pi * std::pow(n_h * n_h * (a2 - 1) + 1, 2));
+    const double vis = heaviside(l_h) * heaviside(v_h) /
+                       (2 * (std::fabs(n_v) * std::sqrt(a2 + (1 - a2) * n_l * n_l) +
+                             std::fabs(n_l) * std::sqrt(a2 + (1 - a2) * n_v * n_v)));
+    const double specular_brdf = vis * d_term;
+    const double diffuse_brdf = p.base / pi;
+    const double fresnel_w = std::pow(1 - std::fabs(v_h), 5);
+    const double f0 = std::pow((1 - p.ior) / (1 + p.ior), 2);
+    const double dielectric_fresnel = f0 + (1 - f0) * fresnel_w;
+    const double dielectric_brdf = (1 - dielectric_fresnel) * diffuse_brdf + dielectric_fresnel * specular_brdf;
+    const double metal_brdf = (p.base + (1 - p.base) * fresnel_w) * specular_brdf;
+    return (1 - p.metallic) * dielectric_brdf + p.metallic * metal_brdf;
+}
+
+// The diffuse part alone, (1 − metallic)(1 − F)·base/π: what is left of the
+// BRDF when the specular part is a delta (roughness 0).
+inline double diffuse_part(const Params& p, Dir v, Dir l) {
+    if (v.z <= 0 || l.z <= 0) return 0;
+    Dir h{v.x + l.x, v.y + l.y, v.z + l.z};
+    const double len = std::sqrt(dot(h, h));
+    const double v_h = dot(v, {h.x / len, h.y / len, h.z / len});
+    const double f0 = std::pow((1 - p.ior) / (1 + p.ior), 2);
+    const double fresnel = f0 + (1 - f0) * std::pow(1 - std::fabs(v_h), 5);
+    return (1 - p.metallic) * (1 - fresnel) * p.base / std::numbers::pi;
+}
+
+// The directional albedo ∫ f(V, L) cos θ_L dL for V at theta_o (radians, in
+// the xz plane), by the midpoint rule over half vectors H (θ_h, φ) on an
+// n × 2n grid: dL = 4 (V·H) dH, so sharp lobes are resolved by a fine θ_h
+// grid. Roughness 0 adds the smooth mirror's Fresnel at cos θ_o to the
+// diffuse part's integral.
+inline double albedo(const Params& p, double theta_o, int n) {
+    constexpr double pi = std::numbers::pi;
+    const Dir v{std::sin(theta_o), 0, std::cos(theta_o)};
+    const double d_theta = 0.5 * pi / n, d_phi = pi / n;
+    double sum = 0;
+    for (int i = 0; i < n; ++i) {
+        const double th = (i + 0.5) * d_theta, st = std::sin(th), ct = std::cos(th);
+        for (int j = 0; j < 2 * n; ++j) {
+            const double ph = (j + 0.5) * d_phi;
+            const Dir h{st * std::cos(ph), st * std::sin(ph), ct};
+            const double v_h = dot(v, h);
+            if (v_h <= 0) continue;
+            const Dir l{2 * v_h * h.x - v.x, 2 * v_h * h.y - v.y, 2 * v_h * h.z - v.z};
+            if (l.z <= 0) continue;
+            const double f = p.roughness > 0 ? brdf(p, v, l) : diffuse_part(p, v, l);
+            sum += f * l.z * 4 * v_h * st;
+        }
+    }
+    sum *= d_theta * d_phi;
+    if (p.roughness > 0) return sum;
+    const double f0 = std::pow((1 - p.ior) / (1 + p.ior), 2), w = std::pow(1 - v.z, 5);
+    return sum + (1 - p.metallic) * (f0 + (1 - f0) * w) + p.metallic * (p.base + (1 - p.base) * w);
+}
+
+// albedo at resolution n and its error estimate, |albedo(n) − albedo(n/2)|
+// (the midpoint rule's error falls by 4× per doubling, so this bounds it).
+struct Quadrature {
+    double value, error;
+};
+inline Quadrature albedo_with_error(const Params& p, double theta_o, int n) {
+    const double fine = albedo(p, theta_o, n), coarse = albedo(p, theta_o, n / 2);
+    return {fine, std::fabs(fine - coarse)};
+}
+
+}  // namespace sombra::pbr_reference

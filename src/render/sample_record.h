@@ -1,0 +1,132 @@
+// The story of one sample, as the integrators computed it (`sombra explain`,
+// spec §14): every term of the rendering equation that went into the value,
+// written down by the very code that renders. The integrators take a
+// recorder as a template parameter: NoRecorder, whose hooks are empty and
+// vanish from the compiled render loop, or SampleRecorder
+// (render/sample_recorder.h), which fills a SampleRecord.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "core/vec3.h"
+
+namespace sombra {
+
+inline constexpr std::uint32_t kNoTriangle = 0xffffffffu;
+
+// What a shadow ray met first, when something blocked it.
+struct BlockerRecord {
+    std::uint32_t triangle = kNoTriangle;  // index into Scene::geometry
+    float distance = 0;                    // from the shadow ray's origin
+};
+
+// The surface a ray hit.
+struct HitRecord {
+    std::uint32_t triangle = kNoTriangle;  // index into Scene::geometry
+    std::uint32_t material = 0;            // index into Scene::materials
+    float t = 0;                           // ray parameter (the ray's direction is not unit length for camera rays)
+    float distance = 0;                    // |x − ray origin|
+    float b1 = 0, b2 = 0;                  // barycentric weights of the second and third corner
+    Vec3 position, n_g, n_s;               // n_g faces the ray's origin, n_s in n_g's hemisphere
+    bool outside = true;                   // arrived on the winding normal's side
+};
+
+enum class LightOutcome {
+    Behind,     // n_g·ω_i ≤ 0: the light is behind the surface
+    OnSurface,  // the light sits on the shaded point: it lights nothing
+    Blocked,    // the shadow ray met something (see blocker)
+    Visible,    // it contributes
+};
+
+// One point light's term at a vertex: L += β · I/|c−x|² · f_r · |n_s·ω_i|.
+struct PointLightRecord {
+    std::uint32_t light = 0;  // index into Scene::lights
+    LightOutcome outcome = LightOutcome::Visible;
+    Vec3 wi;                  // unit, towards the light
+    float distance = 0;       // |c − x|
+    float cos_g = 0;          // n_g·ω_i
+    float cos_s = 0;          // |n_s·ω_i|
+    Vec3 incident;            // I / |c − x|²
+    Vec3 f_diffuse, f_lobe;   // f_r split into its diffuse term and its lobe (specular) term
+    Vec3 f;                   // f_r as the integrator evaluated it
+    BlockerRecord blocker;    // when Blocked
+    Vec3 contribution;        // what was added to the sample's value (0 unless Visible)
+};
+
+// The one emitter or environment direction sampled for next-event
+// estimation at a path vertex, MIS-weighted against BSDF sampling.
+struct SampledLightRecord {
+    bool sampled = false;            // false: no light could be sampled (or none carries anything)
+    bool environment = false;        // the environment rather than an emitting triangle
+    std::uint32_t triangle = kNoTriangle;
+    Vec3 wi;                         // unit, towards the sampled point
+    Vec3 target;                     // the sampled point on the emitter
+    float distance = 0;              // to the sampled point (infinite for the environment)
+    Vec3 radiance;                   // L_e arriving along −ω_i
+    float light_pdf = 0;             // solid-angle density of next-event estimation (with the choice of light)
+    float bsdf_pdf = 0;              // the BSDF's density for the same direction
+    float mis_weight = 0;            // power heuristic (1 when only lights are sampled)
+    float cos_s = 0;                 // |n_s·ω_i|
+    Vec3 f_diffuse, f_lobe, f;       // f_r split and whole
+    LightOutcome outcome = LightOutcome::Visible;  // Behind (f_r = 0, no shadow ray), Blocked, or Visible
+    BlockerRecord blocker;
+    Vec3 contribution;               // β · f·|cos| · L_e · w / pdf
+};
+
+// Light reached by following the path: emission of a hit surface, or the
+// environment when the ray left the scene.
+struct EmissionRecord {
+    bool present = false;
+    Vec3 radiance;          // L_e
+    float mis_weight = 1;   // 1 for what the camera or a delta bounce sees
+    float bsdf_pdf = 0;     // density of the bounce that found it (0: camera or delta)
+    float light_pdf = 0;    // density with which next-event estimation would have found it
+    Vec3 contribution;      // β · L_e · w
+};
+
+// The direction sampled from the BSDF at a path vertex, and what became of the path.
+struct BounceRecord {
+    bool sampled = false;       // false: sampling produced no direction; the path ends
+    Vec3 wi;
+    Vec3 f;                     // f_r(ω_o, ω_i) for a non-delta lobe
+    float pdf = 0;              // solid-angle density (delta: the lobe's selection probability)
+    bool delta = false, transmission = false;
+    Vec3 weight;                // f·|n_s·ω_i| / pdf
+    Vec3 throughput;            // β after this bounce (before Russian roulette)
+    bool roulette = false;      // Russian roulette was played after this bounce
+    float roulette_q = 1;       // survival probability
+    float roulette_u = 0;       // the random number it drew
+    bool survived = true;
+    Vec3 throughput_after;      // β after roulette (÷ q for survivors)
+};
+
+// One vertex of the path: a surface hit (or the ray's escape when !hit).
+struct VertexRecord {
+    int depth = 0;                 // scattering events before this vertex
+    Vec3 ray_origin, ray_dir;      // the ray that arrived here (direction unit length)
+    bool hit = false;
+    HitRecord surface;
+    Vec3 throughput;               // β arriving here
+    EmissionRecord emission;       // surface emission, or the environment on a miss
+    std::vector<PointLightRecord> point_lights;
+    SampledLightRecord sampled_light;
+    bool delta_material = false;   // no next-event estimation at a delta BSDF
+    BounceRecord bounce;
+};
+
+// One sample of one pixel, from camera ray to value.
+struct SampleRecord {
+    int pixel_x = 0, pixel_y = 0, sample = 0;
+    float offset_x = 0.5f, offset_y = 0.5f;  // position inside the pixel
+    float s = 0, t = 0;                      // image-plane coordinates (spec §3)
+    Vec3 origin, direction;                  // the camera ray (direction as the camera gives it, not unit)
+    bool path = false;                       // integrator: path (else direct)
+    std::vector<VertexRecord> vertices;      // direct: at most one
+    std::string end;                         // why the path ended, in words
+    bool nonfinite = false;                  // the raw value was NaN or infinite and counts as 0
+    Vec3 value;                              // the sample's value: exactly what the render adds to its pixel
+};
+
+}  // namespace sombra

@@ -1,0 +1,144 @@
+#include "render/sample_recorder.h"
+
+#include <cmath>
+#include <limits>
+
+namespace sombra {
+
+VertexRecord& SampleRecorder::vertex() {
+    if (record_.vertices.empty()) record_.vertices.emplace_back();
+    return record_.vertices.back();
+}
+
+BlockerRecord SampleRecorder::find_blocker(const Ray& shadow) const {
+    // The integrator asked only "is anything in the way" (any hit); a learner
+    // wants the first thing in the way, so the recorder asks again.
+    Hit hit;
+    BlockerRecord blocker;
+    if (intersect(accel_, shadow, hit)) {
+        blocker.triangle = hit.triangle;
+        blocker.distance = hit.t * length(shadow.dir);
+    }
+    return blocker;
+}
+
+void SampleRecorder::escaped(const Ray& ray, Vec3 beta, Vec3 le, float w, float bsdf_pdf, float light_pdf) {
+    VertexRecord v;
+    v.depth = static_cast<int>(record_.vertices.size());
+    v.ray_origin = ray.origin;
+    v.ray_dir = normalize(ray.dir);
+    v.hit = false;
+    v.throughput = beta;
+    v.emission = EmissionRecord{max_component(le) > 0.0f, le, w, bsdf_pdf, light_pdf, beta * le * w};
+    record_.vertices.push_back(v);
+}
+
+void SampleRecorder::surface(const Ray& ray, const Hit& hit, const SurfaceInteraction& si, Vec3 beta) {
+    VertexRecord v;
+    v.depth = static_cast<int>(record_.vertices.size());
+    v.ray_origin = ray.origin;
+    v.ray_dir = normalize(ray.dir);
+    v.hit = true;
+    v.surface.triangle = si.triangle;
+    v.surface.material = si.material;
+    v.surface.t = hit.t;
+    v.surface.distance = length(si.position - ray.origin);
+    v.surface.b1 = hit.b1;
+    v.surface.b2 = hit.b2;
+    v.surface.position = si.position;
+    v.surface.n_g = si.n_g;
+    v.surface.n_s = si.n_s;
+    v.surface.outside = si.outside;
+    v.throughput = beta;
+    record_.vertices.push_back(v);
+}
+
+void SampleRecorder::emission(Vec3 le, float w, float bsdf_pdf, float light_pdf, Vec3 contribution) {
+    vertex().emission = EmissionRecord{max_component(le) > 0.0f, le, w, bsdf_pdf, light_pdf, contribution};
+}
+
+void SampleRecorder::delta_material() { vertex().delta_material = true; }
+
+void SampleRecorder::point_light(std::uint32_t light, LightOutcome outcome, const ShadingView& view, Vec3 wi,
+                                 float distance_squared, const Ray* shadow, Vec3 contribution) {
+    PointLightRecord r;
+    r.light = light;
+    r.outcome = outcome;
+    r.wi = wi;
+    r.distance = std::sqrt(distance_squared);
+    r.cos_g = dot(view.si.n_g, wi);
+    r.cos_s = std::fabs(dot(view.si.n_s, wi));
+    if (outcome != LightOutcome::OnSurface) {
+        r.incident = scene_.lights[light].intensity / distance_squared;
+        const BsdfTerms terms = eval_bsdf_terms(view.material, view.bsdf_point, view.wo, wi);
+        r.f_diffuse = terms.diffuse;
+        r.f_lobe = terms.lobe;
+        r.f = eval_bsdf(view.material, view.bsdf_point, view.wo, wi);
+    }
+    if (outcome == LightOutcome::Blocked && shadow) r.blocker = find_blocker(*shadow);
+    r.contribution = contribution;
+    vertex().point_lights.push_back(r);
+}
+
+void SampleRecorder::sampled_light(const LightSample* ls, const ShadingView& view, const Ray* shadow, bool blocked,
+                                   float bsdf_pdf, float w, Vec3 contribution) {
+    SampledLightRecord r;
+    r.sampled = ls != nullptr;
+    if (ls) {
+        r.environment = ls->at_infinity;
+        r.triangle = ls->triangle;
+        r.wi = ls->wi;
+        r.target = ls->target;
+        r.distance = ls->at_infinity ? std::numeric_limits<float>::infinity() : length(ls->target - view.si.position);
+        r.radiance = ls->radiance;
+        r.light_pdf = ls->pdf;
+        r.cos_s = std::fabs(dot(view.si.n_s, ls->wi));
+        const BsdfTerms terms = eval_bsdf_terms(view.material, view.bsdf_point, view.wo, ls->wi);
+        r.f_diffuse = terms.diffuse;
+        r.f_lobe = terms.lobe;
+        r.f = eval_bsdf(view.material, view.bsdf_point, view.wo, ls->wi);
+        // Shown for blocked and zero-f samples too: what MIS would have weighed.
+        r.bsdf_pdf = shadow && !blocked ? bsdf_pdf : pdf_bsdf(view.material, view.bsdf_point, view.wo, ls->wi);
+        r.mis_weight = w;
+        // Without a shadow ray the BSDF was 0 there: the light is behind the surface, or the lobe sends nothing its way.
+        r.outcome = blocked                                              ? LightOutcome::Blocked
+                    : !shadow && dot(view.si.n_g, ls->wi) <= 0.0f ? LightOutcome::Behind
+                                                                     : LightOutcome::Visible;
+        if (blocked && shadow) r.blocker = find_blocker(*shadow);
+    }
+    r.contribution = vertex().throughput * contribution;
+    vertex().sampled_light = r;
+}
+
+void SampleRecorder::bounce(const BsdfSample* bs, const ShadingView& view, Vec3 beta) {
+    BounceRecord& b = vertex().bounce;
+    b.sampled = bs != nullptr;
+    if (bs) {
+        b.wi = bs->wi;
+        b.f = bs->delta ? Vec3{0.0f} : eval_bsdf(view.material, view.bsdf_point, view.wo, bs->wi);
+        b.pdf = bs->pdf;
+        b.delta = bs->delta;
+        b.transmission = bs->transmission;
+        b.weight = bs->weight;
+    }
+    b.throughput = beta;
+    b.throughput_after = beta;
+}
+
+void SampleRecorder::roulette(float q, float u, bool survived, Vec3 beta) {
+    BounceRecord& b = vertex().bounce;
+    b.roulette = true;
+    b.roulette_q = q;
+    b.roulette_u = u;
+    b.survived = survived;
+    b.throughput_after = beta;
+}
+
+void SampleRecorder::end(const char* why) { record_.end = why; }
+
+void SampleRecorder::value(Vec3 value, bool nonfinite) {
+    record_.value = value;
+    record_.nonfinite = nonfinite;
+}
+
+}  // namespace sombra

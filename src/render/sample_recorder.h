@@ -1,0 +1,86 @@
+// The two recorders the integrators are compiled with (render/sample_record.h):
+// NoRecorder for rendering, whose hooks are empty so that the render loop
+// is the same machine code as without them, and SampleRecorder for
+// `sombra explain`, which writes each hook's numbers into a SampleRecord.
+// Hooks only look: they never change a value the integrator computes, so a
+// recorded sample's value is the rendered one, bit for bit.
+#pragma once
+
+#include "accel/accel.h"
+#include "core/ray.h"
+#include "render/bsdf.h"
+#include "render/interaction.h"
+#include "render/lights.h"
+#include "render/sample_record.h"
+#include "scene/scene.h"
+
+namespace sombra {
+
+// Records nothing; every hook compiles to nothing.
+struct NoRecorder {
+    template <class... Args>
+    void escaped(const Args&...) {}
+    template <class... Args>
+    void surface(const Args&...) {}
+    template <class... Args>
+    void emission(const Args&...) {}
+    template <class... Args>
+    void delta_material(const Args&...) {}
+    template <class... Args>
+    void point_light(const Args&...) {}
+    template <class... Args>
+    void sampled_light(const Args&...) {}
+    template <class... Args>
+    void bounce(const Args&...) {}
+    template <class... Args>
+    void roulette(const Args&...) {}
+    template <class... Args>
+    void end(const Args&...) {}
+    template <class... Args>
+    void value(const Args&...) {}
+};
+
+// The shading context a light term is evaluated in.
+struct ShadingView {
+    const SurfaceInteraction& si;
+    const Material& material;
+    const BsdfPoint& bsdf_point;
+    Vec3 wo;
+};
+
+// Fills a SampleRecord. The recorder also looks up what blocked a shadow ray
+// (a closest-hit query of its own), which the integrator never needs.
+class SampleRecorder {
+public:
+    SampleRecorder(const Scene& scene, const Accel& accel, SampleRecord& record) : scene_(scene), accel_(accel), record_(record) {}
+
+    // The ray left the scene: le is what the environment (or background)
+    // sends back, weighted by w against next-event estimation.
+    void escaped(const Ray& ray, Vec3 beta, Vec3 le, float w, float bsdf_pdf, float light_pdf);
+    // The ray hit `hit`, carrying throughput beta.
+    void surface(const Ray& ray, const Hit& hit, const SurfaceInteraction& si, Vec3 beta);
+    void emission(Vec3 le, float w, float bsdf_pdf, float light_pdf, Vec3 contribution);
+    void delta_material();
+    // One point light's term; `shadow` is the shadow ray traced (Blocked, Visible), else null.
+    void point_light(std::uint32_t light, LightOutcome outcome, const ShadingView& view, Vec3 wi, float distance_squared,
+                     const Ray* shadow, Vec3 contribution);
+    // Next-event estimation of one sampled emitter or environment point: `ls`
+    // null when nothing was sampled; `shadow` null when no ray was traced.
+    void sampled_light(const LightSample* ls, const ShadingView& view, const Ray* shadow, bool blocked, float bsdf_pdf,
+                       float w, Vec3 contribution);
+    // The BSDF's sample (null when it produced none) and the throughput after it.
+    void bounce(const BsdfSample* bs, const ShadingView& view, Vec3 beta);
+    void roulette(float q, float u, bool survived, Vec3 beta);
+    void end(const char* why);
+    void value(Vec3 value, bool nonfinite);
+
+private:
+    VertexRecord& vertex();  // the current vertex (one is made if none exists yet)
+    BlockerRecord find_blocker(const Ray& shadow) const;
+
+    const Scene& scene_;
+    const Accel& accel_;
+    SampleRecord& record_;
+};
+
+}  // namespace sombra
