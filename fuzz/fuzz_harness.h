@@ -16,6 +16,7 @@
 #include "scene/mesh_file.h"
 #include "scene/scene.h"
 #include "scene/scene_file.h"
+#include "scene/texture.h"
 
 namespace sombra::fuzz {
 
@@ -26,7 +27,28 @@ namespace fs = std::filesystem;
 inline constexpr std::string_view kMtlSeparator = "\n#MTL\n";
 inline constexpr const char* kMtlName = "m.mtl";
 
-enum class Target { Obj, Ply, Scene, Gltf };
+enum class Target { Obj, Ply, Scene, Gltf, Texture };
+
+// A 2×2 RGB PNG (red, green over blue, white) for the scenes and MTL
+// materials of fuzz_scene to name as "t.png".
+inline constexpr std::string_view kTexturePng{
+    "\x89\x50\x4e\x47\x0d\x0a\x1a\x0a\x00\x00\x00\x0d\x49\x48\x44\x52\x00\x00\x00\x02\x00\x00\x00\x02\x08\x02\x00"
+    "\x00\x00\xfd\xd4\x9a\x73\x00\x00\x00\x12\x49\x44\x41\x54\x78\xda\x63\xf8\xcf\xc0\xc0\x00\xc2\x0c\xff\x81\x00"
+    "\x00\x1f\xee\x05\xfb\xf1\xab\xba\x77\x00\x00\x00\x00\x49\x45\x4e\x44\xae\x42\x60\x82",
+    75};
+
+// fuzz_texture's input is an image file: written as fuzz.hdr when it starts
+// "#?" (Radiance), as fuzz.exr when it starts with OpenEXR's magic number,
+// else as fuzz.png (PNG, JPEG, TGA and BMP are told apart by content).
+inline std::string texture_file_name(std::string_view bytes) {
+    if (bytes.starts_with("#?")) return "fuzz.hdr";
+    if (bytes.starts_with("\x76\x2f\x31\x01")) return "fuzz.exr";
+    return "fuzz.png";
+}
+// ... and decoded as colour when its size is even, as data when odd.
+inline TextureEncoding texture_encoding(std::string_view bytes) {
+    return bytes.size() % 2 == 0 ? TextureEncoding::Color : TextureEncoding::Data;
+}
 
 inline void write_file(const fs::path& path, std::string_view bytes) {
     std::FILE* file = std::fopen(path.c_str(), "wb");
@@ -36,11 +58,14 @@ inline void write_file(const fs::path& path, std::string_view bytes) {
 }
 
 // The meshes fuzz_scene's objects can name ("file": "m.obj" or "m.ply"):
-// a quad with a normal and an MTL material, and a PLY triangle.
+// a quad with a normal, texture coordinates and an MTL material, and a PLY
+// triangle; and the texture t.png that materials can name.
 inline void write_scene_meshes(const fs::path& folder) {
     write_file(folder / "m.obj",
-               "mtllib m.mtl\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nvn 0 0 1\nusemtl red\nf 1//1 2//1 3//1 4//1\n");
-    write_file(folder / "m.mtl", "newmtl red\nKd 0.8 0.1 0.1\nKs 0.1 0.1 0.1\nNs 10\nKe 0 0 0\n");
+               "mtllib m.mtl\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nvn 0 0 1\nvt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\n"
+               "usemtl red\nf 1/1/1 2/2/1 3/3/1 4/4/1\n");
+    write_file(folder / "m.mtl", "newmtl red\nKd 0.8 0.1 0.1\nKs 0.1 0.1 0.1\nNs 10\nKe 0 0 0\nmap_Kd t.png\n");
+    write_file(folder / "t.png", kTexturePng);
     write_file(folder / "m.ply",
                "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
                "element face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n");
@@ -66,9 +91,14 @@ inline fs::path stage_input(Target target, std::string_view bytes, const fs::pat
             return path;
         }
         case Target::Scene:
-            if (!fs::exists(folder / "m.ply")) write_scene_meshes(folder);
+            if (!fs::exists(folder / "t.png")) write_scene_meshes(folder);
             write_file(folder / "scene.json", bytes);
             return folder / "scene.json";
+        case Target::Texture: {
+            const fs::path path = folder / texture_file_name(bytes);
+            write_file(path, bytes);
+            return path;
+        }
     }
     return {};
 }
@@ -109,6 +139,36 @@ inline std::string material_problem(const Material& m) {
     return {};
 }
 
+// "" when the texture is usable: a size within the limits, every texel
+// finite and >= 0, and <= 1 when `unit` (8- and 16-bit images).
+inline std::string texture_problem(const Texture& t, bool unit) {
+    if (t.width < 1 || t.height < 1 || t.width > kMaxImageSide || t.height > kMaxImageSide) return "bad texture size";
+    if (t.channels < 1 || t.channels > 4) return "bad texture channel count";
+    const auto values = static_cast<std::int64_t>(t.width) * t.height * t.channels;
+    if (values > kMaxTextureValues || t.texels.size() != static_cast<std::size_t>(values)) return "bad texel count";
+    for (float v : t.texels)
+        if (!std::isfinite(v) || v < 0 || (unit && v > 1)) return "texel out of range";
+    return {};
+}
+
+// "" when every texture reference of the materials is in range and each
+// texture usable.
+inline std::string textures_problem(const std::vector<Material>& materials, const std::vector<Texture>& textures) {
+    for (const Texture& t : textures)
+        if (std::string problem = texture_problem(t, false); !problem.empty()) return problem;
+    for (Material m : materials) {
+        std::string problem;
+        for_each_texture_ref(m.textures, [&](TextureRef& r) {
+            if (r.is_set() && (r.texture >= textures.size() || r.channel > 3)) problem = "texture reference out of range";
+        });
+        if (!problem.empty()) return "material '" + m.name + "': " + problem;
+        if (m.textured != any_texture(m.textures)) return "material '" + m.name + "': textured flag wrong";
+        if (!std::isfinite(m.textures.bump_scale) || !(m.textures.alpha_cutoff >= 0 && m.textures.alpha_cutoff <= 1))
+            return "material '" + m.name + "': bad bump scale or alpha cutoff";
+    }
+    return {};
+}
+
 inline std::string loaded_mesh_problem(const LoadedMesh& loaded) {
     for (const Material& m : loaded.materials)
         if (std::string problem = material_problem(m); !problem.empty()) return problem;
@@ -122,6 +182,7 @@ inline std::string loaded_mesh_problem(const LoadedMesh& loaded) {
         return "bad camera";
     if (!loaded.texture_refs.empty() && loaded.texture_refs.size() != loaded.materials.size())
         return "texture_refs and materials differ in size";
+    if (std::string problem = textures_problem(loaded.materials, loaded.textures); !problem.empty()) return problem;
     return mesh_problem(loaded.mesh, loaded.materials.size());
 }
 
@@ -141,6 +202,7 @@ inline std::string scene_problem(const Scene& scene) {
             return "bad light";
     for (const Material& m : scene.materials)
         if (std::string problem = material_problem(m); !problem.empty()) return problem;
+    if (std::string problem = textures_problem(scene.materials, scene.textures); !problem.empty()) return problem;
     return mesh_problem(scene.geometry, scene.materials.size());
 }
 
@@ -157,6 +219,10 @@ inline std::string run_input(Target target, std::string_view bytes, const fs::pa
             case Target::Ply: return loaded_mesh_problem(load_ply(path, diag));
             case Target::Scene: return scene_problem(load_scene_file(path, diag));
             case Target::Gltf: return loaded_mesh_problem(load_gltf(path, diag));
+            case Target::Texture: {
+                const bool deep = path.extension() != ".png";  // EXR and HDR values may exceed 1
+                return texture_problem(read_texture_file(path, texture_encoding(bytes)), !deep);
+            }
         }
     } catch (const Error&) {
         return {};

@@ -2,12 +2,15 @@
 # Builds the libFuzzer targets (CMake preset "fuzz", clang) and runs each for
 # a given time, one after the other, with its seed corpus.
 #
-#   tools/fuzz.sh [SECONDS_PER_TARGET] [TARGET...]     (default: 60 s; obj ply scene gltf)
+#   tools/fuzz.sh [SECONDS_PER_TARGET] [TARGET...]     (default: 60 s; obj ply scene gltf texture)
 #
 # Targets: obj (OBJ + MTL), ply, scene (scene JSON down to loaded meshes),
-# gltf (.gltf / .glb through tinygltf and Draco); see fuzz/fuzz_harness.h. Corpora grow in build/fuzz/corpus/TARGET (seeded from
-# ../shared/objsuite, the small ../shared/models, scenes/ and ../shared/scenes,
-# fuzz/seeds/gltf, ../shared/models/gltf and the assimp glTF2 test models;
+# gltf (.gltf / .glb through tinygltf and Draco), texture (an image file
+# through sombra's texture loading); see fuzz/fuzz_harness.h. Corpora grow in
+# build/fuzz/corpus/TARGET (seeded from ../shared/objsuite, the small
+# ../shared/models, scenes/ and ../shared/scenes, fuzz/seeds/gltf,
+# ../shared/models/gltf and the assimp glTF2 test models, fuzz/seeds/texture
+# and the small images of scenes/ and assimp-testmodels;
 # nothing is written into the repository). Exits non-zero when a target finds
 # a crash, leak, timeout or out-of-memory, and prints the reproducer's path:
 # replay it with  build/fuzz/fuzz/fuzz_TARGET REPRODUCER  and, once fixed, add it
@@ -19,12 +22,12 @@ root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 seconds="${1:-60}"
 [ $# -gt 0 ] && shift
 targets=("$@")
-[ ${#targets[@]} -gt 0 ] || targets=(obj ply scene gltf)
+[ ${#targets[@]} -gt 0 ] || targets=(obj ply scene gltf texture)
 case "$seconds" in
-  '' | *[!0-9]*) echo "usage: tools/fuzz.sh [SECONDS_PER_TARGET] [obj|ply|scene|gltf ...]" >&2; exit 2 ;;
+  '' | *[!0-9]*) echo "usage: tools/fuzz.sh [SECONDS_PER_TARGET] [obj|ply|scene|gltf|texture ...]" >&2; exit 2 ;;
 esac
 for t in "${targets[@]}"; do
-  case "$t" in obj | ply | scene | gltf) ;; *) echo "fuzz.sh: unknown target '$t' (obj, ply, scene, gltf)" >&2; exit 2 ;; esac
+  case "$t" in obj | ply | scene | gltf | texture) ;; *) echo "fuzz.sh: unknown target '$t' (obj, ply, scene, gltf, texture)" >&2; exit 2 ;; esac
 done
 
 shared="${SOMBRA_SHARED_DIR:-$root/../shared}"
@@ -128,6 +131,22 @@ seed_gltf() {
     done < <(find /usr/share/assimp/models/glTF2 \( -name '*.gltf' -o -name '*.glb' \) -size -64k -print0)
   fi
   return 0
+}
+
+# Texture seeds: the small images written for it (fuzz/seeds/texture: PNG of
+# 8 and 16 bits, grey, alpha, palettes, baseline and progressive JPEG, TGA
+# plain and RLE, BMP, Radiance HDR, EXR), the scenes' own textures, and the
+# images of Debian's assimp-testmodels under 64 KiB when installed.
+seed_texture() {
+  local corpus="$1" image
+  local files=("$root"/fuzz/seeds/texture/* "$root"/scenes/textures/*)
+  [ -d /usr/share/assimp/models ] && while IFS= read -r -d '' image; do files+=("$image"); done \
+    < <(find /usr/share/assimp/models -type f \( -iname '*.png' -o -iname '*.jpg' -o -iname '*.jpeg' -o -iname '*.tga' \
+          -o -iname '*.bmp' -o -iname '*.hdr' -o -iname '*.exr' \) -size -64k -print0)
+  for image in "${files[@]}"; do
+    [ -f "$image" ] || continue
+    add_seed "$corpus" "$(basename "$(dirname "$image")")-$(basename "$image" | tr -c 'A-Za-z0-9_.\n-' '_')" <"$image"
+  done
 }
 
 status=0

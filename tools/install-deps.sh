@@ -10,7 +10,7 @@ packages=(
   libtbb-dev             # parallel render loop and BVH build
   libpng-dev             # PNG output
   libopenexr-dev         # EXR output, EXR environment maps
-  libstb-dev             # stb_image: Radiance .hdr environment maps (headers in /usr/include/stb, libstb)
+  libstb-dev             # stb_image: textures (PNG, JPEG, TGA, BMP) and Radiance .hdr (headers in /usr/include/stb, libstb)
   libcli11-dev           # command line
   libtinygltf-dev        # glTF 2.0 parsing (header-only; src/scene/gltf_file.cpp)
   libdraco-dev           # KHR_draco_mesh_compression

@@ -6,6 +6,7 @@
 #include "render/interaction.h"
 #include "render/point_lights.h"
 #include "render/sample_recorder.h"
+#include "render/shading.h"
 
 namespace sombra {
 
@@ -67,8 +68,9 @@ Vec3 trace_direct_recorded(const IntegratorContext& ctx, const Ray& ray, RayCoun
         recorder.escaped(ray, Vec3{1.0f}, radiance, 1.0f, 0.0f, 0.0f);
         recorder.end("the camera ray left the scene");
     } else {
-        const SurfaceInteraction si = make_surface_interaction(scene.geometry, ray, hit);
-        const Material& material = scene.materials[si.material];
+        SurfaceInteraction si = make_surface_interaction(scene.geometry, ray, hit);
+        Material textured;
+        const Material& material = resolve_material(scene, si, textured);
         const Vec3 wo = -normalize(ray.dir);
         recorder.surface(ray, hit, si, Vec3{1.0f});
 

@@ -20,6 +20,10 @@ struct SurfaceInteraction {
     // n_w = (p1 − p0) × (p2 − p0) points to: into a dielectric's medium, and
     // the side a quad light emits toward (spec §10, §11).
     bool outside = true;
+    // Texture coordinates blended with the barycentric weights when all three
+    // corners have one (has_uv), else (0, 0) (spec §12).
+    Vec2 uv;
+    bool has_uv = false;
     std::uint32_t triangle = 0;
     std::uint32_t material = 0;
 };

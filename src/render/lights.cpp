@@ -5,6 +5,7 @@
 #include <limits>
 #include <numbers>
 
+#include "render/shading.h"
 #include "render/spherical_triangle.h"
 
 namespace sombra {
@@ -179,7 +180,7 @@ bool sample_light(const LightSet& lights, const Scene& scene, Vec3 x, Vec3 n, fl
     // One-sided emitters shine only toward their winding normal's side.
     if (m.emits_front_only && dot(n_w, wi) >= 0.0f) return false;
     if (!(pdf > 0.0f) || !std::isfinite(pdf)) return false;
-    out.radiance = m.ke;
+    out.radiance = emission_at(scene, m, triangle, y);
     out.wi = wi;
     out.target = y;
     out.at_infinity = false;

@@ -12,6 +12,7 @@
 #include "render/interaction.h"
 #include "render/point_lights.h"
 #include "render/sample_recorder.h"
+#include "render/shading.h"
 
 namespace sombra {
 
@@ -68,6 +69,7 @@ Vec3 trace_path_recorded(const IntegratorContext& ctx, const Ray& camera_ray, Sa
     Vec3 previous_position{0.0f};
     Vec3 previous_normal{0.0f};  // its shading normal: the light tree's choice depends on both
     Ray ray = camera_ray;
+    Material textured;  // the hit's material when it has textures (render/shading.h)
     // The weight of an emitter or the environment reached by a BSDF-sampled
     // bounce whose density was bsdf_pdf, where next-event estimation would
     // have picked the same direction with light_pdf.
@@ -97,8 +99,8 @@ Vec3 trace_path_recorded(const IntegratorContext& ctx, const Ray& camera_ray, Sa
             break;
         }
 
-        const SurfaceInteraction si = make_surface_interaction(scene.geometry, ray, hit);
-        const Material& material = scene.materials[si.material];
+        SurfaceInteraction si = make_surface_interaction(scene.geometry, ray, hit);
+        const Material& material = resolve_material(scene, si, textured);
         const Vec3 wo = -normalize(ray.dir);
         recorder.surface(ray, hit, si, beta);
 

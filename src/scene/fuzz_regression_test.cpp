@@ -64,7 +64,7 @@ protected:
 
 TEST_F(FuzzRegression, EveryReproducerLoadsOrFailsCleanly) {
     const std::size_t replayed = replay_all(fuzz::Target::Obj, "obj") + replay_all(fuzz::Target::Ply, "ply") +
-                                 replay_all(fuzz::Target::Scene, "scene");
+                                 replay_all(fuzz::Target::Scene, "scene") + replay_all(fuzz::Target::Texture, "texture");
     EXPECT_GE(replayed, 2u);  // at least those tested one by one below
 }
 
@@ -89,6 +89,34 @@ TEST_F(FuzzRegression, VersionTwoSceneSeedsLoad) {
         ++count;
     }
     EXPECT_GE(count, 4u);
+}
+
+// fuzz_texture's seeds (fuzz/seeds/texture: every format and layout) decode
+// through the harness and pass its checks, and the harness sees a bad texel.
+TEST_F(FuzzRegression, TextureSeedsDecode) {
+    const fs::path seeds = fs::path(SOMBRA_SOURCE_DIR) / "fuzz" / "seeds" / "texture";
+    std::size_t count = 0;
+    for (const fs::directory_entry& entry : fs::directory_iterator(seeds)) {
+        SCOPED_TRACE(entry.path().string());
+        const std::string bytes = read_bytes(entry.path());
+        std::string problem = "threw";
+        EXPECT_NO_THROW(problem = fuzz::run_input(fuzz::Target::Texture, bytes, folder));
+        EXPECT_EQ(problem, "");
+        try {
+            const Texture t = read_texture_file(fuzz::stage_input(fuzz::Target::Texture, bytes, folder),
+                                                TextureEncoding::Color);
+            EXPECT_GT(t.texels.size(), 0u);
+        } catch (const Error& e) {
+            ADD_FAILURE() << e.what();
+        }
+        ++count;
+    }
+    EXPECT_GE(count, 18u);
+    Texture t;
+    t.width = t.height = t.channels = 1;
+    t.texels = {1.5f};
+    EXPECT_EQ(fuzz::texture_problem(t, false), "");
+    EXPECT_EQ(fuzz::texture_problem(t, true), "texel out of range");
 }
 
 // The harness itself: a good input loads and passes the checks, and a broken
@@ -121,6 +149,24 @@ TEST_F(FuzzRegression, HarnessSceneMeshesLoad) {
     EXPECT_EQ(loaded.materials[0].name, "red");
     EXPECT_EQ(fuzz::scene_problem(loaded), "");
     EXPECT_TRUE(diag.warnings.empty());
+}
+
+// fuzz_texture found it: a JPEG Huffman table whose 16 code counts add up
+// to more than 256 made Debian's stb_image write past its tables; then the
+// same behind 0xff fill bytes before the start-of-image marker, which stb
+// accepts and the first guard did not take for a JPEG.
+TEST_F(FuzzRegression, JpegHuffmanCountsOverTheTableAreRefused) {
+    for (const char* name : {"jpeg-huffman-counts-over-256.jpg", "jpeg-huffman-overflow-after-fill-bytes.jpg"}) {
+        SCOPED_TRACE(name);
+        const fs::path path = fuzz::stage_input(fuzz::Target::Texture, read_bytes(kRegressions / "texture" / name), folder);
+        try {
+            read_texture_file(path, TextureEncoding::Color);
+            ADD_FAILURE() << "decoded a JPEG with an oversized Huffman table";
+        } catch (const Error& e) {
+            EXPECT_NE(e.message().find("bad JPEG Huffman table: its code counts add up to"), std::string::npos)
+                << e.what();
+        }
+    }
 }
 
 // fuzz_ply found it: a face count of 2^32 - 1 was reserved for (tens of GB)

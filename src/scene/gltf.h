@@ -97,7 +97,7 @@ PrimitiveData decode_draco(const AccessorReader& r, const tinygltf::Primitive& p
 // with its texture references; warns once that textures are not applied.
 struct Materials {
     std::vector<Material> materials;
-    std::vector<MaterialTextureRefs> texture_refs;
+    std::vector<GltfMaterialTextures> texture_refs;
 };
 Materials convert_materials(const tinygltf::Model& model, const std::string& file, Diagnostics& diag);
 

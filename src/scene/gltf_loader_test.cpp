@@ -157,11 +157,11 @@ TEST(GltfLoader, MaterialsBecomePbrWithTheirTextureReferencesKept) {
     EXPECT_FLOAT_EQ(red.ior, 1.33f);
     EXPECT_EQ(red.ke, (Vec3{2.0f, 1.0f, 0.0f}));
     ASSERT_EQ(m.texture_refs.size(), 1u);
-    const MaterialTextureRefs& refs = m.texture_refs[0];
+    const GltfMaterialTextures& refs = m.texture_refs[0];
     EXPECT_EQ(refs.base_color.texture, 0);
     EXPECT_EQ(refs.base_color.uri, "red.png");
-    EXPECT_EQ(refs.base_color.wrap_s, TextureWrap::ClampToEdge);
-    EXPECT_EQ(refs.base_color.wrap_t, TextureWrap::MirroredRepeat);
+    EXPECT_EQ(refs.base_color.wrap_s, GltfWrap::ClampToEdge);
+    EXPECT_EQ(refs.base_color.wrap_t, GltfWrap::MirroredRepeat);
     EXPECT_EQ(refs.base_color.offset, (Vec2{0.5f, 0}));
     EXPECT_EQ(refs.base_color.scale, (Vec2{2, 2}));
     EXPECT_FLOAT_EQ(refs.base_color.rotation, 0.1f);

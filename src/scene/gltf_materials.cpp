@@ -43,11 +43,11 @@ float clamped(const MaterialContext& c, double value, const char* name) {
     return std::clamp(x, 0.0f, 1.0f);
 }
 
-TextureWrap wrap_mode(int gl) {
+GltfWrap wrap_mode(int gl) {
     switch (gl) {
-        case TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE: return TextureWrap::ClampToEdge;
-        case TINYGLTF_TEXTURE_WRAP_MIRRORED_REPEAT: return TextureWrap::MirroredRepeat;
-        default: return TextureWrap::Repeat;
+        case TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE: return GltfWrap::ClampToEdge;
+        case TINYGLTF_TEXTURE_WRAP_MIRRORED_REPEAT: return GltfWrap::MirroredRepeat;
+        default: return GltfWrap::Repeat;
     }
 }
 
@@ -57,11 +57,11 @@ float finite_number(const tinygltf::Value& v, float fallback) {
     return std::isfinite(x) ? x : fallback;
 }
 
-// One textureInfo (index, texCoord, extensions) as a TextureRef; an empty
+// One textureInfo (index, texCoord, extensions) as a GltfTextureRef; an empty
 // one when index is -1. A texture or image index out of range is an error.
-TextureRef texture_ref(const MaterialContext& c, int index, int texcoord, const tinygltf::ExtensionMap& extensions,
+GltfTextureRef texture_ref(const MaterialContext& c, int index, int texcoord, const tinygltf::ExtensionMap& extensions,
                        const char* slot) {
-    TextureRef ref;
+    GltfTextureRef ref;
     if (index < 0) return ref;
     const tinygltf::Model& m = c.model;
     if (static_cast<std::size_t>(index) >= m.textures.size())
@@ -140,7 +140,7 @@ Materials convert_materials(const tinygltf::Model& model, const std::string& fil
         m.ke = max(emissive, Vec3{0.0f}) * strength;
         if (!is_finite(m.ke)) throw Error(file, c.what + ": emission is not finite");
 
-        MaterialTextureRefs refs;
+        GltfMaterialTextures refs;
         refs.base_color = texture_ref(c, pbr.baseColorTexture.index, pbr.baseColorTexture.texCoord,
                                       pbr.baseColorTexture.extensions, "baseColorTexture");
         refs.metallic_roughness = texture_ref(c, pbr.metallicRoughnessTexture.index, pbr.metallicRoughnessTexture.texCoord,

@@ -3,9 +3,11 @@
 // version-1 BRDF terms that the direct integrator evaluates).
 #pragma once
 
+#include <cstdint>
 #include <string>
 
 #include "core/vec3.h"
+#include "scene/texture.h"
 
 namespace sombra {
 
@@ -16,6 +18,39 @@ enum class MaterialType {
     Dielectric,  // smooth glass: Fresnel reflection and refraction, ior, kt (§11)
     Conductor,   // GGX microfacet metal, Schlick Fresnel from ks, roughness (§11)
     Pbr,         // glTF 2.0 metallic–roughness: base_color, metallic, roughness, ior (§11)
+};
+
+// Marks a material parameter without a texture.
+inline constexpr std::uint32_t kNoTexture = 0xffffffffu;
+
+// A material parameter's image (spec §12): an index into the scene's texture
+// table (Scene::textures; LoadedMesh::textures for a mesh file's own), how
+// lookups wrap, and for a scalar parameter which channel it reads.
+struct TextureRef {
+    std::uint32_t texture = kNoTexture;
+    TextureWrap wrap_u = TextureWrap::Repeat;
+    TextureWrap wrap_v = TextureWrap::Repeat;
+    std::uint8_t channel = 0;  // scalar parameters: 0 r, 1 g, 2 b, 3 a
+    bool is_set() const { return texture != kNoTexture; }
+};
+
+// The textures of one material. A textured RGB parameter's value at a hit is
+// the material's constant (the scale, 1 when a file gives none) times the
+// texel's RGB; a textured scalar's is the constant times the chosen channel.
+struct MaterialTextures {
+    TextureRef kd, ks, kr, kt, ke, base_color;  // RGB parameters (see kRgbTextureSlots)
+    TextureRef roughness, metallic;             // scalar parameters (see kScalarTextureSlots)
+    // Tangent-space normal map (OpenGL convention, +y toward increasing v):
+    // data, n = 2·texel − 1. Wins over the bump map.
+    TextureRef normal_map;
+    // Height map (MTL bump): its first channel times bump_scale is a
+    // displacement along n_s in world units (as pbrt's bump mapping).
+    TextureRef bump_map;
+    float bump_scale = 1;
+    // Cut-out (spec §12): where alpha (the A channel, else the first) is
+    // below alpha_cutoff the surface does not exist.
+    TextureRef alpha;
+    float alpha_cutoff = 0.5f;
 };
 
 struct Material {
@@ -34,7 +69,82 @@ struct Material {
     // Quad lights (§10) emit only toward the side their winding normal
     // (v1 − v0) × (v2 − v0) points to, and are black from behind.
     bool emits_front_only = false;
+    MaterialTextures textures{};
+    // any_texture(textures), set by whoever fills `textures` (the scene's
+    // assembly of mesh files sets it again): renderers resolve a textured
+    // material at each hit (render/shading.h), and only a textured one.
+    bool textured = false;
 };
+
+// The parameters that may come from a texture, by their scene-file key. A
+// new RGB or scalar parameter gets its texture with one line here (and its
+// TextureRef in MaterialTextures).
+// `reflectance` parameters are clamped to [0, 1] at a hit (an EXR texel may
+// exceed 1); the others (ke, a radiance) only to >= 0.
+struct RgbTextureSlot {
+    const char* key;
+    Vec3 Material::*value;
+    TextureRef MaterialTextures::*texture;
+    bool reflectance;
+};
+inline constexpr RgbTextureSlot kRgbTextureSlots[] = {
+    {"kd", &Material::kd, &MaterialTextures::kd, true}, {"ks", &Material::ks, &MaterialTextures::ks, true},
+    {"kr", &Material::kr, &MaterialTextures::kr, true}, {"kt", &Material::kt, &MaterialTextures::kt, true},
+    {"ke", &Material::ke, &MaterialTextures::ke, false},
+    {"base_color", &Material::base_color, &MaterialTextures::base_color, true},
+};
+struct ScalarTextureSlot {
+    const char* key;
+    float Material::*value;
+    TextureRef MaterialTextures::*texture;
+};
+inline constexpr ScalarTextureSlot kScalarTextureSlots[] = {
+    {"roughness", &Material::roughness, &MaterialTextures::roughness},
+    {"metallic", &Material::metallic, &MaterialTextures::metallic},
+};
+
+// True when some slot, the normal map, the bump map or the alpha of `t` is set.
+inline bool any_texture(const MaterialTextures& t) {
+    for (const RgbTextureSlot& slot : kRgbTextureSlots)
+        if ((t.*slot.texture).is_set()) return true;
+    for (const ScalarTextureSlot& slot : kScalarTextureSlots)
+        if ((t.*slot.texture).is_set()) return true;
+    return t.normal_map.is_set() || t.bump_map.is_set() || t.alpha.is_set();
+}
+
+// Copies every field of `from` but its name into `to`: what a hit's resolved
+// material (render/shading.h) starts from, without the allocation a long
+// name's copy would cost per ray. The binding lists every field, so that a
+// field added to Material fails to compile here until it is copied too.
+inline void copy_parameters(const Material& from, Material& to) {
+    const auto& [name, type, kd, ks, shininess, ke, kr, kt, ior, roughness, base_color, metallic, emits_front_only,
+                 textures, textured] = from;
+    static_cast<void>(name);
+    to.type = type;
+    to.kd = kd;
+    to.ks = ks;
+    to.shininess = shininess;
+    to.ke = ke;
+    to.kr = kr;
+    to.kt = kt;
+    to.ior = ior;
+    to.roughness = roughness;
+    to.base_color = base_color;
+    to.metallic = metallic;
+    to.emits_front_only = emits_front_only;
+    to.textures = textures;
+    to.textured = textured;
+}
+
+// Calls f(ref) for every TextureRef of `t` (to remap or check their indices).
+template <typename F>
+void for_each_texture_ref(MaterialTextures& t, F&& f) {
+    for (const RgbTextureSlot& slot : kRgbTextureSlots) f(t.*slot.texture);
+    for (const ScalarTextureSlot& slot : kScalarTextureSlots) f(t.*slot.texture);
+    f(t.normal_map);
+    f(t.bump_map);
+    f(t.alpha);
+}
 
 // True when a Phong material can reflect more light than it receives: kd + ks
 // exceeds 1 in some channel (spec §5 asks for a warning, from scenes and MTL alike).

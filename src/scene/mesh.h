@@ -63,9 +63,11 @@ struct ModelCamera {
 // A mesh file as read from disk: geometry in the file's own coordinates and
 // the materials its faces refer to. Loaders always leave at least one
 // material when there are triangles (the default one for faces without).
+// Materials' TextureRefs index `textures`, the file's own table.
 struct LoadedMesh {
     TriangleMesh mesh;
     std::vector<Material> materials;
+    std::vector<Texture> textures{};
 
     // What only glTF files carry (empty for OBJ and PLY): the point lights
     // and the first camera the file's scene places, in the file's
@@ -73,7 +75,7 @@ struct LoadedMesh {
     // texture references the renderer does not apply yet.
     std::vector<PointLight> lights;
     std::optional<ModelCamera> camera;
-    std::vector<MaterialTextureRefs> texture_refs;
+    std::vector<GltfMaterialTextures> texture_refs;
 };
 
 }  // namespace sombra

@@ -27,6 +27,7 @@
 #include "scene/material.h"
 #include "scene/mesh_builder.h"
 #include "scene/mtl_scan.h"
+#include "scene/mtl_textures.h"
 #include "scene/obj_parse.h"
 
 namespace sombra {
@@ -163,7 +164,7 @@ Material material_from_mtl(const tinyobj::material_t& mtl, MtlPbrKeys pbr, const
         m.metallic = clamp_unit(mtl.metallic, "Pm", mtl, where, diag);
         const float ni = static_cast<float>(mtl.ior);
         m.ior = ni > 1 && std::isfinite(ni) ? ni : 1.5f;
-    } else if (max_component(ks) > 0) {
+    } else if (max_component(ks) > 0 || !mtl.specular_texname.empty()) {  // map_Ks: textured Phong (mtl_textures.h)
         m.type = MaterialType::Phong;
         m.ks = ks;
         const float ns = static_cast<float>(mtl.shininess);
@@ -339,11 +340,17 @@ LoadedMesh load_obj(const std::filesystem::path& path, Diagnostics& diag) {
     }
 
     std::vector<Material> materials;
+    std::vector<Texture> textures;
+    MtlTextureReader texture_reader(textures, diag);
     materials.reserve(mtl.materials.size() + 1);
     for (std::size_t i = 0; i < mtl.materials.size(); ++i) {
-        materials.push_back(material_from_mtl(mtl.materials[i], mtl.reader.pbr_keys(i), mtl.reader.source(i, where), diag));
+        const std::string& source = mtl.reader.source(i, where);
+        materials.push_back(material_from_mtl(mtl.materials[i], mtl.reader.pbr_keys(i), source, diag));
+        texture_reader.apply(mtl.materials[i], source, materials.back());
     }
-    return builder.finish(std::move(materials), diag);
+    LoadedMesh loaded = builder.finish(std::move(materials), diag);
+    loaded.textures = std::move(textures);
+    return loaded;
 }
 
 }  // namespace sombra

@@ -11,6 +11,7 @@
 #include "scene/light.h"
 #include "scene/material.h"
 #include "scene/mesh.h"
+#include "scene/texture.h"
 
 namespace sombra {
 
@@ -80,6 +81,7 @@ struct Scene {
     std::optional<EnvironmentMap> environment;  // when set, replaces `background`
     CameraSpec camera;
     std::vector<Material> materials;
+    std::vector<Texture> textures;  // the materials' TextureRefs index this table (spec §12)
     std::vector<PointLight> lights;
     TriangleMesh geometry;  // all objects, world space; material_ids index materials
     std::vector<SceneObject> objects;  // in triangle order, covering geometry's triangles

@@ -161,6 +161,16 @@ void append_object(Scene& scene, const LoadedMesh& loaded, const ObjectSpec& spe
     }
     const auto material_base = static_cast<std::uint32_t>(scene.materials.size());
     scene.materials.insert(scene.materials.end(), loaded.materials.begin(), loaded.materials.end());
+    // The file's textures join the scene's table (shared by source), its materials' references renumbered.
+    std::vector<std::uint32_t> texture_index(loaded.textures.size());
+    for (std::size_t i = 0; i < loaded.textures.size(); ++i) texture_index[i] = add_texture(scene.textures, loaded.textures[i]);
+    for (std::size_t i = material_base; i < scene.materials.size(); ++i) {
+        MaterialTextures& t = scene.materials[i].textures;
+        for_each_texture_ref(t, [&](TextureRef& r) {
+            if (r.is_set()) r.texture = r.texture < texture_index.size() ? texture_index[r.texture] : kNoTexture;
+        });
+        scene.materials[i].textured = any_texture(t);
+    }
     // Loaders give every face a material; guard against one that did not.
     std::optional<std::uint32_t> fallback;
     const auto fallback_id = [&] {
@@ -223,7 +233,8 @@ Scene load_scene_text(const std::string& text, const fs::path& path, Diagnostics
     if (const Json* v = find_member(root, "render")) scene.render = read_render(s, *v, "/render");
     if (const Json* v = find_member(root, "background")) scene.background = read_rgb(s, *v, "/background");
     scene.camera = read_camera(s, require_member(s, root, "", "camera"), "/camera");
-    if (const Json* v = find_member(root, "materials")) scene.materials = read_materials(s, *v, "/materials");
+    SceneTextures textures{path.parent_path(), &scene.textures};
+    if (const Json* v = find_member(root, "materials")) scene.materials = read_materials(s, *v, "/materials", textures);
     SceneLights lights;
     if (const Json* v = find_member(root, "lights")) lights = read_lights(s, *v, "/lights");
     scene.lights = std::move(lights.points);
@@ -355,6 +366,8 @@ Scene make_quicklook_scene(const std::filesystem::path& model, Diagnostics& diag
     Scene scene;
     scene.background = Vec3{0.02f};
     scene.materials = std::move(loaded.materials);
+    scene.textures = std::move(loaded.textures);
+    for (Material& m : scene.materials) m.textured = any_texture(m.textures);
     scene.geometry = std::move(loaded.mesh);
     scene.objects.push_back(SceneObject{model.filename().string(), model.string(), 0,
                                         static_cast<std::uint32_t>(scene.geometry.triangle_count())});

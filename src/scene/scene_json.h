@@ -82,9 +82,33 @@ RenderSettings read_render(const SceneJson& s, const Json& v, std::string_view p
 // mutually perpendicular) and the look-at form (origin, look_at, up, fov).
 CameraSpec read_camera(const SceneJson& s, const Json& v, std::string_view pointer);
 
-// "materials": {name: {type, kd, ks, shininess, ke}}, in name order. Warns
-// when kd + ks exceeds 1 in a channel (not energy conserving).
-std::vector<Material> read_materials(const SceneJson& s, const Json& v, std::string_view pointer);
+// Where a scene file's textures come from and go: image files relative to
+// `folder`, decoded into `*table` (Scene::textures), each file once per encoding.
+struct SceneTextures {
+    std::filesystem::path folder;
+    std::vector<Texture>* table = nullptr;
+};
+
+// "materials": {name: {type, kd, ks, shininess, ke, ..., normal_map, alpha}},
+// in name order. Warns when kd + ks exceeds 1 in a channel (not energy
+// conserving). Textures (spec §12) are read into `textures`.
+std::vector<Material> read_materials(const SceneJson& s, const Json& v, std::string_view pointer,
+                                     SceneTextures& textures);
+
+// Material member `key`, a parameter of kRgbTextureSlots or
+// kScalarTextureSlots (scene/material.h): a constant ([r, g, b], each in
+// [0, 1] for reflectances, >= 0 for ke; a number in [0, 1]) or a texture
+// ({"texture": file, "scale": [r, g, b]}; {"texture": file, "channel":
+// "r"|"g"|"b"|"a", "scale": s}), whose scale becomes the constant. Absent:
+// unchanged, or "missing required key" when `required`.
+void read_texturable(const SceneJson& s, const Json& material, std::string_view pointer, std::string_view key,
+                     bool required, Material& m, SceneTextures& textures);
+
+// "normal_map": file and "alpha": {"texture": file, "cutoff": c in [0, 1]},
+// which any material may have; then sets m.textured. Alpha cut-outs are
+// stored but not applied yet (a warning says so).
+void read_material_maps(const SceneJson& s, const Json& material, std::string_view pointer, Material& m,
+                        SceneTextures& textures);
 
 // A quad light (spec §10) as written: the parallelogram corner, corner +
 // edge1, corner + edge1 + edge2, corner + edge2, emitting `radiance` toward

@@ -14,26 +14,14 @@ struct TypeKeys {
     std::initializer_list<std::string_view> keys;
 };
 const TypeKeys kTypes[] = {
-    {"diffuse", {"type", "kd", "ke"}},
-    {"phong", {"type", "kd", "ks", "shininess", "ke"}},
-    {"mirror", {"type", "kr", "ke"}},
-    {"dielectric", {"type", "ior", "kt", "ke"}},
-    {"conductor", {"type", "ks", "roughness", "ke"}},
-    {"pbr", {"type", "base_color", "metallic", "roughness", "ior", "ke"}},
+    {"diffuse", {"type", "kd", "ke", "normal_map", "alpha"}},
+    {"phong", {"type", "kd", "ks", "shininess", "ke", "normal_map", "alpha"}},
+    {"mirror", {"type", "kr", "ke", "normal_map", "alpha"}},
+    {"dielectric", {"type", "ior", "kt", "ke", "normal_map", "alpha"}},
+    {"conductor", {"type", "ks", "roughness", "ke", "normal_map", "alpha"}},
+    {"pbr", {"type", "base_color", "metallic", "roughness", "ior", "ke", "normal_map", "alpha"}},
 };
 constexpr const char* kTypeList = "'diffuse', 'phong', 'mirror', 'dielectric', 'conductor' or 'pbr'";
-
-Vec3 read_unit_interval_rgb(const SceneJson& s, const Json& v, std::string_view pointer, std::string_view key) {
-    const Vec3 c = read_vec3(s, v, pointer);
-    if (min_component(c) < 0 || max_component(c) > 1)
-        json_fail(s, pointer, std::string(key) + " components must lie in [0, 1]");
-    return c;
-}
-
-Vec3 require_unit_interval_rgb(const SceneJson& s, const Json& object, std::string_view pointer,
-                               std::string_view key) {
-    return read_unit_interval_rgb(s, require_member(s, object, pointer, key), json_child(pointer, key), key);
-}
 
 // The keys of another type that `type` does not take: "'ks' applies only to
 // phong and conductor materials" says more than "unknown key".
@@ -50,12 +38,12 @@ void reject_foreign_keys(const SceneJson& s, const Json& v, std::string_view poi
     }
 }
 
-void read_phong(const SceneJson& s, const Json& v, std::string_view pointer, Material& m) {
-    m.ks = require_unit_interval_rgb(s, v, pointer, "ks");
+void read_phong(const SceneJson& s, const Json& v, std::string_view pointer, Material& m, SceneTextures& textures) {
+    read_texturable(s, v, pointer, "ks", true, m, textures);
     const std::string p = json_child(pointer, "shininess");
     m.shininess = read_float(s, require_member(s, v, pointer, "shininess"), p);
     if (m.shininess < 0) json_fail(s, p, "shininess must be non-negative");
-    if (breaks_energy_conservation(m))
+    if (breaks_energy_conservation(m) && !m.textures.kd.is_set() && !m.textures.ks.is_set())
         json_warn(s, pointer, "kd + ks exceeds 1 in some channel: the material reflects more light than it receives");
 }
 
@@ -68,33 +56,28 @@ void read_optional_ior(const SceneJson& s, const Json& v, std::string_view point
     }
 }
 
-// A required number in [0, 1] (roughness, metallic).
-float require_unit_interval(const SceneJson& s, const Json& v, std::string_view pointer, std::string_view key) {
-    const std::string p = json_child(pointer, key);
-    const float x = read_float(s, require_member(s, v, pointer, key), p);
-    if (x < 0 || x > 1) json_fail(s, p, std::string(key) + " must lie in [0, 1]");
-    return x;
-}
-
-void read_dielectric(const SceneJson& s, const Json& v, std::string_view pointer, Material& m) {
+void read_dielectric(const SceneJson& s, const Json& v, std::string_view pointer, Material& m,
+                     SceneTextures& textures) {
     read_optional_ior(s, v, pointer, m);
-    if (const Json* kt = find_member(v, "kt")) m.kt = read_unit_interval_rgb(s, *kt, json_child(pointer, "kt"), "kt");
+    read_texturable(s, v, pointer, "kt", false, m, textures);
 }
 
-void read_conductor(const SceneJson& s, const Json& v, std::string_view pointer, Material& m) {
-    m.ks = require_unit_interval_rgb(s, v, pointer, "ks");
-    m.roughness = require_unit_interval(s, v, pointer, "roughness");
+void read_conductor(const SceneJson& s, const Json& v, std::string_view pointer, Material& m,
+                    SceneTextures& textures) {
+    read_texturable(s, v, pointer, "ks", true, m, textures);
+    read_texturable(s, v, pointer, "roughness", true, m, textures);
 }
 
 // The glTF metallic–roughness material (§11): all but ior required.
-void read_pbr(const SceneJson& s, const Json& v, std::string_view pointer, Material& m) {
-    m.base_color = require_unit_interval_rgb(s, v, pointer, "base_color");
-    m.metallic = require_unit_interval(s, v, pointer, "metallic");
-    m.roughness = require_unit_interval(s, v, pointer, "roughness");
+void read_pbr(const SceneJson& s, const Json& v, std::string_view pointer, Material& m, SceneTextures& textures) {
+    read_texturable(s, v, pointer, "base_color", true, m, textures);
+    read_texturable(s, v, pointer, "metallic", true, m, textures);
+    read_texturable(s, v, pointer, "roughness", true, m, textures);
     read_optional_ior(s, v, pointer, m);
 }
 
-Material read_material(const SceneJson& s, const std::string& name, const Json& v, std::string_view pointer) {
+Material read_material(const SceneJson& s, const std::string& name, const Json& v, std::string_view pointer,
+                       SceneTextures& textures) {
     expect_object(s, v, pointer);
     const std::string type_pointer = json_child(pointer, "type");
     const std::string& type = read_string(s, require_member(s, v, pointer, "type"), type_pointer);
@@ -108,36 +91,38 @@ Material read_material(const SceneJson& s, const std::string& name, const Json& 
     m.name = name;
     if (type == "diffuse") {
         m.type = MaterialType::Diffuse;
-        m.kd = require_unit_interval_rgb(s, v, pointer, "kd");
+        read_texturable(s, v, pointer, "kd", true, m, textures);
     } else if (type == "phong") {
         m.type = MaterialType::Phong;
-        m.kd = require_unit_interval_rgb(s, v, pointer, "kd");
-        read_phong(s, v, pointer, m);
+        read_texturable(s, v, pointer, "kd", true, m, textures);
+        read_phong(s, v, pointer, m, textures);
     } else if (type == "mirror") {
         m.type = MaterialType::Mirror;
-        m.kr = require_unit_interval_rgb(s, v, pointer, "kr");
+        read_texturable(s, v, pointer, "kr", true, m, textures);
     } else if (type == "dielectric") {
         m.type = MaterialType::Dielectric;
-        read_dielectric(s, v, pointer, m);
+        read_dielectric(s, v, pointer, m, textures);
     } else if (type == "conductor") {
         m.type = MaterialType::Conductor;
-        read_conductor(s, v, pointer, m);
+        read_conductor(s, v, pointer, m, textures);
     } else {
         m.type = MaterialType::Pbr;
-        read_pbr(s, v, pointer, m);
+        read_pbr(s, v, pointer, m, textures);
     }
-    if (const Json* ke = find_member(v, "ke")) m.ke = read_rgb(s, *ke, json_child(pointer, "ke"));
+    read_texturable(s, v, pointer, "ke", false, m, textures);
+    read_material_maps(s, v, pointer, m, textures);
     return m;
 }
 
 }  // namespace
 
-std::vector<Material> read_materials(const SceneJson& s, const Json& v, std::string_view pointer) {
+std::vector<Material> read_materials(const SceneJson& s, const Json& v, std::string_view pointer,
+                                     SceneTextures& textures) {
     expect_object(s, v, pointer);
     std::vector<Material> materials;
     materials.reserve(v.size());
     for (auto it = v.begin(); it != v.end(); ++it)
-        materials.push_back(read_material(s, it.key(), it.value(), json_child(pointer, it.key())));
+        materials.push_back(read_material(s, it.key(), it.value(), json_child(pointer, it.key()), textures));
     return materials;
 }
 

@@ -11,16 +11,16 @@
 namespace sombra {
 
 // A glTF sampler's wrapS / wrapT.
-enum class TextureWrap { Repeat, ClampToEdge, MirroredRepeat };
+enum class GltfWrap { Repeat, ClampToEdge, MirroredRepeat };
 
 // One textureInfo of a glTF material.
-struct TextureRef {
+struct GltfTextureRef {
     int texture = -1;   // index into the file's textures; -1: the slot is empty
     int image = -1;     // the texture's source image; -1 when it names none
     std::string uri;    // the image's uri as written (relative to the file's folder); "" when embedded
     int texcoord = 0;   // which TEXCOORD_n the lookup uses (KHR_texture_transform may override it)
-    TextureWrap wrap_s = TextureWrap::Repeat;
-    TextureWrap wrap_t = TextureWrap::Repeat;
+    GltfWrap wrap_s = GltfWrap::Repeat;
+    GltfWrap wrap_t = GltfWrap::Repeat;
     // KHR_texture_transform, in glTF's uv convention (v = 0 at the image's top):
     // uv' = translate(offset) · rotate(rotation) · scale(scale) · uv.
     Vec2 offset{0, 0};
@@ -36,12 +36,12 @@ enum class AlphaMode { Opaque, Mask, Blend };
 
 // Per material: every texture slot of glTF 2.0's metallic-roughness model and
 // what alpha needs besides the textures.
-struct MaterialTextureRefs {
-    TextureRef base_color;          // RGB times base_color; A is alpha
-    TextureRef metallic_roughness;  // roughness from G, metallic from B
-    TextureRef normal;              // tangent space
-    TextureRef emissive;            // times ke
-    TextureRef occlusion;           // ignored by the spec (§13), kept for completeness
+struct GltfMaterialTextures {
+    GltfTextureRef base_color;          // RGB times base_color; A is alpha
+    GltfTextureRef metallic_roughness;  // roughness from G, metallic from B
+    GltfTextureRef normal;              // tangent space
+    GltfTextureRef emissive;            // times ke
+    GltfTextureRef occlusion;           // ignored by the spec (§13), kept for completeness
     AlphaMode alpha_mode = AlphaMode::Opaque;
     float alpha_cutoff = 0.5f;      // MASK: cut out where alpha < cutoff
     float base_alpha = 1.0f;        // baseColorFactor's A

@@ -1,0 +1,144 @@
+#include "render/shading.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace sombra {
+
+namespace {
+
+// How far above n_g's horizon a perturbed shading normal is kept (cos θ).
+constexpr float kMinShadingCos = 1e-2f;
+
+Rgba lookup(const Scene& scene, const TextureRef& ref, Vec2 uv) {
+    return eval_texture(scene.textures[ref.texture], uv, ref.wrap_u, ref.wrap_v);
+}
+
+Vec3 clamp_rgb(Vec3 c, float hi) {
+    return {std::clamp(c.x, 0.0f, hi), std::clamp(c.y, 0.0f, hi), std::clamp(c.z, 0.0f, hi)};
+}
+
+// The position derivatives of a triangle's uv parameterisation, or false
+// when its uvs are degenerate (zero area in uv, or non-finite).
+bool position_derivatives(const TriangleMesh& mesh, std::uint32_t triangle, Vec3& dpdu, Vec3& dpdv) {
+    const Index3& p = mesh.triangles[triangle];
+    const Index3& t = mesh.uv_indices[triangle];
+    const Vec3 e1 = mesh.positions[p[1]] - mesh.positions[p[0]];
+    const Vec3 e2 = mesh.positions[p[2]] - mesh.positions[p[0]];
+    const Vec2 t0 = mesh.uvs[t[0]], t1 = mesh.uvs[t[1]], t2 = mesh.uvs[t[2]];
+    const float du1 = t1.x - t0.x, dv1 = t1.y - t0.y, du2 = t2.x - t0.x, dv2 = t2.y - t0.y;
+    const float det = du1 * dv2 - dv1 * du2;
+    if (!(std::fabs(det) > 1e-12f) || !std::isfinite(det)) return false;
+    dpdu = (dv2 * e1 - dv1 * e2) / det;
+    dpdv = (du1 * e2 - du2 * e1) / det;
+    return is_finite(dpdu) && is_finite(dpdv);
+}
+
+// n moved into n_g's hemisphere, at least kMinShadingCos above its horizon.
+Vec3 keep_above(Vec3 n, Vec3 n_g) {
+    const float c = dot(n, n_g);
+    if (c >= kMinShadingCos) return n;
+    const Vec3 tangent = n - c * n_g;
+    const float len = length(tangent);
+    if (!(len > 1e-6f) || !std::isfinite(len)) return n_g;
+    return tangent * (std::sqrt(1.0f - kMinShadingCos * kMinShadingCos) / len) + kMinShadingCos * n_g;
+}
+
+// A normal or bump map's shading normal at si (si.has_uv), or si.n_s.
+Vec3 mapped_normal(const Scene& scene, const MaterialTextures& t, const SurfaceInteraction& si) {
+    Vec3 dpdu, dpdv;
+    if (!position_derivatives(scene.geometry, si.triangle, dpdu, dpdv)) return si.n_s;
+    // The maps perturb the surface's front (its winding normal's side); seen
+    // from the back the same sheet shows the mirror image: the result is
+    // turned back to the side the ray came from.
+    const Vec3 front = si.outside ? si.n_s : -si.n_s;
+    Vec3 n = front;
+    if (t.normal_map.is_set()) {
+        const Rgba c = lookup(scene, t.normal_map, si.uv);
+        const Vec3 m{2.0f * c[0] - 1.0f, 2.0f * c[1] - 1.0f, 2.0f * c[2] - 1.0f};
+        const float len = length(m);
+        if (len > 1e-6f && std::isfinite(len)) n = apply_normal_map(front, dpdu, dpdv, m / len);
+    } else {
+        const Texture& h = scene.textures[t.bump_map.texture];
+        // Central differences one texel apart around the hit.
+        const float du = 1.0f / static_cast<float>(h.width), dv = 1.0f / static_cast<float>(h.height);
+        const auto height = [&](float u, float v) { return lookup(scene, t.bump_map, Vec2{u, v})[0]; };
+        const float dhdu = t.bump_scale * (height(si.uv.x + 0.5f * du, si.uv.y) - height(si.uv.x - 0.5f * du, si.uv.y)) / du;
+        const float dhdv = t.bump_scale * (height(si.uv.x, si.uv.y + 0.5f * dv) - height(si.uv.x, si.uv.y - 0.5f * dv)) / dv;
+        n = apply_bump(front, dpdu, dpdv, dhdu, dhdv);
+    }
+    if (!si.outside) n = -n;
+    return keep_above(n, si.n_g);
+}
+
+}  // namespace
+
+Vec3 apply_normal_map(Vec3 n, Vec3 dpdu, Vec3 dpdv, Vec3 n_map) {
+    Vec3 tangent = dpdu - dot(n, dpdu) * n;
+    const float t_len = length(tangent);
+    if (!(t_len > 0.0f) || !std::isfinite(t_len)) return n;
+    tangent = tangent / t_len;
+    Vec3 bitangent = dpdv - dot(n, dpdv) * n - dot(tangent, dpdv) * tangent;
+    const float b_len = length(bitangent);
+    if (!(b_len > 0.0f) || !std::isfinite(b_len)) return n;
+    bitangent = bitangent / b_len;
+    const Vec3 mapped = n_map.x * tangent + n_map.y * bitangent + n_map.z * n;
+    const float len = length(mapped);
+    return len > 0.0f && std::isfinite(len) ? mapped / len : n;
+}
+
+Vec3 apply_bump(Vec3 n, Vec3 dpdu, Vec3 dpdv, float dhdu, float dhdv) {
+    const Vec3 bumped = cross(dpdu + dhdu * n, dpdv + dhdv * n);
+    const float len = length(bumped);
+    if (!(len > 0.0f) || !std::isfinite(len)) return n;
+    return dot(bumped, n) < 0.0f ? -bumped / len : bumped / len;
+}
+
+const Material& resolve_material(const Scene& scene, SurfaceInteraction& si, Material& scratch) {
+    const Material& m = scene.materials[si.material];
+    if (!m.textured) return m;
+    copy_parameters(m, scratch);
+    const MaterialTextures& t = m.textures;
+    for (const RgbTextureSlot& slot : kRgbTextureSlots) {
+        const TextureRef& ref = t.*slot.texture;
+        if (!ref.is_set()) continue;
+        const Vec3 value = m.*slot.value * rgb_of(lookup(scene, ref, si.uv));
+        scratch.*slot.value = clamp_rgb(value, slot.reflectance ? 1.0f : std::numeric_limits<float>::max());
+    }
+    for (const ScalarTextureSlot& slot : kScalarTextureSlots) {
+        const TextureRef& ref = t.*slot.texture;
+        if (!ref.is_set()) continue;
+        scratch.*slot.value = std::clamp(m.*slot.value * lookup(scene, ref, si.uv)[ref.channel & 3u], 0.0f, 1.0f);
+    }
+    if (si.has_uv && (t.normal_map.is_set() || t.bump_map.is_set())) si.n_s = mapped_normal(scene, t, si);
+    return scratch;
+}
+
+Vec3 emission_at(const Scene& scene, const Material& material, std::uint32_t triangle, Vec3 y) {
+    const TextureRef& ref = material.textures.ke;
+    if (!ref.is_set()) return material.ke;
+    Vec2 uv{0.0f, 0.0f};
+    const TriangleMesh& mesh = scene.geometry;
+    if (mesh.has_uvs()) {
+        const Index3& ti = mesh.uv_indices[triangle];
+        if (ti[0] != kNoUv && ti[1] != kNoUv && ti[2] != kNoUv) {
+            // y's barycentric coordinates, from the areas it spans with the edges.
+            const Index3& p = mesh.triangles[triangle];
+            const Vec3 p0 = mesh.positions[p[0]];
+            const Vec3 e1 = mesh.positions[p[1]] - p0, e2 = mesh.positions[p[2]] - p0, d = y - p0;
+            const float d11 = dot(e1, e1), d12 = dot(e1, e2), d22 = dot(e2, e2);
+            const float d1 = dot(d, e1), d2 = dot(d, e2);
+            const float den = d11 * d22 - d12 * d12;
+            if (den > 0.0f && std::isfinite(den)) {
+                const float b1 = (d22 * d1 - d12 * d2) / den, b2 = (d11 * d2 - d12 * d1) / den;
+                const Vec2 t0 = mesh.uvs[ti[0]], t1 = mesh.uvs[ti[1]], t2 = mesh.uvs[ti[2]];
+                const float b0 = 1.0f - b1 - b2;
+                uv = {b0 * t0.x + b1 * t1.x + b2 * t2.x, b0 * t0.y + b1 * t1.y + b2 * t2.y};
+            }
+        }
+    }
+    return clamp_rgb(material.ke * rgb_of(lookup(scene, ref, uv)), std::numeric_limits<float>::max());
+}
+
+}  // namespace sombra

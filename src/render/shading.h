@@ -1,0 +1,41 @@
+// Textured materials at a hit (spec §12): the material's textured parameters
+// looked up at the hit's uv into a plain Material that the BSDFs use as they
+// use any other, and normal or bump maps applied to the shading normal.
+// Untextured materials cost one branch: they are returned as they are.
+#pragma once
+
+#include <cstdint>
+
+#include "core/vec3.h"
+#include "render/interaction.h"
+#include "scene/scene.h"
+
+namespace sombra {
+
+// The material at `si` as the BSDFs see it. Untextured:
+// scene.materials[si.material] itself, `si` and `scratch` untouched.
+// Textured: `scratch`, holding the material's parameters with each textured
+// one replaced by constant × texel at si.uv (reflectances clamped to [0, 1],
+// ke to >= 0); and on faces with uvs (si.has_uv) a normal map, else a bump
+// map, replaces si.n_s, kept within n_g's hemisphere. The result lives as
+// long as `scratch` (or the scene).
+const Material& resolve_material(const Scene& scene, SurfaceInteraction& si, Material& scratch);
+
+// The radiance `material` emits at point y of `triangle` (towards a side
+// where it emits): ke, times ke's texture at y's uv when it has one. For
+// light sampling, where y is a sampled point rather than a hit.
+Vec3 emission_at(const Scene& scene, const Material& material, std::uint32_t triangle, Vec3 y);
+
+// The shading normal that a tangent-space normal-map value `n_map` (unit,
+// +z along the surface normal) gives at a point whose surface normal is n
+// (unit) and whose position changes by dpdu, dpdv per unit of u and v
+// (OpenGL convention: +x along dpdu, +y along dpdv, Gram–Schmidt
+// orthonormalised against n). Returns n when the uvs are degenerate there.
+Vec3 apply_normal_map(Vec3 n, Vec3 dpdu, Vec3 dpdv, Vec3 n_map);
+
+// The shading normal of a bump map (pbrt's): the surface displaced by height
+// h along n, with dh/du = dhdu and dh/dv = dhdv, has the normal
+// (dpdu + dhdu·n) × (dpdv + dhdv·n), turned to n's side. n when degenerate.
+Vec3 apply_bump(Vec3 n, Vec3 dpdu, Vec3 dpdv, float dhdu, float dhdv);
+
+}  // namespace sombra
