@@ -7,8 +7,8 @@
 
 // tinygltf's configuration, the same in every translation unit that sees
 // its classes (their default members depend on it): no stb_image in
-// tinygltf (sombra does not decode glTF images yet; the textures module
-// will do it itself), no external images read.
+// tinygltf (sombra's texture module decodes the images, gltf_textures.cpp),
+// no external images read by tinygltf.
 #define TINYGLTF_NO_STB_IMAGE
 #define TINYGLTF_NO_STB_IMAGE_WRITE
 #define TINYGLTF_NO_EXTERNAL_IMAGE
@@ -100,6 +100,20 @@ struct Materials {
     std::vector<GltfMaterialTextures> texture_refs;
 };
 Materials convert_materials(const tinygltf::Model& model, const std::string& file, Diagnostics& diag);
+
+// Decodes the images that `refs` (one per material) name and points each
+// material's texture slots (scene/material.h) at them in `textures`: base
+// colour (sRGB; its A channel the cut-out of MASK and BLEND materials),
+// metallic-roughness (roughness from G, metallic from B), normal, emissive,
+// with the samplers' wrap modes; occlusion is ignored (spec §13). Images come
+// from buffer views (checked against their buffers), data: URIs, or files
+// beside the model (a missing one is a warning and the constant is used; a
+// path leaving the model's folder is an error). A reference with a texCoord
+// other than 0 or a KHR_texture_transform other than the identity is not
+// applied: the constant is used, with one warning each. Throws Error(file, ...) for a broken image.
+void apply_textures(const tinygltf::Model& model, const std::filesystem::path& path,
+                    const std::vector<GltfMaterialTextures>& refs, std::vector<Material>& materials,
+                    std::vector<Texture>& textures, Diagnostics& diag);
 
 // The KHR_lights_punctual light `index` as a point light's intensity (W/sr,
 // spec §13: colour × intensity / 683), or nothing for spot and directional

@@ -79,8 +79,14 @@ bool write_whole_file(std::string* err, const std::string&, const std::vector<un
     return false;
 }
 
-// Images are neither decoded nor kept: the texture references are enough.
-bool skip_image(tinygltf::Image*, int, std::string*, std::string*, int, int, const unsigned char*, int, void*) {
+// Images are not decoded here (gltf_textures.cpp decodes those a material
+// uses). A data: URI's bytes reach only this callback, so they are kept,
+// encoded, in image->image; a buffer view's are not (tinygltf hands them
+// over without checking the view against its buffer: gltf_textures.cpp
+// reads views itself, checked). External files are not read (NO_EXTERNAL_IMAGE).
+bool keep_data_uri_image(tinygltf::Image* image, int, std::string*, std::string*, int, int, const unsigned char* bytes,
+                         int size, void*) {
+    if (image->bufferView < 0 && bytes != nullptr && size > 0) image->image.assign(bytes, bytes + size);
     return true;
 }
 
@@ -219,7 +225,7 @@ tinygltf::Model parse_file(const fs::path& path, Diagnostics& diag) {
     FileAccess access{path.parent_path().empty() ? fs::path(".") : path.parent_path()};
     tinygltf::TinyGLTF loader;
     loader.SetFsCallbacks({&file_exists, &expand_path, &read_whole_file, &write_whole_file, &access});
-    loader.SetImageLoader(&skip_image, nullptr);
+    loader.SetImageLoader(&keep_data_uri_image, nullptr);
     tinygltf::Model model;
     std::string err, warn;
     const std::string folder = access.folder.string();

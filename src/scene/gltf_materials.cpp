@@ -110,7 +110,6 @@ std::optional<double> extension_number(const tinygltf::Material& m, const char* 
 
 Materials convert_materials(const tinygltf::Model& model, const std::string& file, Diagnostics& diag) {
     Materials out;
-    std::size_t textured = 0;
     for (std::size_t i = 0; i < model.materials.size(); ++i) {
         const tinygltf::Material& g = model.materials[i];
         const MaterialContext c{model, file, "material " + std::to_string(i), diag};
@@ -156,14 +155,9 @@ Materials convert_materials(const tinygltf::Model& model, const std::string& fil
         refs.alpha_mode = g.alphaMode == "MASK" ? AlphaMode::Mask : g.alphaMode == "BLEND" ? AlphaMode::Blend : AlphaMode::Opaque;
         refs.alpha_cutoff = finite_number(tinygltf::Value(g.alphaCutoff), 0.5f);
         refs.base_alpha = pbr.baseColorFactor.size() == 4 ? finite_number(tinygltf::Value(pbr.baseColorFactor[3]), 1) : 1;
-        if (refs.any()) ++textured;
         out.materials.push_back(std::move(m));
         out.texture_refs.push_back(std::move(refs));
     }
-    if (textured > 0)
-        diag.warn(file, "textures are not applied yet (" + std::to_string(textured) + " of " +
-                            std::to_string(model.materials.size()) +
-                            " materials have some): their constant factors are used");
     return out;
 }
 

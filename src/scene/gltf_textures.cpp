@@ -1,0 +1,165 @@
+// glTF materials' textures (spec §12, §13): the images their texture
+// references name, decoded by the texture module and wired into the
+// materials' texture slots.
+#include <map>
+#include <span>
+
+#include "scene/gltf.h"
+#include "scene/texture.h"
+
+namespace sombra::gltf {
+
+namespace {
+
+TextureWrap wrap_of(GltfWrap w) {
+    switch (w) {
+        case GltfWrap::ClampToEdge: return TextureWrap::Clamp;
+        case GltfWrap::MirroredRepeat: return TextureWrap::MirroredRepeat;
+        case GltfWrap::Repeat: break;
+    }
+    return TextureWrap::Repeat;
+}
+
+// %XX escapes of a URI, decoded (glTF image URIs are URI-encoded: "my%20wood.png").
+std::string decode_uri(const std::string& uri) {
+    std::string out;
+    for (std::size_t i = 0; i < uri.size(); ++i) {
+        const auto hex = [](char c) { return std::isxdigit(static_cast<unsigned char>(c)) != 0; };
+        if (uri[i] == '%' && i + 2 < uri.size() && hex(uri[i + 1]) && hex(uri[i + 2])) {
+            out += static_cast<char>(std::stoi(uri.substr(i + 1, 2), nullptr, 16));
+            i += 2;
+        } else {
+            out += uri[i];
+        }
+    }
+    return out;
+}
+
+class TextureTable {
+public:
+    TextureTable(const tinygltf::Model& model, const std::filesystem::path& path, std::vector<Texture>& textures,
+                 Diagnostics& diag)
+        : model_(model), path_(path), file_(path.string()), textures_(textures), diag_(diag) {}
+
+    // The table index of image `image` decoded as `encoding`, or kNoTexture
+    // when its file is missing (warned once).
+    std::uint32_t index(int image, TextureEncoding encoding) {
+        const auto key = std::pair{image, encoding};
+        if (const auto it = decoded_.find(key); it != decoded_.end()) return it->second;
+        const std::uint32_t i = decode(image, encoding);
+        decoded_.emplace(key, i);
+        return i;
+    }
+
+private:
+    std::uint32_t decode(int index, TextureEncoding encoding) {
+        if (index < 0 || static_cast<std::size_t>(index) >= model_.images.size())
+            throw Error(file_, "a texture names image " + std::to_string(index) + ", but the file has " +
+                                   std::to_string(model_.images.size()));
+        const tinygltf::Image& image = model_.images[static_cast<std::size_t>(index)];
+        const std::string source = file_ + ": /images/" + std::to_string(index);
+        if (image.bufferView >= 0) {
+            if (static_cast<std::size_t>(image.bufferView) >= model_.bufferViews.size())
+                throw Error(file_, "image " + std::to_string(index) + " names a buffer view that does not exist");
+            const tinygltf::BufferView& view = model_.bufferViews[static_cast<std::size_t>(image.bufferView)];
+            if (view.buffer < 0 || static_cast<std::size_t>(view.buffer) >= model_.buffers.size())
+                throw Error(file_, "image " + std::to_string(index) + ": its buffer view names a buffer that does not exist");
+            const std::vector<unsigned char>& data = model_.buffers[static_cast<std::size_t>(view.buffer)].data;
+            if (view.byteOffset > data.size() || view.byteLength > data.size() - view.byteOffset)
+                throw Error(file_, "image " + std::to_string(index) + ": its buffer view lies outside its buffer");
+            return add_texture(textures_, decode_texture(std::span(data).subspan(view.byteOffset, view.byteLength), encoding,
+                                                         source));
+        }
+        if (!image.image.empty()) return add_texture(textures_, decode_texture(image.image, encoding, source));
+        if (image.uri.empty()) throw Error(file_, "image " + std::to_string(index) + " has neither data nor a uri");
+
+        // A file beside the model, never outside its folder.
+        const std::filesystem::path relative = std::filesystem::path(decode_uri(image.uri)).lexically_normal();
+        if (relative.is_absolute() || relative.empty() || *relative.begin() == "..")
+            throw Error(file_, "image " + std::to_string(index) + ": '" + image.uri + "' lies outside the model's folder");
+        const std::filesystem::path file = path_.parent_path() / relative;
+        std::error_code ec;
+        if (!std::filesystem::exists(file, ec)) {
+            diag_.warn(file_, "image " + std::to_string(index) + ": '" + image.uri +
+                                  "' not found: the material's constant is used instead");
+            return kNoTexture;
+        }
+        return add_texture(textures_, read_texture_file(file, encoding));
+    }
+
+    const tinygltf::Model& model_;
+    const std::filesystem::path& path_;
+    std::string file_;
+    std::vector<Texture>& textures_;
+    Diagnostics& diag_;
+    std::map<std::pair<int, TextureEncoding>, std::uint32_t> decoded_;
+};
+
+// The texture slot for a glTF texture reference: its image decoded as
+// `encoding`, its sampler's wrap modes, channel `channel`.
+struct SlotMaker {
+    const tinygltf::Model& model;
+    const std::string& file;
+    TextureTable& table;
+    int& unapplied_texcoords;
+    int& unapplied_transforms;
+
+    TextureRef operator()(const GltfTextureRef& ref, TextureEncoding encoding, std::uint8_t channel = 0) const {
+        TextureRef slot;
+        if (!ref.present()) return slot;
+        if (ref.texcoord != 0) {
+            ++unapplied_texcoords;
+            return slot;
+        }
+        // An atlas read untransformed would paint the wrong part of the image: the constant is less wrong.
+        if (ref.offset.x != 0 || ref.offset.y != 0 || ref.rotation != 0 || ref.scale.x != 1 || ref.scale.y != 1) {
+            ++unapplied_transforms;
+            return slot;
+        }
+        if (ref.image < 0) return slot;
+        slot.texture = table.index(ref.image, encoding);
+        slot.wrap_u = wrap_of(ref.wrap_s);
+        slot.wrap_v = wrap_of(ref.wrap_t);
+        slot.channel = channel;
+        return slot;
+    }
+};
+
+}  // namespace
+
+void apply_textures(const tinygltf::Model& model, const std::filesystem::path& path,
+                    const std::vector<GltfMaterialTextures>& refs, std::vector<Material>& materials,
+                    std::vector<Texture>& textures, Diagnostics& diag) {
+    const std::string file = path.string();
+    TextureTable table(model, path, textures, diag);
+    int unapplied_texcoords = 0, unapplied_transforms = 0, masks = 0;
+    const SlotMaker slot{model, file, table, unapplied_texcoords, unapplied_transforms};
+    for (std::size_t i = 0; i < refs.size() && i < materials.size(); ++i) {
+        const GltfMaterialTextures& r = refs[i];
+        MaterialTextures& t = materials[i].textures;
+        t.base_color = slot(r.base_color, TextureEncoding::Color);
+        t.roughness = slot(r.metallic_roughness, TextureEncoding::Data, 1);
+        t.metallic = slot(r.metallic_roughness, TextureEncoding::Data, 2);
+        t.normal_map = slot(r.normal, TextureEncoding::Data);
+        t.ke = slot(r.emissive, TextureEncoding::Color);
+        if (r.alpha_mode != AlphaMode::Opaque && t.base_color.is_set()) {
+            // Alpha is never sRGB-decoded, so the colour image serves as the cut-out (its A channel).
+            t.alpha = t.base_color;
+            t.alpha.channel = 3;
+            t.alpha_cutoff = r.alpha_mode == AlphaMode::Mask ? r.alpha_cutoff : 0.5f;
+            ++masks;
+        }
+        materials[i].textured = any_texture(t);
+    }
+    if (masks > 0)
+        diag.warn(file, std::to_string(masks) + " materials have an alpha mask: alpha cut-outs are not applied yet, "
+                                                "the surfaces render opaque");
+    if (unapplied_texcoords > 0)
+        diag.warn(file, std::to_string(unapplied_texcoords) +
+                            " texture references use a TEXCOORD other than 0: not applied (their constants are used)");
+    if (unapplied_transforms > 0)
+        diag.warn(file, std::string(kTextureTransform) + " on " + std::to_string(unapplied_transforms) +
+                            " texture references is not supported yet: their constants are used");
+}
+
+}  // namespace sombra::gltf
