@@ -58,10 +58,11 @@ private:
         return {{"object", o.object}, {"file", o.file}, {"triangle", o.triangle}, {"scene_triangle", triangle}};
     }
 
-    Json material(std::uint32_t index) const {
-        const Material& m = c_.scene.materials[index];
-        Json j = {{"name", m.name}, {"type", material_type_name(m.type)}};
-        for (const MaterialParameter& p : material_parameters(m)) {
+    // The material's name and type, and its parameters as the BSDF saw them at the hit.
+    Json material(const HitRecord& h) const {
+        const Material& named = c_.scene.materials[h.material];
+        Json j = {{"name", named.name}, {"type", material_type_name(h.shaded.type)}, {"textured", named.textured}};
+        for (const MaterialParameter& p : material_parameters(h.shaded)) {
             if (p.value.size() == 3)
                 j[p.name] = vec(Vec3{p.value[0], p.value[1], p.value[2]});
             else
@@ -79,7 +80,8 @@ private:
         j["n_g"] = vec(h.n_g);
         j["n_s"] = vec(h.n_s);
         j["outside"] = h.outside;
-        j["material"] = material(h.material);
+        if (h.has_uv) j["uv"] = {number(h.uv.x), number(h.uv.y)};
+        j["material"] = material(h);
         return j;
     }
 

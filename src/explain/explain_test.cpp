@@ -9,6 +9,7 @@
 #include <cstring>
 #include <filesystem>
 #include <nlohmann/json.hpp>
+#include <numbers>
 #include <random>
 
 #include "explain/describe.h"
@@ -200,6 +201,40 @@ TEST(ExplainRecord, SvgShowsTheBlockedShadowRayInRedAndEmbedsTheImage) {
     EXPECT_NE(svg.find("blocked by blocker.obj triangle"), std::string::npos);
     EXPECT_NE(svg.find("#d0202a"), std::string::npos);  // the blocked ray's red
     EXPECT_NE(svg.find("data:image/png;base64,iVBORw0KGgo"), std::string::npos);  // a PNG's signature, base64
+}
+
+}  // namespace
+}  // namespace sombra
+
+namespace sombra {
+namespace {
+
+// A textured material is told as the BSDF saw it: kd at the hit's uv, which
+// is what f_r's diffuse term was made of, not the material's constant.
+TEST(ExplainRecord, TexturedMaterialShowsItsValuesAtTheHit) {
+    Diagnostics diag;
+    const Scene scene = load_scene_file(kSource / "scenes" / "textured.json", diag);
+    RenderSettings settings = scene.render;
+    settings.spp = 1;
+    settings.integrator = IntegratorKind::Direct;
+    const Accel accel = make_accel(scene.geometry, AccelKind::Bvh);
+    const RenderJob job = make_render_job(scene, accel, settings, 1);
+    int textured_hits = 0;
+    for (int j = settings.height / 2; j < settings.height; j += 7)
+        for (int i = 0; i < settings.width; i += 11) {
+            SampleRecord r;
+            RayCounters counters;
+            trace_pixel_sample(job, i, j, 0, counters, r);
+            if (r.vertices.empty() || !r.vertices[0].hit) continue;
+            const HitRecord& h = r.vertices[0].surface;
+            const Material& named = scene.materials[h.material];
+            if (!named.textured || !named.textures.kd.is_set() || named.type != MaterialType::Diffuse) continue;
+            ++textured_hits;
+            EXPECT_TRUE(h.has_uv);
+            for (const PointLightRecord& l : r.vertices[0].point_lights)
+                if (l.outcome == LightOutcome::Visible) EXPECT_EQ(l.f_diffuse, h.shaded.kd * std::numbers::inv_pi_v<float>);
+        }
+    EXPECT_GT(textured_hits, 10) << "the textured floor should fill the lower half of the image";
 }
 
 }  // namespace

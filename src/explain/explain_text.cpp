@@ -51,13 +51,17 @@ private:
         return s + ", triangle " + std::to_string(o.triangle) + ", material \"" + m.name + "\"";
     }
 
-    std::string material_text(std::uint32_t index) const {
-        const Material& m = c_.scene.materials[index];
-        std::string s = "\"" + m.name + "\": " + material_type_name(m.type);
+    // The material's name and type, and its parameters as the BSDF saw them at the hit.
+    static std::string material_text(const HitRecord& h, const Material& named) {
+        const Material& m = h.shaded;
+        std::string s = "\"" + named.name + "\": " + material_type_name(m.type);
         for (const MaterialParameter& p : material_parameters(m)) {
             s += ", " + p.name + " = ";
             s += p.value.size() == 3 ? readable(Vec3{p.value[0], p.value[1], p.value[2]}) : readable(p.value[0]);
         }
+        if (named.textured)
+            s += "\n           (textured: the values at this hit's uv " + readable(h.uv.x) + ", " + readable(h.uv.y) +
+                 "; n_s after its normal or bump map)";
         return s;
     }
 
@@ -87,7 +91,7 @@ private:
              << (h.n_s == h.n_g ? "  (shading normal: the same, no vertex normals)" : "  (shading normal: blended vertex normals)")
              << "\n";
         out_ << "  ω_o      " << readable(-v.ray_dir) << "  (towards the viewer)\n";
-        out_ << "  material " << material_text(h.material) << "\n";
+        out_ << "  material " << material_text(h, c_.scene.materials[h.material]) << "\n";
         emission(v.emission, "emission");
 
         if (v.delta_material) {

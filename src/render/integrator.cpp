@@ -72,7 +72,7 @@ Vec3 trace_direct_recorded(const IntegratorContext& ctx, const Ray& ray, RayCoun
         Material textured;
         const Material& material = resolve_material(scene, si, textured);
         const Vec3 wo = -normalize(ray.dir);
-        recorder.surface(ray, hit, si, Vec3{1.0f});
+        recorder.surface(ray, hit, si, material, Vec3{1.0f});
 
         // Emission is seen only directly (spec §4, §9).
         radiance = emitted_radiance(material, si);

@@ -102,7 +102,7 @@ Vec3 trace_path_recorded(const IntegratorContext& ctx, const Ray& camera_ray, Sa
         SurfaceInteraction si = make_surface_interaction(scene.geometry, ray, hit);
         const Material& material = resolve_material(scene, si, textured);
         const Vec3 wo = -normalize(ray.dir);
-        recorder.surface(ray, hit, si, beta);
+        recorder.surface(ray, hit, si, material, beta);
 
         const Vec3 le = emitted_radiance(material, si);
         if (max_component(le) > 0.0f) {

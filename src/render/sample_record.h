@@ -10,7 +10,9 @@
 #include <string>
 #include <vector>
 
+#include "core/vec2.h"
 #include "core/vec3.h"
+#include "scene/material.h"
 
 namespace sombra {
 
@@ -29,8 +31,13 @@ struct HitRecord {
     float t = 0;                           // ray parameter (the ray's direction is not unit length for camera rays)
     float distance = 0;                    // |x − ray origin|
     float b1 = 0, b2 = 0;                  // barycentric weights of the second and third corner
-    Vec3 position, n_g, n_s;               // n_g faces the ray's origin, n_s in n_g's hemisphere
+    Vec3 position, n_g, n_s;               // n_g faces the ray's origin, n_s in n_g's hemisphere (after normal or bump maps)
     bool outside = true;                   // arrived on the winding normal's side
+    Vec2 uv;                               // texture coordinates at the hit ((0, 0) without)
+    bool has_uv = false;
+    // The material as the BSDFs saw it here: for a textured material, each
+    // textured parameter is its value at uv (spec §12), not the constant.
+    Material shaded;
 };
 
 enum class LightOutcome {

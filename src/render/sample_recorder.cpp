@@ -33,7 +33,8 @@ void SampleRecorder::escaped(const Ray& ray, Vec3 beta, Vec3 le, float w, float 
     record_.vertices.push_back(v);
 }
 
-void SampleRecorder::surface(const Ray& ray, const Hit& hit, const SurfaceInteraction& si, Vec3 beta) {
+void SampleRecorder::surface(const Ray& ray, const Hit& hit, const SurfaceInteraction& si, const Material& material,
+                             Vec3 beta) {
     VertexRecord v;
     v.depth = static_cast<int>(record_.vertices.size());
     v.ray_origin = ray.origin;
@@ -49,6 +50,9 @@ void SampleRecorder::surface(const Ray& ray, const Hit& hit, const SurfaceIntera
     v.surface.n_g = si.n_g;
     v.surface.n_s = si.n_s;
     v.surface.outside = si.outside;
+    v.surface.uv = si.uv;
+    v.surface.has_uv = si.has_uv;
+    v.surface.shaded = material;
     v.throughput = beta;
     record_.vertices.push_back(v);
 }

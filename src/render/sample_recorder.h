@@ -57,8 +57,8 @@ public:
     // The ray left the scene: le is what the environment (or background)
     // sends back, weighted by w against next-event estimation.
     void escaped(const Ray& ray, Vec3 beta, Vec3 le, float w, float bsdf_pdf, float light_pdf);
-    // The ray hit `hit`, carrying throughput beta.
-    void surface(const Ray& ray, const Hit& hit, const SurfaceInteraction& si, Vec3 beta);
+    // The ray hit `hit`, carrying throughput beta; `material` is the material resolved there.
+    void surface(const Ray& ray, const Hit& hit, const SurfaceInteraction& si, const Material& material, Vec3 beta);
     void emission(Vec3 le, float w, float bsdf_pdf, float light_pdf, Vec3 contribution);
     void delta_material();
     // One point light's term; `shadow` is the shadow ray traced (Blocked, Visible), else null.
