@@ -97,10 +97,23 @@ struct StackEntry {
     float tnear;  // the box's entry distance when pushed: pruned on pop if beyond the closest hit
 };
 
+// Asks for the memory a child visited later will read: an inner node's four
+// cache lines, or a leaf's first triangle block. Under incoherent rays most
+// of these reads miss the caches; a child put on the stack is visited after
+// its nearer siblings' subtrees, time enough for the lines to arrive.
+inline void prefetch_child(const BvhWideNode* nodes, const TriangleBlock* blocks, std::uint32_t child,
+                           std::uint32_t count) {
+    const char* p = count > 0 ? reinterpret_cast<const char*>(blocks + child)
+                              : reinterpret_cast<const char*>(nodes + child);
+    const int bytes = count > 0 ? static_cast<int>(sizeof(TriangleBlock)) : static_cast<int>(sizeof(BvhWideNode));
+    for (int k = 0; k < bytes; k += 64) _mm_prefetch(p + k, _MM_HINT_T0);
+    _mm_prefetch(p + bytes - 1, _MM_HINT_T0);  // a block need not start on a line
+}
+
 // Pushes the entered children (bits of `mask`) but the nearest onto the
 // stack, farthest deepest, and returns the nearest: the next to visit.
 inline StackEntry enter_nearest_first(const BvhWideNode& node, int mask, const float* tnear, StackEntry* stack,
-                                      int& size) {
+                                      int& size, const BvhWideNode* nodes, const TriangleBlock* blocks) {
     // The entered children, sorted nearest first (insertion sort of ≤ kBvhWidth).
     StackEntry entered[kBvhWidth];
     int n = 0;
@@ -113,7 +126,10 @@ inline StackEntry enter_nearest_first(const BvhWideNode& node, int mask, const f
         entered[j] = e;
     }
     assert(size + n - 1 <= kBvhStackSize);
-    for (int j = n - 1; j > 0; --j) stack[size++] = entered[j];
+    for (int j = n - 1; j > 0; --j) {
+        prefetch_child(nodes, blocks, entered[j].child, entered[j].count);
+        stack[size++] = entered[j];
+    }
     return entered[0];
 }
 
@@ -162,7 +178,7 @@ bool intersect_bvh(const Bvh& bvh, const TriangleMesh& mesh, const Ray& ray, Hit
             alignas(32) float tnear[kBvhWidth];
             const int mask = enter_children(node, box_ray, best.t, tnear);
             if (mask != 0) {
-                current = enter_nearest_first(node, mask, tnear, stack, size);
+                current = enter_nearest_first(node, mask, tnear, stack, size, nodes, blocks);
                 continue;
             }
         }
@@ -219,6 +235,7 @@ bool occluded_bvh(const Bvh& bvh, const TriangleMesh& mesh, const Ray& ray) {
                     const int i = __builtin_ctz(static_cast<unsigned>(mask));
                     mask &= mask - 1;
                     assert(size < kBvhStackSize);
+                    prefetch_child(nodes, blocks, node.child[i], node.count[i]);
                     stack[size++] = {node.child[i], node.count[i], 0.0f};
                 }
                 current = {node.child[first], node.count[first], 0.0f};

@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "accel/huge_pages.h"
 #include "accel/triangle.h"
 #include "core/ray.h"
 #include "core/vec3.h"
@@ -65,9 +66,14 @@ static_assert(sizeof(TriangleBlock) == 176);
 // its children, on a path at most kBvhMaxDepth deep.
 inline constexpr int kBvhStackSize = (kBvhWidth - 1) * kBvhMaxDepth + 1;
 
+// The arrays traversal reads, in 2 MiB pages where the kernel has them
+// (huge_pages.h).
+using BvhNodeArray = std::vector<BvhWideNode, HugePageAllocator<BvhWideNode>>;
+using TriangleBlockArray = std::vector<TriangleBlock, HugePageAllocator<TriangleBlock>>;
+
 struct Bvh {
-    std::vector<BvhWideNode> nodes;        // nodes[0] is the root; empty when no triangle can be hit
-    std::vector<TriangleBlock> blocks;   // the leaves' triangles, each leaf's blocks contiguous
+    BvhNodeArray nodes;        // nodes[0] is the root; empty when no triangle can be hit
+    TriangleBlockArray blocks;   // the leaves' triangles, each leaf's blocks contiguous
 };
 
 // Builds the tree over every triangle of `mesh` that can be hit: triangles

@@ -59,7 +59,7 @@ void fill_blocks(const TriangleMesh& mesh, const BinaryBvh& binary, const LeafBl
 
 struct Collapser {
     const BinaryBvh& binary;
-    std::vector<BvhWideNode>& nodes;
+    BvhNodeArray& nodes;
     std::vector<LeafBlocks>& leaves;
     std::uint32_t block_count = 0;
 
