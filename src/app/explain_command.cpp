@@ -22,13 +22,8 @@ namespace {
 
 // The picture's file must be writable, found out before the work.
 void check_svg_path(const std::filesystem::path& path) {
-    std::string ext = path.extension().string();
-    for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-    if (ext != ".svg") throw Error(path.string(), "the picture is an SVG file: the name must end in .svg");
-    const std::filesystem::path folder = path.parent_path().empty() ? "." : path.parent_path();
-    std::error_code ec;
-    if (!std::filesystem::is_directory(folder, ec)) throw Error(path.string(), "folder '" + folder.string() + "' does not exist");
-    if (std::filesystem::is_directory(path, ec)) throw Error(path.string(), "is a folder");
+    if (lower_extension(path) != ".svg") throw Error(path.string(), "the picture is an SVG file: the name must end in .svg");
+    check_side_file_path(path);
 }
 
 void check_pixel(const CliOptions& o, const RenderSettings& s) {

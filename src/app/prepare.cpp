@@ -7,15 +7,18 @@
 
 namespace sombra {
 
-namespace {
-
 std::string lower_extension(const std::filesystem::path& path) {
     std::string ext = path.extension().string();
     for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
     return ext;
 }
 
-}  // namespace
+void check_side_file_path(const std::filesystem::path& path) {
+    const std::filesystem::path folder = path.parent_path().empty() ? "." : path.parent_path();
+    std::error_code ec;
+    if (!std::filesystem::is_directory(folder, ec)) throw Error(path.string(), "folder '" + folder.string() + "' does not exist");
+    if (std::filesystem::is_directory(path, ec)) throw Error(path.string(), "is a folder");
+}
 
 std::string one_line(std::string text) {
     for (char& c : text)

@@ -19,6 +19,13 @@ namespace sombra {
 // characters (a newline or NUL in a file name) are shown as '?'.
 std::string one_line(std::string text);
 
+// The path's extension in lower case (".json", ".glb"), "" when it has none.
+std::string lower_extension(const std::filesystem::path& path);
+
+// Checks, before any work, that a side file (statistics, explain's SVG) can
+// be written: its folder exists and the path is not a folder. Throws Error.
+void check_side_file_path(const std::filesystem::path& path);
+
 // A scene .json, or a model for the quick look (spec §7). Throws Error.
 Scene load_input(const std::filesystem::path& input, Diagnostics& diag);
 

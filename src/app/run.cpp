@@ -28,14 +28,6 @@ double seconds_since(Clock::time_point start) {
     return std::chrono::duration<double>(Clock::now() - start).count();
 }
 
-// The statistics file's folder must exist: found out before the render, not after.
-void check_stats_path(const std::filesystem::path& path) {
-    const std::filesystem::path folder = path.parent_path().empty() ? "." : path.parent_path();
-    std::error_code ec;
-    if (!std::filesystem::is_directory(folder, ec)) throw Error(path.string(), "folder '" + folder.string() + "' does not exist");
-    if (std::filesystem::is_directory(path, ec)) throw Error(path.string(), "is a folder");
-}
-
 }  // namespace
 
 int run_render(const CliOptions& o) {
@@ -46,7 +38,7 @@ int run_render(const CliOptions& o) {
         const std::filesystem::path output = o.output;
         // Fail before a long render, not after it.
         check_output_path(output);
-        if (!o.stats_json.empty()) check_stats_path(o.stats_json);
+        if (!o.stats_json.empty()) check_side_file_path(o.stats_json);
 
         RunStats stats;
         Diagnostics diag;

@@ -4,6 +4,7 @@
 // SVG picture of the path in the scene beside the rendered image.
 #pragma once
 
+#include <algorithm>
 #include <string>
 
 #include "image/image_io.h"
@@ -32,7 +33,8 @@ std::string explain_json(const ExplainContext& context, const SampleRecord& reco
 // The samples per pixel of the render drawn beside the story: the scene's,
 // at most 16. The picture needs only to show the scene, and a 4096-spp
 // scene's explanation should not take as long as its render.
-inline int picture_spp(const RenderSettings& settings) { return settings.spp < 16 ? settings.spp : 16; }
+inline constexpr int kPictureMaxSpp = 16;
+inline int picture_spp(const RenderSettings& settings) { return std::min(settings.spp, kPictureMaxSpp); }
 
 // A picture of the story: the scene's outlines seen from beside the camera
 // with the camera, the path, the lights and the shadow rays (blocked ones

@@ -92,7 +92,8 @@ public:
         const float image_scale = std::min(kPanel / static_cast<float>(image.width), kPanel / static_cast<float>(image.height));
         const float image_w = image_scale * static_cast<float>(image.width), image_h = image_scale * static_cast<float>(image.height);
         const float width = kViewWidth + kGap + std::max(image_w, 200.0f);
-        const float height = kPanel + caption_height();
+        const std::vector<CaptionLine> lines = story_lines();
+        const float height = kPanel + 80.0f + 16.0f * static_cast<float>(std::min(lines.size(), kMaxStoryLines));
         svg_ << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << num(width) << "\" height=\"" << num(height)
              << "\" viewBox=\"0 0 " << num(width) << " " << num(height) << "\" font-family=\"sans-serif\" font-size=\"12\">\n";
         svg_ << "<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n";
@@ -105,7 +106,7 @@ public:
         path();
         svg_ << "</g>\n";
         rendered_image(image, exposure, kViewWidth + kGap, image_w, image_h);
-        caption(height);
+        caption(lines, height);
         svg_ << "</svg>\n";
         return svg_.str();
     }
@@ -343,10 +344,7 @@ private:
 
     static constexpr std::size_t kMaxStoryLines = 12;
 
-    float caption_height() const { return 80.0f + 16.0f * static_cast<float>(std::min(story_lines().size(), kMaxStoryLines)); }
-
-    void caption(float height) {
-        const std::vector<CaptionLine> lines = story_lines();
+    void caption(const std::vector<CaptionLine>& lines, float height) {
         float y = kPanel + 20;
         for (std::size_t i = 0; i < lines.size() && i < kMaxStoryLines; ++i, y += 16)
             text_line(y, i + 1 == kMaxStoryLines && lines.size() > kMaxStoryLines ? "… (the text story has the rest)" : lines[i].text,

@@ -117,6 +117,11 @@ private:
         out_ << "\n    adds β·L_e·w = " << readable(e.contribution) << "\n";
     }
 
+    void blocked(const BlockerRecord& b, const char* tail) {
+        out_ << "    BLOCKED: the shadow ray meets " << where(b.triangle) << " at distance " << readable(b.distance) << tail
+             << "\n";
+    }
+
     void point_light(const PointLightRecord& l, Vec3 beta) {
         const PointLight& light = c_.scene.lights[l.light];
         out_ << "  point light " << l.light << " at " << readable(light.position) << ", I = " << readable(light.intensity)
@@ -132,8 +137,7 @@ private:
             return;
         }
         if (l.outcome == LightOutcome::Blocked) {
-            out_ << "    BLOCKED: the shadow ray meets " << where(l.blocker.triangle) << " at distance "
-                 << readable(l.blocker.distance) << ", before the light\n";
+            blocked(l.blocker, ", before the light");
             out_ << "    (unblocked it would give I/|c−x|² = " << readable(l.incident) << ", f_r = " << readable(l.f)
                  << ", |n_s·ω_i| = " << readable(l.cos_s) << ")\n";
             return;
@@ -165,8 +169,7 @@ private:
             return;
         }
         if (l.outcome == LightOutcome::Blocked) {
-            out_ << "    BLOCKED: the shadow ray meets " << where(l.blocker.triangle) << " at distance "
-                 << readable(l.blocker.distance) << "\n";
+            blocked(l.blocker, "");
             return;
         }
         if (l.f == Vec3{0.0f}) {

@@ -17,6 +17,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <optional>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -73,6 +74,11 @@ std::vector<float> read_floats(const AccessorReader& r, int index, Semantic sema
 // each checked < vertex_count. Same checks and errors as read_floats.
 std::vector<std::uint32_t> read_indices(const AccessorReader& r, int index, std::size_t vertex_count,
                                         const std::string& what);
+
+// The bytes of buffer view `index`, checked: the view exists, names an
+// existing buffer and lies inside it. Throws Error(file, "WHAT: bufferView N ...").
+std::span<const unsigned char> buffer_view_bytes(const tinygltf::Model& model, int index, const std::string& file,
+                                                 const std::string& what);
 
 // The element count of accessor `index` (checked to exist), for Draco
 // primitives, whose accessors have no data of their own.

@@ -251,4 +251,18 @@ std::vector<std::uint32_t> read_indices(const AccessorReader& r, int index, std:
     return out;
 }
 
+std::span<const unsigned char> buffer_view_bytes(const tinygltf::Model& model, int index, const std::string& file,
+                                                 const std::string& what) {
+    const std::string view_name = what + ": bufferView " + std::to_string(index);
+    if (index < 0 || static_cast<std::size_t>(index) >= model.bufferViews.size())
+        throw Error(file, view_name + " does not exist");
+    const tinygltf::BufferView& view = model.bufferViews[static_cast<std::size_t>(index)];
+    if (view.buffer < 0 || static_cast<std::size_t>(view.buffer) >= model.buffers.size())
+        throw Error(file, view_name + " names a buffer that does not exist");
+    const std::vector<unsigned char>& buffer = model.buffers[static_cast<std::size_t>(view.buffer)].data;
+    if (view.byteOffset > buffer.size() || view.byteLength > buffer.size() - view.byteOffset)
+        throw Error(file, view_name + " overruns its buffer");
+    return std::span(buffer).subspan(view.byteOffset, view.byteLength);
+}
+
 }  // namespace sombra::gltf

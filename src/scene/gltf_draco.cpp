@@ -51,22 +51,16 @@ std::vector<float> read_attribute(const draco::Mesh& mesh, std::optional<std::ui
 
 PrimitiveData decode_draco(const AccessorReader& r, const tinygltf::Primitive& primitive,
                            const tinygltf::Value& extension, const std::string& what) {
-    const tinygltf::Model& model = r.model;
     if (!extension.IsObject()) throw Error(r.file, what + ": " + kDraco + " is not an object");
     const std::optional<int> view_index =
         extension.Has("bufferView") ? value_int(extension.Get("bufferView"), 0, std::numeric_limits<int>::max())
                                     : std::nullopt;
-    if (!view_index || static_cast<std::size_t>(*view_index) >= model.bufferViews.size())
-        throw Error(r.file, what + ": " + kDraco + " names no existing bufferView");
-    const tinygltf::BufferView& view = model.bufferViews[static_cast<std::size_t>(*view_index)];
-    if (view.buffer < 0 || static_cast<std::size_t>(view.buffer) >= model.buffers.size())
-        throw Error(r.file, what + ": the Draco bufferView names a buffer that does not exist");
-    const std::vector<unsigned char>& buffer = model.buffers[static_cast<std::size_t>(view.buffer)].data;
-    if (view.byteOffset > buffer.size() || view.byteLength > buffer.size() - view.byteOffset)
-        throw Error(r.file, what + ": the Draco bufferView overruns its buffer");
+    if (!view_index) throw Error(r.file, what + ": " + kDraco + " names no bufferView");
+    const std::span<const unsigned char> bytes =
+        buffer_view_bytes(r.model, *view_index, r.file, what + " (" + kDraco + ")");
 
     draco::DecoderBuffer in;
-    in.Init(reinterpret_cast<const char*>(buffer.data() + view.byteOffset), view.byteLength);
+    in.Init(reinterpret_cast<const char*>(bytes.data()), bytes.size());
     draco::Decoder decoder;
     auto decoded = decoder.DecodeMeshFromBuffer(&in);
     if (!decoded.ok()) throw Error(r.file, what + ": Draco cannot decode the mesh: " + decoded.status().error_msg_string());

@@ -58,18 +58,10 @@ private:
                                    std::to_string(model_.images.size()));
         const tinygltf::Image& image = model_.images[static_cast<std::size_t>(index)];
         const std::string source = file_ + ": /images/" + std::to_string(index);
-        if (image.bufferView >= 0) {
-            if (static_cast<std::size_t>(image.bufferView) >= model_.bufferViews.size())
-                throw Error(file_, "image " + std::to_string(index) + " names a buffer view that does not exist");
-            const tinygltf::BufferView& view = model_.bufferViews[static_cast<std::size_t>(image.bufferView)];
-            if (view.buffer < 0 || static_cast<std::size_t>(view.buffer) >= model_.buffers.size())
-                throw Error(file_, "image " + std::to_string(index) + ": its buffer view names a buffer that does not exist");
-            const std::vector<unsigned char>& data = model_.buffers[static_cast<std::size_t>(view.buffer)].data;
-            if (view.byteOffset > data.size() || view.byteLength > data.size() - view.byteOffset)
-                throw Error(file_, "image " + std::to_string(index) + ": its buffer view lies outside its buffer");
-            return add_texture(textures_, decode_texture(std::span(data).subspan(view.byteOffset, view.byteLength), encoding,
-                                                         source));
-        }
+        if (image.bufferView >= 0)
+            return add_texture(textures_, decode_texture(buffer_view_bytes(model_, image.bufferView, file_,
+                                                                           "image " + std::to_string(index)),
+                                                         encoding, source));
         if (!image.image.empty()) return add_texture(textures_, decode_texture(image.image, encoding, source));
         if (image.uri.empty()) throw Error(file_, "image " + std::to_string(index) + " has neither data nor a uri");
 
