@@ -41,14 +41,7 @@ SurfaceInteraction make_surface_interaction(const TriangleMesh& mesh, const Ray&
             }
         }
     }
-    if (mesh.has_uvs()) {
-        const Index3& ti = mesh.uv_indices[hit.triangle];
-        if (ti[0] != kNoUv && ti[1] != kNoUv && ti[2] != kNoUv) {
-            const Vec2 t0 = mesh.uvs[ti[0]], t1 = mesh.uvs[ti[1]], t2 = mesh.uvs[ti[2]];
-            si.uv = {b0 * t0.x + hit.b1 * t1.x + hit.b2 * t2.x, b0 * t0.y + hit.b1 * t1.y + hit.b2 * t2.y};
-            si.has_uv = true;
-        }
-    }
+    si.has_uv = interpolate_uv(mesh, hit.triangle, hit.b1, hit.b2, si.uv);
     si.triangle = hit.triangle;
     si.material = mesh.material_ids[hit.triangle];
     return si;

@@ -11,9 +11,7 @@ namespace {
 // How far above n_g's horizon a perturbed shading normal is kept (cos θ).
 constexpr float kMinShadingCos = 1e-2f;
 
-Rgba lookup(const Scene& scene, const TextureRef& ref, Vec2 uv) {
-    return eval_texture(scene.textures[ref.texture], uv, ref.wrap_u, ref.wrap_v);
-}
+Rgba lookup(const Scene& scene, const TextureRef& ref, Vec2 uv) { return eval_texture_ref(scene.textures, ref, uv); }
 
 Vec3 clamp_rgb(Vec3 c, float hi) {
     return {std::clamp(c.x, 0.0f, hi), std::clamp(c.y, 0.0f, hi), std::clamp(c.z, 0.0f, hi)};
@@ -119,25 +117,9 @@ Vec3 emission_at(const Scene& scene, const Material& material, std::uint32_t tri
     const TextureRef& ref = material.textures.ke;
     if (!ref.is_set()) return material.ke;
     Vec2 uv{0.0f, 0.0f};
-    const TriangleMesh& mesh = scene.geometry;
-    if (mesh.has_uvs()) {
-        const Index3& ti = mesh.uv_indices[triangle];
-        if (ti[0] != kNoUv && ti[1] != kNoUv && ti[2] != kNoUv) {
-            // y's barycentric coordinates, from the areas it spans with the edges.
-            const Index3& p = mesh.triangles[triangle];
-            const Vec3 p0 = mesh.positions[p[0]];
-            const Vec3 e1 = mesh.positions[p[1]] - p0, e2 = mesh.positions[p[2]] - p0, d = y - p0;
-            const float d11 = dot(e1, e1), d12 = dot(e1, e2), d22 = dot(e2, e2);
-            const float d1 = dot(d, e1), d2 = dot(d, e2);
-            const float den = d11 * d22 - d12 * d12;
-            if (den > 0.0f && std::isfinite(den)) {
-                const float b1 = (d22 * d1 - d12 * d2) / den, b2 = (d11 * d2 - d12 * d1) / den;
-                const Vec2 t0 = mesh.uvs[ti[0]], t1 = mesh.uvs[ti[1]], t2 = mesh.uvs[ti[2]];
-                const float b0 = 1.0f - b1 - b2;
-                uv = {b0 * t0.x + b1 * t1.x + b2 * t2.x, b0 * t0.y + b1 * t1.y + b2 * t2.y};
-            }
-        }
-    }
+    float b1 = 0, b2 = 0;
+    if (scene.geometry.has_uvs() && point_barycentrics(scene.geometry, triangle, y, b1, b2))
+        interpolate_uv(scene.geometry, triangle, b1, b2, uv);
     return clamp_rgb(material.ke * rgb_of(lookup(scene, ref, uv)), std::numeric_limits<float>::max());
 }
 

@@ -5,6 +5,7 @@
 
 #include <cstdint>
 #include <string>
+#include <vector>
 
 #include "core/vec3.h"
 #include "scene/texture.h"
@@ -102,6 +103,13 @@ inline constexpr ScalarTextureSlot kScalarTextureSlots[] = {
     {"roughness", &Material::roughness, &MaterialTextures::roughness},
     {"metallic", &Material::metallic, &MaterialTextures::metallic},
 };
+
+// The image of `ref` (set) in `table` at uv: where every texture lookup of a
+// material parameter goes, so that how a reference reads its image is decided
+// in one place.
+inline Rgba eval_texture_ref(const std::vector<Texture>& table, const TextureRef& ref, Vec2 uv) {
+    return eval_texture(table[ref.texture], uv, ref.wrap_u, ref.wrap_v);
+}
 
 // True when some slot, the normal map, the bump map or the alpha of `t` is set.
 inline bool any_texture(const MaterialTextures& t) {

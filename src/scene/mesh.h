@@ -4,6 +4,7 @@
 #pragma once
 
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <optional>
 #include <vector>
@@ -49,6 +50,35 @@ struct TriangleMesh {
     bool has_normals() const { return !normal_indices.empty(); }
     bool has_uvs() const { return !uv_indices.empty(); }
 };
+
+// The barycentric weights (b1, b2) of point y in the plane of `triangle`,
+// from the areas it spans with the edges (for points sampled on a triangle
+// rather than hit); false for a triangle of no area.
+inline bool point_barycentrics(const TriangleMesh& mesh, std::uint32_t triangle, Vec3 y, float& b1, float& b2) {
+    const Index3& p = mesh.triangles[triangle];
+    const Vec3 p0 = mesh.positions[p[0]];
+    const Vec3 e1 = mesh.positions[p[1]] - p0, e2 = mesh.positions[p[2]] - p0, d = y - p0;
+    const float d11 = dot(e1, e1), d12 = dot(e1, e2), d22 = dot(e2, e2);
+    const float d1 = dot(d, e1), d2 = dot(d, e2);
+    const float den = d11 * d22 - d12 * d12;
+    if (!(den > 0.0f) || !std::isfinite(den)) return false;
+    b1 = (d22 * d1 - d12 * d2) / den;
+    b2 = (d11 * d2 - d12 * d1) / den;
+    return true;
+}
+
+// The texture coordinates at barycentric weights (b1, b2) of `triangle`
+// (the first corner weighs 1 − b1 − b2), or false, leaving `uv` untouched,
+// when some corner has none. Every uv lookup goes through here.
+inline bool interpolate_uv(const TriangleMesh& mesh, std::uint32_t triangle, float b1, float b2, Vec2& uv) {
+    if (!mesh.has_uvs()) return false;
+    const Index3& ti = mesh.uv_indices[triangle];
+    if (ti[0] == kNoUv || ti[1] == kNoUv || ti[2] == kNoUv) return false;
+    const Vec2 t0 = mesh.uvs[ti[0]], t1 = mesh.uvs[ti[1]], t2 = mesh.uvs[ti[2]];
+    const float b0 = 1.0f - b1 - b2;
+    uv = {b0 * t0.x + b1 * t1.x + b2 * t2.x, b0 * t0.y + b1 * t1.y + b2 * t2.y};
+    return true;
+}
 
 // A pinhole camera that a model file places (glTF), in the file's
 // coordinates: at `origin`, looking along `forward`, with `up` (both unit,
