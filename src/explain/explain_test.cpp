@@ -232,7 +232,9 @@ TEST(ExplainRecord, TexturedMaterialShowsItsValuesAtTheHit) {
             ++textured_hits;
             EXPECT_TRUE(h.has_uv);
             for (const PointLightRecord& l : r.vertices[0].point_lights) {
-                if (l.outcome == LightOutcome::Visible) EXPECT_EQ(l.f_diffuse, h.shaded.kd * std::numbers::inv_pi_v<float>);
+                if (l.outcome == LightOutcome::Visible) {
+                    EXPECT_EQ(l.f_diffuse, h.shaded.kd * std::numbers::inv_pi_v<float>);
+                }
             }
         }
     EXPECT_GT(textured_hits, 10) << "the textured floor should fill the lower half of the image";
