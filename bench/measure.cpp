@@ -22,7 +22,7 @@ struct Round {
 Round build_and_render(const Scene& scene, const RenderSettings& settings, AccelKind kind) {
     Round round;
     const auto build_start = Clock::now();
-    const Accel accel = make_accel(scene.geometry, kind);
+    const Accel accel = make_accel(scene, kind);
     round.build_seconds = seconds_since(build_start);
     round.accel_bytes = accel_memory_bytes(accel);
 
@@ -38,7 +38,7 @@ Round build_and_render(const Scene& scene, const RenderSettings& settings, Accel
 // through the brute-force loop (bench_util.h): they must agree to the last
 // bit in theory, and within compare_films' tolerance here.
 ImageAgreement direct_bvh_against_brute(const Scene& scene, const RenderSettings& settings) {
-    const Accel bvh = make_accel(scene.geometry, AccelKind::Bvh);
+    const Accel bvh = make_accel(scene, AccelKind::Bvh);
     const Camera camera = make_camera(scene.camera, settings.width, settings.height);
     const LightSet lights = make_light_set(scene, make_constant_environment(scene.background), false);
     return bvh_against_brute(scene.geometry, bvh, settings.width, settings.height, 1.0 + double(scene.lights.size()), 64,

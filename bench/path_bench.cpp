@@ -140,7 +140,7 @@ void run_path_bench(const std::vector<std::string>& scene_files, const PathBench
         std::vector<Accel> accels;
         std::vector<RenderJob> jobs;
         accels.reserve(kinds.size());
-        for (const AccelKind kind : kinds) accels.push_back(make_accel(scene.geometry, kind));
+        for (const AccelKind kind : kinds) accels.push_back(make_accel(scene, kind));
         for (const Accel& accel : accels) jobs.push_back(make_render_job(scene, accel, settings));
 
         // The checks, which also warm caches and thread pools for the rounds.
@@ -339,7 +339,7 @@ void run_path_error_bench(const std::string& file, const PathErrorOptions& o, st
     std::cerr << "sombra-bench: " << name << ": loading\n";
     Diagnostics diag;
     const Scene scene = load_scene_file(file, diag);
-    const Accel bvh = make_accel(scene.geometry, AccelKind::Bvh);
+    const Accel bvh = make_accel(scene, AccelKind::Bvh);
     const double pixels = double(o.width) * double(o.height);
 
     RenderSettings ref_settings = path_settings(scene, o.width, o.height, o.reference_spp, o.max_depth, file);

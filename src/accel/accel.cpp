@@ -1,20 +1,28 @@
 // Backend selection and the brute-force reference loop.
 #include "accel/accel.h"
 
+#include <cassert>
+
 #include "accel/embree_backend.h"
 #include "accel/triangle.h"
 
 namespace sombra {
 namespace {
 
-bool intersect_brute(const TriangleMesh& mesh, const Ray& ray, Hit& hit) {
+// A candidate hit counts unless it lies on a cut-out part of a surface.
+bool kept(const Cutouts& cutouts, std::size_t triangle, float b1, float b2) {
+    return !cutouts.active() || surface_exists(cutouts, static_cast<std::uint32_t>(triangle), b1, b2);
+}
+
+bool intersect_brute(const TriangleMesh& mesh, const Cutouts& cutouts, const Ray& ray, Hit& hit) {
     Hit best;
     best.t = ray.tmax;
     for (std::size_t i = 0; i < mesh.triangles.size(); ++i) {
         float t, b1, b2;
         // Passing the closest t so far as tmax keeps the first (lowest
         // index) of several hits at exactly the same t.
-        if (intersect_triangle(ray.origin, ray.dir, prepare_triangle(mesh, mesh.triangles[i]), best.t, t, b1, b2)) {
+        if (intersect_triangle(ray.origin, ray.dir, prepare_triangle(mesh, mesh.triangles[i]), best.t, t, b1, b2) &&
+            kept(cutouts, i, b1, b2)) {
             best = Hit{t, b1, b2, static_cast<std::uint32_t>(i)};
         }
     }
@@ -23,10 +31,12 @@ bool intersect_brute(const TriangleMesh& mesh, const Ray& ray, Hit& hit) {
     return true;
 }
 
-bool occluded_brute(const TriangleMesh& mesh, const Ray& ray) {
-    for (const Index3& tri : mesh.triangles) {
+bool occluded_brute(const TriangleMesh& mesh, const Cutouts& cutouts, const Ray& ray) {
+    for (std::size_t i = 0; i < mesh.triangles.size(); ++i) {
         float t, b1, b2;
-        if (intersect_triangle(ray.origin, ray.dir, prepare_triangle(mesh, tri), ray.tmax, t, b1, b2)) return true;
+        if (intersect_triangle(ray.origin, ray.dir, prepare_triangle(mesh, mesh.triangles[i]), ray.tmax, t, b1, b2) &&
+            kept(cutouts, i, b1, b2))
+            return true;
     }
     return false;
 }
@@ -61,36 +71,46 @@ std::vector<std::string_view> available_accels() {
 #endif
 }
 
-Accel make_accel(const TriangleMesh& mesh, AccelKind kind) {
+Accel make_accel(const TriangleMesh& mesh, AccelKind kind, Cutouts cutouts) {
     Accel accel;
     accel.kind = kind;
     accel.mesh = &mesh;
+    assert(!cutouts.active() || cutouts.mesh == &mesh);
+    accel.cutouts = cutouts;
     if (kind == AccelKind::Bvh) accel.bvh = make_bvh(mesh);
 #ifdef SOMBRA_HAVE_EMBREE
-    if (kind == AccelKind::Embree) accel.embree = make_embree_scene(mesh);
+    if (kind == AccelKind::Embree) accel.embree = make_embree_scene(mesh, accel.cutouts);
 #endif
     return accel;
+}
+
+Accel make_accel(const Scene& scene, AccelKind kind) {
+    return make_accel(scene.geometry, kind, make_cutouts(scene.geometry, scene.materials, scene.textures));
 }
 
 bool intersect(const Accel& accel, const Ray& ray, Hit& hit) {
     if (accel.mesh == nullptr) return false;
     // intersect_bvh and occluded_bvh check the ray themselves (is_traceable).
-    if (accel.kind == AccelKind::Bvh) return intersect_bvh(accel.bvh, *accel.mesh, ray, hit);
+    if (accel.kind == AccelKind::Bvh)
+        return accel.cutouts.active() ? intersect_bvh(accel.bvh, accel.cutouts, ray, hit)
+                                      : intersect_bvh(accel.bvh, *accel.mesh, ray, hit);
     if (!is_traceable(ray)) return false;
 #ifdef SOMBRA_HAVE_EMBREE
     if (accel.kind == AccelKind::Embree) return accel.embree != nullptr && intersect_embree(*accel.embree, ray, hit);
 #endif
-    return intersect_brute(*accel.mesh, ray, hit);
+    return intersect_brute(*accel.mesh, accel.cutouts, ray, hit);
 }
 
 bool occluded(const Accel& accel, const Ray& ray) {
     if (accel.mesh == nullptr) return false;
-    if (accel.kind == AccelKind::Bvh) return occluded_bvh(accel.bvh, *accel.mesh, ray);
+    if (accel.kind == AccelKind::Bvh)
+        return accel.cutouts.active() ? occluded_bvh(accel.bvh, accel.cutouts, ray)
+                                      : occluded_bvh(accel.bvh, *accel.mesh, ray);
     if (!is_traceable(ray)) return false;
 #ifdef SOMBRA_HAVE_EMBREE
     if (accel.kind == AccelKind::Embree) return accel.embree != nullptr && occluded_embree(*accel.embree, ray);
 #endif
-    return occluded_brute(*accel.mesh, ray);
+    return occluded_brute(*accel.mesh, accel.cutouts, ray);
 }
 
 std::size_t accel_memory_bytes(const Accel& accel) {

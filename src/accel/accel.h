@@ -13,7 +13,9 @@
 
 #include "accel/bvh.h"
 #include "core/ray.h"
+#include "scene/cutout.h"
 #include "scene/mesh.h"
+#include "scene/scene.h"
 
 namespace sombra {
 
@@ -48,6 +50,9 @@ struct Accel {
     AccelKind kind = AccelKind::Bvh;
     const TriangleMesh* mesh = nullptr;  // not owned; must outlive the Accel
     Bvh bvh;                             // empty unless kind == Bvh
+    // Surfaces with alpha cut-outs (scene/cutout.h): when active, every
+    // backend drops candidate hits where the surface does not exist.
+    Cutouts cutouts;
 #ifdef SOMBRA_HAVE_EMBREE
     std::shared_ptr<const EmbreeScene> embree;  // null unless kind == Embree
 #endif
@@ -56,8 +61,14 @@ struct Accel {
 // Builds the structure for `mesh` (world space). The mesh must stay alive and
 // unchanged while the Accel is used. Brute builds nothing; Bvh builds in
 // parallel (TBB) and deterministically: the same tree for any thread count.
-// Embree builds its own BVH (and may throw Error("embree", ...)).
-Accel make_accel(const TriangleMesh& mesh, AccelKind kind);
+// Embree builds its own BVH (and may throw Error("embree", ...)). With
+// active `cutouts` (over the same mesh, outliving the Accel), queries ignore
+// the cut-out parts of surfaces as if they were not there.
+Accel make_accel(const TriangleMesh& mesh, AccelKind kind, Cutouts cutouts = {});
+
+// The structure for a loaded scene: its world geometry with its materials'
+// cut-outs. The scene must outlive the Accel.
+Accel make_accel(const Scene& scene, AccelKind kind);
 
 // Closest hit with 0 < t < ray.tmax (tmax itself excluded). Returns false and
 // leaves `hit` untouched when nothing is hit. Between hits at exactly the same
@@ -71,7 +82,8 @@ Accel make_accel(const TriangleMesh& mesh, AccelKind kind);
 // slips between triangles that share an edge or corner (accel/triangle.h),
 // so a ray from inside a closed mesh always hits it. Triangles that can never
 // be hit: degenerate ones (see prepare_triangle in accel/triangle.h), ones
-// with a non-finite corner or an out-of-range index. Rays with a non-finite
+// with a non-finite corner or an out-of-range index, and the cut-out parts of
+// surfaces (Accel::cutouts): a hit there is skipped and the ray goes on. Rays with a non-finite
 // origin or direction, or a zero direction, hit nothing.
 //
 // A hit triangle always has a usable geometric normal:

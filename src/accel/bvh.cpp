@@ -133,9 +133,20 @@ inline StackEntry enter_nearest_first(const BvhWideNode& node, int mask, const f
     return entered[0];
 }
 
-}  // namespace
+// Which candidate hits count. Without cut-outs every hit does, and the test
+// compiles away; with them, surface_exists decides (scene/cutout.h).
+struct EveryHit {
+    static constexpr bool kFilters = false;
+    bool keeps(std::uint32_t, float, float) const { return true; }
+};
+struct SurfaceHits {
+    static constexpr bool kFilters = true;
+    const Cutouts& cutouts;
+    bool keeps(std::uint32_t triangle, float b1, float b2) const { return surface_exists(cutouts, triangle, b1, b2); }
+};
 
-bool intersect_bvh(const Bvh& bvh, const TriangleMesh& mesh, const Ray& ray, Hit& hit) {
+template <typename Filter>
+bool intersect_bvh_with(const Bvh& bvh, const TriangleMesh& mesh, const Filter& filter, const Ray& ray, Hit& hit) {
     if (bvh.nodes.empty() || !is_traceable(ray)) return false;
     const BoxRay box_ray = make_box_ray(ray);
     const BvhWideNode* nodes = bvh.nodes.data();
@@ -160,9 +171,10 @@ bool intersect_bvh(const Bvh& bvh, const TriangleMesh& mesh, const Ray& ray, Hit
                     const std::uint32_t triangle = block.triangle[lane];
                     // Equal t: the lower index wins, as in the brute-force loop.
                     if (t < best.t || (t == best.t && triangle < best.triangle)) {
-                        best.t = t;
-                        best.triangle = triangle;
-                        finish_barycentrics(found, lane, best.b1, best.b2);
+                        float b1, b2;
+                        finish_barycentrics(found, lane, b1, b2);
+                        if (!filter.keeps(triangle, b1, b2)) continue;
+                        best = Hit{t, b1, b2, triangle};
                     }
                 }
                 for (int near = found.near; near != 0; near &= near - 1) {
@@ -170,7 +182,8 @@ bool intersect_bvh(const Bvh& bvh, const TriangleMesh& mesh, const Ray& ray, Hit
                     float t, b1, b2;
                     const PreparedTriangle tri = prepare_triangle(mesh, mesh.triangles[triangle]);
                     if (!intersect_triangle(ray.origin, ray.dir, tri, ray.tmax, t, b1, b2)) continue;
-                    if (t < best.t || (t == best.t && triangle < best.triangle)) best = Hit{t, b1, b2, triangle};
+                    if ((t < best.t || (t == best.t && triangle < best.triangle)) && filter.keeps(triangle, b1, b2))
+                        best = Hit{t, b1, b2, triangle};
                 }
             }
         } else {
@@ -198,7 +211,24 @@ bool intersect_bvh(const Bvh& bvh, const TriangleMesh& mesh, const Ray& ray, Hit
     }
 }
 
-bool occluded_bvh(const Bvh& bvh, const TriangleMesh& mesh, const Ray& ray) {
+// True when some lane of `found` that is sure of its hit keeps it.
+template <typename Filter>
+inline bool any_sure_hit_kept(const BlockHits& found, const TriangleBlock& block, const Filter& filter) {
+    if constexpr (!Filter::kFilters) {
+        return found.sure != 0;
+    } else {
+        for (int sure = found.sure; sure != 0; sure &= sure - 1) {
+            const int lane = __builtin_ctz(static_cast<unsigned>(sure));
+            float b1, b2;
+            finish_barycentrics(found, lane, b1, b2);
+            if (filter.keeps(block.triangle[lane], b1, b2)) return true;
+        }
+        return false;
+    }
+}
+
+template <typename Filter>
+bool occluded_bvh_with(const Bvh& bvh, const TriangleMesh& mesh, const Filter& filter, const Ray& ray) {
     if (bvh.nodes.empty() || !is_traceable(ray)) return false;
     const BoxRay box_ray = make_box_ray(ray);
     const BvhWideNode* nodes = bvh.nodes.data();
@@ -214,12 +244,13 @@ bool occluded_bvh(const Bvh& bvh, const TriangleMesh& mesh, const Ray& ray) {
             for (std::uint32_t k = current.child; k < end; ++k) {
                 BlockHits found;
                 intersect_block(blocks[k], lanes, ray.tmax, found);
-                if (found.sure != 0) return true;
+                if (any_sure_hit_kept(found, blocks[k], filter)) return true;
                 for (int near = found.near; near != 0; near &= near - 1) {
                     const std::uint32_t triangle = blocks[k].triangle[__builtin_ctz(static_cast<unsigned>(near))];
                     float t, b1, b2;
                     const PreparedTriangle tri = prepare_triangle(mesh, mesh.triangles[triangle]);
-                    if (intersect_triangle(ray.origin, ray.dir, tri, ray.tmax, t, b1, b2)) return true;
+                    if (intersect_triangle(ray.origin, ray.dir, tri, ray.tmax, t, b1, b2) && filter.keeps(triangle, b1, b2))
+                        return true;
                 }
             }
         } else {
@@ -245,6 +276,24 @@ bool occluded_bvh(const Bvh& bvh, const TriangleMesh& mesh, const Ray& ray) {
         if (size == 0) return false;
         current = stack[--size];
     }
+}
+
+}  // namespace
+
+bool intersect_bvh(const Bvh& bvh, const TriangleMesh& mesh, const Ray& ray, Hit& hit) {
+    return intersect_bvh_with(bvh, mesh, EveryHit{}, ray, hit);
+}
+
+bool occluded_bvh(const Bvh& bvh, const TriangleMesh& mesh, const Ray& ray) {
+    return occluded_bvh_with(bvh, mesh, EveryHit{}, ray);
+}
+
+bool intersect_bvh(const Bvh& bvh, const Cutouts& cutouts, const Ray& ray, Hit& hit) {
+    return intersect_bvh_with(bvh, *cutouts.mesh, SurfaceHits{cutouts}, ray, hit);
+}
+
+bool occluded_bvh(const Bvh& bvh, const Cutouts& cutouts, const Ray& ray) {
+    return occluded_bvh_with(bvh, *cutouts.mesh, SurfaceHits{cutouts}, ray);
 }
 
 }  // namespace sombra

@@ -11,6 +11,7 @@
 #include "accel/triangle.h"
 #include "core/ray.h"
 #include "core/vec3.h"
+#include "scene/cutout.h"
 #include "scene/mesh.h"
 
 namespace sombra {
@@ -90,6 +91,11 @@ bool intersect_bvh(const Bvh& bvh, const TriangleMesh& mesh, const Ray& ray, Hit
 
 // True when any triangle is hit with 0 < t < ray.tmax; stops at the first.
 bool occluded_bvh(const Bvh& bvh, const TriangleMesh& mesh, const Ray& ray);
+
+// The same two queries skipping the hits where `cutouts` (active, over
+// `mesh`) says the surface does not exist.
+bool intersect_bvh(const Bvh& bvh, const Cutouts& cutouts, const Ray& ray, Hit& hit);
+bool occluded_bvh(const Bvh& bvh, const Cutouts& cutouts, const Ray& ray);
 
 // Bytes of the node and triangle block arrays (sizes, not capacities).
 std::size_t bvh_memory_bytes(const Bvh& bvh);

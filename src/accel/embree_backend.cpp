@@ -4,6 +4,7 @@
 
 #include <embree3/rtcore.h>
 
+#include <algorithm>
 #include <atomic>
 #include <cmath>
 #include <cstdint>
@@ -32,6 +33,8 @@ struct EmbreeScene {
     // own index array and primID is the triangle index.
     std::vector<Index3> kept_triangles;
     std::vector<std::uint32_t> mesh_index_of;
+    // Read by the filter functions (geometry user data: this scene).
+    Cutouts cutouts;
     // The first error Embree reported (it may report from build threads).
     std::mutex error_mutex;
     std::string first_error;
@@ -87,9 +90,24 @@ RTCRay make_rtc_ray(const Ray& ray) {
     return r;
 }
 
+// Embree's hit filter under cut-outs: a candidate hit on a cut-out part of a
+// surface is marked invalid, and Embree's traversal goes on past it.
+void drop_cut_out_hits(const RTCFilterFunctionNArguments* args) {
+    const auto& s = *static_cast<const EmbreeScene*>(args->geometryUserPtr);
+    for (unsigned i = 0; i < args->N; ++i) {
+        if (args->valid[i] == 0) continue;
+        const std::uint32_t prim = RTCHitN_primID(args->hit, args->N, i);
+        const std::uint32_t triangle = s.mesh_index_of.empty() ? prim : s.mesh_index_of[prim];
+        // Clamped as intersect_embree clamps a hit's (u, v).
+        const float u = std::clamp(RTCHitN_u(args->hit, args->N, i), 0.0f, 1.0f);
+        const float v = std::clamp(RTCHitN_v(args->hit, args->N, i), 0.0f, 1.0f - u);
+        if (!surface_exists(s.cutouts, triangle, u, v)) args->valid[i] = 0;
+    }
+}
+
 }  // namespace
 
-std::shared_ptr<const EmbreeScene> make_embree_scene(const TriangleMesh& mesh) {
+std::shared_ptr<const EmbreeScene> make_embree_scene(const TriangleMesh& mesh, const Cutouts& cutouts) {
     auto s = std::make_shared<EmbreeScene>();
     s->device = rtcNewDevice(nullptr);
     if (s->device == nullptr) {
@@ -132,6 +150,12 @@ std::shared_ptr<const EmbreeScene> make_embree_scene(const TriangleMesh& mesh) {
                                    3 * sizeof(float), vertex_count);
         rtcSetSharedGeometryBuffer(geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, indices, 0, sizeof(Index3),
                                    triangle_count);
+        if (cutouts.active()) {
+            s->cutouts = cutouts;
+            rtcSetGeometryUserData(geometry, s.get());
+            rtcSetGeometryIntersectFilterFunction(geometry, drop_cut_out_hits);
+            rtcSetGeometryOccludedFilterFunction(geometry, drop_cut_out_hits);
+        }
         rtcCommitGeometry(geometry);
         rtcAttachGeometry(s->scene, geometry);  // geometry ID 0
         rtcReleaseGeometry(geometry);           // the scene holds it now

@@ -17,6 +17,7 @@
 #include <memory>
 
 #include "core/ray.h"
+#include "scene/cutout.h"
 #include "scene/mesh.h"
 
 namespace sombra {
@@ -31,7 +32,9 @@ struct EmbreeScene;
 // same ones make_bvh keeps: in-range indices, finite corners, non-zero area).
 // The mesh must outlive the result. Throws Error("embree", ...) when Embree
 // fails (unsupported CPU, out of memory).
-std::shared_ptr<const EmbreeScene> make_embree_scene(const TriangleMesh& mesh);
+// With active `cutouts` (over `mesh`, outliving the result), Embree's filter
+// functions drop the hits where the surface is cut out.
+std::shared_ptr<const EmbreeScene> make_embree_scene(const TriangleMesh& mesh, const Cutouts& cutouts = {});
 
 // Closest hit with 0 < t < ray.tmax; (b1, b2) are Embree's (u, v), which are
 // the weights of the triangle's second and third corner as in sombra, and

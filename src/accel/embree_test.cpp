@@ -258,7 +258,7 @@ TEST_P(EmbreeOnScene, ImageEqualsTheBvhImage) {
     job.camera = make_camera(scene.camera, job.settings.width, job.settings.height);
     std::vector<RenderOutput> images;
     for (const AccelKind kind : {AccelKind::Bvh, AccelKind::Embree}) {
-        const Accel accel = make_accel(scene.geometry, kind);
+        const Accel accel = make_accel(scene, kind);
         job.accel = &accel;
         RenderProgress progress;
         images.push_back(render_image(job, progress));

@@ -257,7 +257,7 @@ TEST(Watertight, ManylightsPixelHitsTheTeapotsNearSide) {
     const Ray ray = camera_ray(camera, image_plane_s(711.5f, scene.render.width),
                                image_plane_t(420.5f, scene.render.height));
     for (const AccelKind kind : {AccelKind::Bvh, AccelKind::Brute}) {
-        const Accel accel = make_accel(scene.geometry, kind);
+        const Accel accel = make_accel(scene, kind);
         Hit hit;
         ASSERT_TRUE(intersect(accel, ray, hit)) << accel_name(kind);
         EXPECT_TRUE(hit.triangle == 1526 || hit.triangle == 1527)

@@ -41,7 +41,7 @@ Vec3 sum_of_terms(const SampleRecord& r) {
 // every sample with the recorder: each pixel's average must be the film's
 // value to the last bit, and each sample's terms must add up to its value.
 void expect_explain_matches_render(const Scene& scene, const RenderSettings& settings, int pixel_count, const char* what) {
-    const Accel accel = make_accel(scene.geometry, AccelKind::Bvh);
+    const Accel accel = make_accel(scene, AccelKind::Bvh);
     const RenderJob job = make_render_job(scene, accel, settings, 2);
     RenderProgress progress;
     const RenderOutput out = render_image(job, progress);
@@ -128,7 +128,7 @@ Scene blocked_scene() {
 // The blocked scene's one pixel, traced with the recorder.
 struct BlockedStory {
     Scene scene = blocked_scene();
-    Accel accel = make_accel(scene.geometry, AccelKind::Bvh);
+    Accel accel = make_accel(scene, AccelKind::Bvh);
     RenderJob job = make_render_job(scene, accel, scene.render, 1);
     SampleRecord record;
     BlockedStory() {
@@ -217,7 +217,7 @@ TEST(ExplainRecord, TexturedMaterialShowsItsValuesAtTheHit) {
     RenderSettings settings = scene.render;
     settings.spp = 1;
     settings.integrator = IntegratorKind::Direct;
-    const Accel accel = make_accel(scene.geometry, AccelKind::Bvh);
+    const Accel accel = make_accel(scene, AccelKind::Bvh);
     const RenderJob job = make_render_job(scene, accel, settings, 1);
     int textured_hits = 0;
     for (int j = settings.height / 2; j < settings.height; j += 7)

@@ -28,7 +28,7 @@ Camera camera_looking_down(float eye, float half_extent) {
 }
 
 RenderOutput render(const Scene& scene, AccelKind kind, const Camera& camera, int w, int h, int spp = 1, int threads = 0) {
-    const Accel accel = make_accel(scene.geometry, kind);
+    const Accel accel = make_accel(scene, kind);
     RenderJob job;
     job.scene = &scene;
     job.accel = &accel;
@@ -88,7 +88,7 @@ TEST(Integrator, LightBelowThePlaneLightsNothingAndMissesShowTheBackground) {
     Scene scene = plane_under_point_light({0, -1, 0}, {10, 10, 10}, Vec3{0.8f});
     scene.background = {0.1f, 0.2f, 0.3f};
     RayCounters counters;
-    const Accel accel = make_accel(scene.geometry, AccelKind::Bvh);
+    const Accel accel = make_accel(scene, AccelKind::Bvh);
     // From above: the light is behind the surface, no shadow ray is even traced.
     EXPECT_EQ(trace_direct(scene, accel, Ray{{0, 1, 0}, {0, -1, 0}}, counters), Vec3{0.0f});
     EXPECT_EQ(counters.shadow_rays, 0u);
@@ -101,7 +101,7 @@ TEST(Integrator, SurfacesAreTwoSided) {
     // Seen from below with the light below, the plane is lit just the same.
     const Scene scene = plane_under_point_light({0, -2, 0}, {10, 10, 10}, Vec3{0.5f});
     RayCounters counters;
-    const Accel accel = make_accel(scene.geometry, AccelKind::Bvh);
+    const Accel accel = make_accel(scene, AccelKind::Bvh);
     const Vec3 l = trace_direct(scene, accel, Ray{{0, -1, 0}, {0, 1, 0}}, counters);
     EXPECT_NEAR(l.x, 10 * 0.5 / kPi / 4, 1e-6);
 }
@@ -143,7 +143,7 @@ TEST(Integrator, PhongHighlightMatchesTheFormula) {
     Scene scene = plane_under_point_light({0, 2, 0}, {10, 10, 10}, Vec3{0.3f});
     scene.materials[0] = Material{"p", MaterialType::Phong, Vec3{0.3f}, Vec3{0.5f}, 40, {}};
     RayCounters counters;
-    const Accel accel = make_accel(scene.geometry, AccelKind::Bvh);
+    const Accel accel = make_accel(scene, AccelKind::Bvh);
     const Vec3 l = trace_direct(scene, accel, Ray{{0, 1, 0}, {0, -1, 0}}, counters);
     const double f = 0.3 / kPi + 0.5 * 42 / (2 * kPi);
     EXPECT_NEAR(l.x, 10.0 / 4.0 * f, 1e-5);
@@ -159,7 +159,7 @@ TEST(Integrator, PbrHighlightMatchesAppendixB) {
     m.metallic = 0.3f;
     m.roughness = 0.4f;
     RayCounters counters;
-    const Accel accel = make_accel(scene.geometry, AccelKind::Bvh);
+    const Accel accel = make_accel(scene, AccelKind::Bvh);
     const Vec3 l = trace_direct(scene, accel, Ray{{0, 1, 0}, {0, -1, 0}}, counters);
     const double alpha = 0.16, vd = 0.25 / (kPi * alpha * alpha);
     for (int c = 0; c < 3; ++c) {
@@ -173,7 +173,7 @@ TEST(Integrator, EmissionIsSeenDirectlyFromBothSides) {
     Scene scene = plane_under_point_light({0, 5, 0}, {0, 0, 0}, Vec3{0.5f});
     scene.materials[0].ke = {1, 2, 3};
     RayCounters counters;
-    const Accel accel = make_accel(scene.geometry, AccelKind::Bvh);
+    const Accel accel = make_accel(scene, AccelKind::Bvh);
     EXPECT_EQ(trace_direct(scene, accel, Ray{{0, 1, 0}, {0, -1, 0}}, counters), (Vec3{1, 2, 3}));
     EXPECT_EQ(trace_direct(scene, accel, Ray{{0, -1, 0}, {0, 1, 0}}, counters), (Vec3{1, 2, 3}));
 }
@@ -192,7 +192,7 @@ TEST(Integrator, ShadingNormalsAreInterpolated) {
     m.normal_indices = {{0, 0, 0}};
     scene.lights.push_back(PointLight{{0, 1, 0}, {4, 4, 4}});
     RayCounters counters;
-    const Accel accel = make_accel(scene.geometry, AccelKind::Bvh);
+    const Accel accel = make_accel(scene, AccelKind::Bvh);
     const Vec3 l = trace_direct(scene, accel, Ray{{0, 2, 0}, {0, -1, 0}}, counters);
     EXPECT_NEAR(l.x, 4.0 / kPi * 0.5, 1e-5);
     // Without the normal on one corner the face is flat-shaded: cos = 1.
@@ -210,7 +210,7 @@ TEST(Integrator, NoSelfShadowingOnLargeOffsetGeometry) {
     const Vec3 c{1000, 500, -700};
     add_quad(scene.geometry, c + Vec3{-e, 0, -e}, c + Vec3{e, 0.01f, -e}, c + Vec3{e, 0.02f, e}, c + Vec3{-e, 0.01f, e}, 0);
     scene.lights.push_back(PointLight{c + Vec3{-40, 1.5f, 3}, {100, 100, 100}});
-    const Accel accel = make_accel(scene.geometry, AccelKind::Bvh);
+    const Accel accel = make_accel(scene, AccelKind::Bvh);
     RayCounters counters;
     int dark = 0;
     for (int k = 0; k < 2000; ++k) {

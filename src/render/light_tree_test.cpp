@@ -238,7 +238,7 @@ Estimate estimate_floor(const Scene& scene, const Accel& accel, LightSelection s
 
 TEST(LightTree, PathIntegratorUnderManyLightsAgreesWithPowerChoiceAndIsLessNoisy) {
     const Scene scene = many_lights_scene();
-    const Accel accel = make_accel(scene.geometry, AccelKind::Bvh);
+    const Accel accel = make_accel(scene, AccelKind::Bvh);
     for (const Vec3 x : {Vec3{0.2f, 0, 0.3f}, Vec3{-15.5f, 0, 8.2f}, Vec3{25, 0, -20}}) {
         const Estimate power = estimate_floor(scene, accel, LightSelection::Power, x, 20000);
         const Estimate tree = estimate_floor(scene, accel, LightSelection::Tree, x, 20000);

@@ -6,6 +6,7 @@
 #include <numbers>
 
 #include "render/shading.h"
+#include "scene/cutout.h"
 #include "render/spherical_triangle.h"
 
 namespace sombra {
@@ -66,6 +67,13 @@ float area_to_solid_angle(Vec3 x, Vec3 y, Vec3 unit_normal, float area) {
 float emitters_choice_probability(const LightSet& lights) {
     if (lights.emitters.empty()) return 0.0f;
     return lights.choice_cdf[lights.emitters.size() - 1];
+}
+
+// False when y, a point sampled on `triangle`, lies where its surface is cut out.
+bool sampled_point_exists(const Scene& scene, std::uint32_t triangle, Vec3 y) {
+    float b1 = 0, b2 = 0;
+    if (!point_barycentrics(scene.geometry, triangle, y, b1, b2)) return true;
+    return surface_exists(Cutouts{&scene.geometry, &scene.materials, &scene.textures}, triangle, b1, b2);
 }
 
 }  // namespace
@@ -179,6 +187,8 @@ bool sample_light(const LightSet& lights, const Scene& scene, Vec3 x, Vec3 n, fl
     const Material& m = scene.materials[scene.geometry.material_ids[triangle]];
     // One-sided emitters shine only toward their winding normal's side.
     if (m.emits_front_only && dot(n_w, wi) >= 0.0f) return false;
+    // A point on a cut-out part of the emitter is no light (spec §12).
+    if (m.textures.alpha_test && !sampled_point_exists(scene, triangle, y)) return false;
     if (!(pdf > 0.0f) || !std::isfinite(pdf)) return false;
     out.radiance = emission_at(scene, m, triangle, y);
     out.wi = wi;

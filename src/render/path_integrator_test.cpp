@@ -92,7 +92,7 @@ struct PathRun {
     LightStrategy strategy = LightStrategy::Mis;
 
     Estimate estimate(Vec3 origin, Vec3 target, int samples, std::uint64_t seed, int channel = 0) const {
-        const Accel accel = make_accel(scene.geometry, AccelKind::Bvh);
+        const Accel accel = make_accel(scene, AccelKind::Bvh);
         const bool path = true;
         const LightSet lights = make_light_set(scene, make_constant_environment(scene.background), path);
         const IntegratorContext ctx{&scene, &accel, &lights, max_depth, strategy};
@@ -239,6 +239,48 @@ TEST(PathIntegrator, PlaneUnderTriangleLightMatchesLambertsPolygonFormula) {
     }
 }
 
+TEST(PathIntegrator, CutOutPartsOfAnEmitterGiveNoLight) {
+    // A quad light y = 1 over x, z in [-0.6, 0.6] whose alpha (8 × 1 texels,
+    // 1 1 0 0 0 0 1 1 along u = (x + 0.6)/1.2, bilinear) drops below the ½
+    // cutoff exactly for |x| < 0.3: what is left are two rectangles, and the
+    // plane below receives Lambert's polygon irradiance from those alone,
+    // under every strategy (light samples landing on the cut strip count
+    // nothing, BSDF rays pass through it).
+    const Vec3 kd{0.6f}, le{4, 2, 1};
+    Texture strip;
+    strip.encoding = TextureEncoding::Data;
+    strip.width = 8;
+    strip.height = 1;
+    strip.channels = 1;
+    strip.texels = {1, 1, 0, 0, 0, 0, 1, 1};
+    const std::vector<std::vector<Vec3>> left_and_right = {
+        {{-0.6f, 1, -0.6f}, {-0.3f, 1, -0.6f}, {-0.3f, 1, 0.6f}, {-0.6f, 1, 0.6f}},
+        {{0.3f, 1, -0.6f}, {0.6f, 1, -0.6f}, {0.6f, 1, 0.6f}, {0.3f, 1, 0.6f}}};
+    for (const LightStrategy strategy : {LightStrategy::Mis, LightStrategy::LightOnly, LightStrategy::BsdfOnly}) {
+        Scene scene;
+        scene.textures.push_back(strip);
+        scene.materials.push_back(diffuse(kd));
+        Material emitter = diffuse(Vec3{0.0f});
+        emitter.ke = le;
+        emitter.textures.alpha_test = true;
+        emitter.textures.alpha.texture = 0;
+        emitter.textured = true;
+        scene.materials.push_back(emitter);
+        add_quad(scene.geometry, {-50, 0, -50}, {-50, 0, 50}, {50, 0, 50}, {50, 0, -50}, 0);
+        add_quad(scene.geometry, {-0.6f, 1, -0.6f}, {0.6f, 1, -0.6f}, {0.6f, 1, 0.6f}, {-0.6f, 1, 0.6f}, 1);
+        scene.geometry.uvs = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+        scene.geometry.uv_indices = {{kNoUv, kNoUv, kNoUv}, {kNoUv, kNoUv, kNoUv}, {0, 1, 2}, {0, 2, 3}};
+        const PathRun run{scene, 1, strategy};
+        for (const Vec3 x : {Vec3{0, 0, 0}, Vec3{0.45f, 0, 0.2f}, Vec3{-1.2f, 0, 0.5f}}) {
+            double expected = 0;
+            for (const std::vector<Vec3>& part : left_and_right)
+                expected += kd.x / kPi * le.x * polygon_irradiance(part, x, {0, 1, 0});
+            const Estimate e = run.estimate(x + Vec3{0.01f, 0.3f, 0.02f}, x, strategy == LightStrategy::BsdfOnly ? 40000 : 6000, 23);
+            expect_agrees(e, expected, "irradiance from the uncut parts");
+        }
+    }
+}
+
 TEST(PathIntegrator, PointLightInsideADiffuseSphereAtDepthOne) {
     // Depth 1 under a point light is deterministic: L = kd/π · I/d² · cos θ
     // at the hit point of a flat facet (no randomness, no tolerance but rounding).
@@ -246,7 +288,7 @@ TEST(PathIntegrator, PointLightInsideADiffuseSphereAtDepthOne) {
     scene.materials.push_back(diffuse(Vec3{0.5f}));
     add_sphere(scene.geometry, {0, 0, 0}, 2.0f, 4, 0);
     scene.lights.push_back(PointLight{{0, 0, 0}, {3, 3, 3}});
-    const Accel accel = make_accel(scene.geometry, AccelKind::Bvh);
+    const Accel accel = make_accel(scene, AccelKind::Bvh);
     const LightSet lights = make_light_set(scene, make_constant_environment(scene.background), true);
     const IntegratorContext ctx{&scene, &accel, &lights, 1};
     RayCounters counters;
@@ -300,7 +342,7 @@ TEST(PathIntegrator, StrategiesAgreeUnderAnEnvironment) {
 const std::filesystem::path kShared = SOMBRA_SHARED_DIR;
 
 RenderOutput render_with(const Scene& scene, RenderSettings settings, int threads) {
-    const Accel accel = make_accel(scene.geometry, AccelKind::Bvh);
+    const Accel accel = make_accel(scene, AccelKind::Bvh);
     const RenderJob job = make_render_job(scene, accel, settings, threads);
     RenderProgress progress;
     return render_image(job, progress);

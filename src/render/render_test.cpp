@@ -18,7 +18,7 @@ struct Rendered {
 };
 
 Rendered render_scene(const Scene& scene, AccelKind kind, RenderSettings settings, int threads) {
-    const Accel accel = make_accel(scene.geometry, kind);
+    const Accel accel = make_accel(scene, kind);
     const RenderJob job = make_render_job(scene, accel, settings, threads);
     RenderProgress progress;
     RenderOutput out = render_image(job, progress);
@@ -97,7 +97,7 @@ TEST(Render, CancelStopsEarly) {
     scene.geometry.triangles = {{0, 1, 2}};
     scene.geometry.material_ids = {0};
     scene.camera.look_at = CameraLookAt{{0, 0, 0}, {0, 0, -1}, {0, 1, 0}, 45};
-    const Accel accel = make_accel(scene.geometry, AccelKind::Bvh);
+    const Accel accel = make_accel(scene, AccelKind::Bvh);
     const RenderJob job = make_render_job(scene, accel, RenderSettings{256, 256, 1, 0});
     RenderProgress progress;
     progress.cancel = true;

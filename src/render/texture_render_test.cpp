@@ -29,7 +29,7 @@ const std::string kQuadObj = "v -1 -1 0\nv 1 -1 0\nv 1 1 0\nv -1 1 0\nvt 0 0\nvt
 Film render_file(const std::filesystem::path& scene_file) {
     Diagnostics diag;
     const Scene scene = load_scene_file(scene_file, diag);
-    const Accel accel = make_accel(scene.geometry, AccelKind::Bvh);
+    const Accel accel = make_accel(scene, AccelKind::Bvh);
     const RenderJob job = make_render_job(scene, accel, scene.render, 1);
     RenderProgress progress;
     return render_image(job, progress).film;

@@ -124,7 +124,7 @@ void apply_textures(const tinygltf::Model& model, const std::filesystem::path& p
                     std::vector<Texture>& textures, Diagnostics& diag) {
     const std::string file = path.string();
     TextureTable table(model, path, textures, diag);
-    int unapplied_texcoords = 0, unapplied_transforms = 0, masks = 0;
+    int unapplied_texcoords = 0, unapplied_transforms = 0;
     const SlotMaker slot{model, file, table, unapplied_texcoords, unapplied_transforms};
     for (std::size_t i = 0; i < refs.size() && i < materials.size(); ++i) {
         const GltfMaterialTextures& r = refs[i];
@@ -134,18 +134,19 @@ void apply_textures(const tinygltf::Model& model, const std::filesystem::path& p
         t.metallic = slot(r.metallic_roughness, TextureEncoding::Data, 2);
         t.normal_map = slot(r.normal, TextureEncoding::Data);
         t.ke = slot(r.emissive, TextureEncoding::Color);
-        if (r.alpha_mode != AlphaMode::Opaque && t.base_color.is_set()) {
-            // Alpha is never sRGB-decoded, so the colour image serves as the cut-out (its A channel).
-            t.alpha = t.base_color;
-            t.alpha.channel = 3;
+        if (r.alpha_mode != AlphaMode::Opaque) {
+            // Alpha is baseColorFactor's A times the base colour image's A
+            // (never sRGB-decoded, so the colour image serves as it is).
+            t.alpha_test = true;
+            t.alpha_factor = r.base_alpha;
             t.alpha_cutoff = r.alpha_mode == AlphaMode::Mask ? r.alpha_cutoff : 0.5f;
-            ++masks;
+            if (t.base_color.is_set()) {
+                t.alpha = t.base_color;
+                t.alpha.channel = 3;
+            }
         }
         materials[i].textured = any_texture(t);
     }
-    if (masks > 0)
-        diag.warn(file, std::to_string(masks) + " materials have an alpha mask: alpha cut-outs are not applied yet, "
-                                                "the surfaces render opaque");
     if (unapplied_texcoords > 0)
         diag.warn(file, std::to_string(unapplied_texcoords) +
                             " texture references use a TEXCOORD other than 0: not applied (their constants are used)");

@@ -48,10 +48,14 @@ struct MaterialTextures {
     // displacement along n_s in world units (as pbrt's bump mapping).
     TextureRef bump_map;
     float bump_scale = 1;
-    // Cut-out (spec §12): where alpha (the A channel, else the first) is
-    // below alpha_cutoff the surface does not exist.
+    // Cut-out (spec §12, §13, scene/cutout.h): when alpha_test is set, the
+    // surface does not exist where its alpha is below alpha_cutoff. Alpha is
+    // alpha_factor (glTF's baseColorFactor A) times the alpha texture's
+    // channel (the A channel, else the first) when one is set.
+    bool alpha_test = false;
     TextureRef alpha;
     float alpha_cutoff = 0.5f;
+    float alpha_factor = 1.0f;
 };
 
 struct Material {

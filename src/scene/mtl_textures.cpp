@@ -58,7 +58,7 @@ void MtlTextureReader::apply(const tinyobj::material_t& mtl, const fs::path& mtl
     if (t.alpha.is_set()) {
         const int channels = table_[t.alpha.texture].channels;
         t.alpha.channel = static_cast<std::uint8_t>(channels == 2 || channels == 4 ? 3 : 0);
-        diag_.warn(mtl_path.string(), "material '" + mtl.name + "': map_d cut-outs are not applied yet: the surface renders opaque");
+        t.alpha_test = true;
     }
     t.normal_map = load(mtl.normal_texname, mtl.normal_texopt, TextureEncoding::Data, folder, mtl_path);
     t.bump_map = load(mtl.bump_texname, mtl.bump_texopt, TextureEncoding::Data, folder, mtl_path);

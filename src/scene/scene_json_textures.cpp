@@ -123,9 +123,9 @@ void read_material_maps(const SceneJson& s, const Json& material, std::string_vi
         const Texture& t = (*textures.table)[ref.texture];
         ref.channel = static_cast<std::uint8_t>(t.channels == 2 || t.channels == 4 ? 3 : 0);
         m.textures.alpha = ref;
+        m.textures.alpha_test = true;
         if (const Json* cutoff = find_member(*alpha, "cutoff"))
             m.textures.alpha_cutoff = read_unit_float(s, *cutoff, json_child(p, "cutoff"), "cutoff");
-        json_warn(s, p, "alpha cut-outs are not applied yet: the surface renders opaque");
     }
     m.textured = any_texture(m.textures);
 }

@@ -1,0 +1,23 @@
+#include "scene/cutout.h"
+
+namespace sombra {
+
+Cutouts make_cutouts(const TriangleMesh& mesh, const std::vector<Material>& materials,
+                     const std::vector<Texture>& textures) {
+    for (const Material& m : materials)
+        if (m.textures.alpha_test) return Cutouts{&mesh, &materials, &textures};
+    return {};
+}
+
+float surface_alpha(const Cutouts& cutouts, const Material& m, std::uint32_t triangle, float b1, float b2) {
+    const MaterialTextures& t = m.textures;
+    float alpha = t.alpha_factor;
+    if (t.alpha.is_set()) {
+        Vec2 uv{0.0f, 0.0f};
+        interpolate_uv(*cutouts.mesh, triangle, b1, b2, uv);
+        alpha *= eval_texture_ref(*cutouts.textures, t.alpha, uv)[t.alpha.channel & 3u];
+    }
+    return alpha;
+}
+
+}  // namespace sombra
