@@ -3,7 +3,7 @@
 
     tools/make-textures.py [OUT_FOLDER]     (default: scenes/textures)
 
-All are 64x64 PNGs, computed here (numpy + Pillow), so that the repository
+All are 64x64 PNGs (the screen 256x256), computed here (numpy + Pillow), so that the repository
 holds nothing copied from elsewhere:
   checker.png   8x8 checkerboard, colour (sRGB)
   sign.png      an arrow pointing up beside the letter F: tells up from down
@@ -11,6 +11,8 @@ holds nothing copied from elsewhere:
   tiles-normal.png  tangent-space normal map (OpenGL convention: +y toward
                 increasing v, the image's top) of 4x4 bevelled tiles, 16 bit
   rough.png     roughness stripes (grey, data), 0.1 to 0.6
+  screen.png    a perforated screen, RGBA: painted metal (sRGB colour) with
+                alpha 0 in a 4x4 grid of round holes (a cut-out, spec §12)
 The committed files were made by this script; run it to check or remake them.
 """
 import sys
@@ -81,6 +83,18 @@ def rough():
     return np.clip(np.round(grey * 255), 0, 255).astype(np.uint8)
 
 
+def screen():
+    side = 4 * N  # fine enough that bilinear alpha draws round holes
+    y, x = np.mgrid[0:side, 0:side] + 0.5
+    # Round holes of radius 22 texels centred in each 64x64 cell.
+    cx, cy = x % 64 - 32, y % 64 - 32
+    hole = cx * cx + cy * cy < 22.0 * 22.0
+    rgba = np.empty((side, side, 4))
+    rgba[...] = (0.18, 0.42, 0.36, 1.0)
+    rgba[hole, 3] = 0.0
+    return Image.fromarray(np.round(rgba * 255).astype(np.uint8), "RGBA")
+
+
 def main():
     out = Path(sys.argv[1]) if len(sys.argv) > 1 else Path(__file__).resolve().parent.parent / "scenes" / "textures"
     out.mkdir(parents=True, exist_ok=True)
@@ -88,6 +102,7 @@ def main():
     save_rgb8(out / "sign.png", sign())
     (out / "tiles-normal.png").write_bytes(tiles_normal())
     Image.fromarray(rough(), "L").save(out / "rough.png", optimize=True)
+    screen().save(out / "screen.png", optimize=True)
     print("wrote", ", ".join(sorted(p.name for p in out.glob("*.png"))), "in", out)
 
 

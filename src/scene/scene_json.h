@@ -105,8 +105,8 @@ void read_texturable(const SceneJson& s, const Json& material, std::string_view 
                      bool required, Material& m, SceneTextures& textures);
 
 // "normal_map": file and "alpha": {"texture": file, "cutoff": c in [0, 1]},
-// which any material may have; then sets m.textured. Alpha cut-outs are
-// stored but not applied yet (a warning says so).
+// which any material may have (an alpha turns its cut-out test on); then
+// sets m.textured.
 void read_material_maps(const SceneJson& s, const Json& material, std::string_view pointer, Material& m,
                         SceneTextures& textures);
 
