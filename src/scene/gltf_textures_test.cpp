@@ -7,6 +7,7 @@
 #include <cmath>
 
 #include "core/base64.h"
+#include "scene/cutout.h"
 #include "scene/gltf_test_files.h"
 #include "scene/image_test_files.h"
 #include "scene/mesh_file.h"
@@ -114,9 +115,55 @@ TEST(GltfTextures, MetallicRoughnessChannelsAndAlphaMask) {
     EXPECT_EQ(t.alpha.texture, t.base_color.texture);
     EXPECT_EQ(t.alpha.channel, 3);
     EXPECT_FLOAT_EQ(t.alpha_cutoff, 0.4f);
+    EXPECT_TRUE(t.alpha_test);
+    EXPECT_EQ(t.alpha_factor, 1.0f);
     // An opaque material has no cut-out.
     textured_quad({{"uri", "tex.png"}}).save(dir.path / "o.gltf");
-    EXPECT_FALSE(load_mesh_file(dir.path / "o.gltf", diag).materials[0].textures.alpha.is_set());
+    const MaterialTextures opaque = load_mesh_file(dir.path / "o.gltf", diag).materials[0].textures;
+    EXPECT_FALSE(opaque.alpha.is_set());
+    EXPECT_FALSE(opaque.alpha_test);
+}
+
+// Where the surface of the quad at (x, y, 0) exists, by the loaded mesh's cut-outs.
+bool exists_at(const LoadedMesh& m, float x, float y) {
+    const Cutouts cutouts = make_cutouts(m.mesh, m.materials, m.textures);
+    if (!cutouts.active()) return true;
+    for (std::uint32_t tri = 0; tri < m.mesh.triangles.size(); ++tri) {
+        float b1 = 0, b2 = 0;
+        if (!point_barycentrics(m.mesh, tri, {x, y, 0}, b1, b2)) continue;
+        if (b1 < 0 || b2 < 0 || b1 + b2 > 1) continue;
+        return surface_exists(cutouts, tri, b1, b2);
+    }
+    ADD_FAILURE() << "(" << x << ", " << y << ") is not on the quad";
+    return false;
+}
+
+TEST(GltfTextures, MaskCutsWhereFactorTimesImageAlphaIsBelowTheCutoff) {
+    // Across the quad the image's alpha falls linearly from 1 (x = 0, the
+    // left texels' centres) to 0.2 (x = 1): alpha(x) = f·(1 − 0.8x) for a
+    // baseColorFactor alpha f.
+    TempFolder dir;
+    two_by_two_png(dir);
+    const auto load = [&](const std::string& mode, double cutoff, double factor) {
+        GltfFile f = textured_quad({{"uri", "tex.png"}}, mode);
+        f.doc["materials"][0]["alphaCutoff"] = cutoff;
+        f.doc["materials"][0]["pbrMetallicRoughness"]["baseColorFactor"] = {1, 1, 1, factor};
+        f.save(dir.path / "m.gltf");
+        Diagnostics diag;
+        LoadedMesh m = load_mesh_file(dir.path / "m.gltf", diag);
+        for (const std::string& w : diag.warnings) EXPECT_EQ(w.find("alpha"), std::string::npos) << w;
+        return m;
+    };
+    const auto expect_cut_beyond = [&](const LoadedMesh& m, float edge, const std::string& what) {
+        for (float x = 0.025f; x < 1.0f; x += 0.05f) {
+            if (std::fabs(x - edge) < 1e-3f) continue;
+            EXPECT_EQ(exists_at(m, x, 0.3f), x < edge) << what << " at x = " << x;
+        }
+    };
+    expect_cut_beyond(load("MASK", 0.4, 1.0), 0.75f, "MASK 0.4");      // 1 − 0.8x < 0.4
+    expect_cut_beyond(load("MASK", 0.4, 0.5), 0.25f, "factor 0.5");    // 0.5(1 − 0.8x) < 0.4
+    expect_cut_beyond(load("BLEND", 0.9, 1.0), 0.625f, "BLEND at 0.5, its cutoff ignored");  // 1 − 0.8x < 0.5
+    expect_cut_beyond(load("OPAQUE", 0.4, 0.1), 2.0f, "OPAQUE ignores alpha");
 }
 
 TEST(GltfTextures, MissingImageIsAWarningAndAPathOutOfTheFolderAnError) {

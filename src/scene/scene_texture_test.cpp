@@ -150,6 +150,9 @@ TEST_F(SceneTextures, MtlMapsBecomeTexturesAndJoinTheSceneTable) {
     EXPECT_EQ(m.textures.kd.texture, m.textures.ks.texture);
     EXPECT_EQ(m.textures.bump_map.texture, m.textures.normal_map.texture);
     EXPECT_EQ(m.textures.alpha.texture, m.textures.normal_map.texture);
+    EXPECT_TRUE(m.textures.alpha_test);  // map_d is a cut-out at 0.5, applied quietly
+    EXPECT_EQ(m.textures.alpha_cutoff, 0.5f);
+    for (const std::string& w : mesh_diag.warnings) EXPECT_EQ(w.find("map_d"), std::string::npos) << w;
     EXPECT_NE(m.textures.ke.texture, m.textures.normal_map.texture);
 
     // Two objects of the file and a scene material on rb.png: rb.png is decoded once in the scene.
