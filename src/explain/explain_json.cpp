@@ -156,6 +156,16 @@ private:
                   {"ray", {{"origin", vec(v.ray_origin)}, {"direction", vec(v.ray_dir)}}},
                   {"throughput", vec(v.throughput)}};
         j["hit"] = v.hit ? hit(v.surface) : Json(nullptr);
+        Json holes = Json::array();
+        for (const HoleRecord& h : v.holes) {
+            Json hole = where(h.triangle);
+            hole["t"] = number(h.t);
+            hole["alpha"] = number(h.alpha);
+            hole["cutoff"] = number(h.cutoff);
+            holes.push_back(hole);
+        }
+        j["holes"] = holes;
+        j["holes_crossed"] = v.holes_crossed;
         j["emission"] = emission(v.emission);
         if (!v.hit) return j;
         j["delta_material"] = v.delta_material;

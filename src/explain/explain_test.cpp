@@ -103,11 +103,45 @@ INSTANTIATE_TEST_SUITE_P(SharedScenes, ExplainSharedScene,
 
 // The repository's path-tracing scenes: quad lights (MIS), glass, metal, Russian roulette.
 TEST(ExplainRepoScene, PathTracedScenesMatchTheRender) {
-    for (const char* name : {"cornell-box-path.json", "spheres.json"}) {
+    for (const char* name : {"cornell-box-path.json", "spheres.json", "cutouts.json"}) {
         Diagnostics diag;
         const Scene scene = load_scene_file(kSource / "scenes" / name, diag);
         expect_explain_matches_render(scene, scaled_down(scene.render, 8, IntegratorKind::Path, 4), 1000, name);
     }
+}
+
+TEST(ExplainRecord, ListsTheCutOutsARayWentThrough) {
+    // The perforated screen of scenes/cutouts.json: camera rays through its
+    // holes record each crossing, nearer than what they hit, with alpha
+    // below the cutoff; the first crossing is what the ray would hit if the
+    // screen had no holes.
+    Diagnostics diag;
+    const Scene scene = load_scene_file(kSource / "scenes" / "cutouts.json", diag);
+    const RenderSettings settings = scaled_down(scene.render, 8, IntegratorKind::Direct, 1);
+    const Accel accel = make_accel(scene, AccelKind::Bvh);
+    const Accel solid = make_accel(scene.geometry, AccelKind::Bvh);  // the same surfaces without cut-outs
+    const RenderJob job = make_render_job(scene, accel, settings, 1);
+    int through = 0;
+    for (int j = 0; j < settings.height; ++j)
+        for (int i = 0; i < settings.width; ++i) {
+            SampleRecord record;
+            RayCounters counters;
+            trace_pixel_sample(job, i, j, 0, counters, record);
+            ASSERT_FALSE(record.vertices.empty());
+            const VertexRecord& v = record.vertices[0];
+            ASSERT_EQ(v.holes.size(), v.holes_crossed);
+            if (v.holes_crossed == 0) continue;
+            ++through;
+            const HoleRecord& hole = v.holes[0];
+            EXPECT_EQ(scene.materials[scene.geometry.material_ids[hole.triangle]].name, "screen");
+            EXPECT_LT(hole.alpha, hole.cutoff);
+            if (v.hit) EXPECT_LT(hole.t, v.surface.t);
+            Hit first;
+            ASSERT_TRUE(intersect(solid, Ray{record.origin, record.direction}, first));
+            EXPECT_EQ(first.triangle, hole.triangle);
+            EXPECT_EQ(first.t, hole.t);
+        }
+    EXPECT_GT(through, 50) << "the screen's holes cover a good part of the picture";
 }
 
 // A ground quad (object 0) under a small blocker quad (object 1), lit by two

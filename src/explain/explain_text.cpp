@@ -76,6 +76,7 @@ private:
         } else {
             out_ << "\nHit\n";
         }
+        holes(v);
         if (!v.hit) {
             out_ << "  nothing: the ray leaves the scene and sees the "
                  << (c_.scene.environment ? "environment map" : "background") << "\n";
@@ -103,6 +104,17 @@ private:
         for (const PointLightRecord& l : v.point_lights) point_light(l, v.throughput);
         if (r_.path && !v.delta_material) sampled_light(v.sampled_light);
         if (r_.path) bounce(v);
+    }
+
+    // The cut-outs the ray went through (spec §12): surfaces that are not there.
+    void holes(const VertexRecord& v) {
+        if (v.holes_crossed == 0) return;
+        out_ << "  through  " << v.holes_crossed << (v.holes_crossed == 1 ? " cut-out" : " cut-outs")
+             << " first (alpha below the cutoff: no surface there)\n";
+        for (const HoleRecord& h : v.holes)
+            out_ << "           " << where(h.triangle) << " at t " << readable(h.t) << ": alpha " << readable(h.alpha)
+                 << " < " << readable(h.cutoff) << "\n";
+        if (v.holes_crossed > v.holes.size()) out_ << "           and " << v.holes_crossed - v.holes.size() << " more\n";
     }
 
     void emission(const EmissionRecord& e, const char* what) {

@@ -111,11 +111,24 @@ struct BounceRecord {
 };
 
 // One vertex of the path: a surface hit (or the ray's escape when !hit).
+// Where a ray crossed a triangle whose surface is cut out at that point
+// (spec §12): the ray went on as if nothing were there.
+struct HoleRecord {
+    std::uint32_t triangle = 0;
+    float t = 0;       // along the ray, as the hit's t
+    float alpha = 0;   // the surface's alpha there, below...
+    float cutoff = 0;  // ...its material's cutoff
+};
+// The most holes one ray's record lists (nearest first); more are counted.
+inline constexpr std::size_t kMaxHolesListed = 8;
+
 struct VertexRecord {
     int depth = 0;                 // scattering events before this vertex
     Vec3 ray_origin, ray_dir;      // the ray that arrived here (direction unit length)
     bool hit = false;
     HitRecord surface;
+    std::vector<HoleRecord> holes;  // cut-outs the arriving ray crossed before the hit (or escaping)
+    std::size_t holes_crossed = 0;  // how many in all (holes lists at most kMaxHolesListed)
     Vec3 throughput;               // β arriving here
     EmissionRecord emission;       // surface emission, or the environment on a miss
     std::vector<PointLightRecord> point_lights;

@@ -1,5 +1,8 @@
 #include "render/sample_recorder.h"
 
+#include "accel/triangle.h"
+
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -22,12 +25,33 @@ BlockerRecord SampleRecorder::find_blocker(const Ray& shadow) const {
     return blocker;
 }
 
+void SampleRecorder::find_holes(const Ray& ray, float t_end, VertexRecord& v) const {
+    const Cutouts& cutouts = accel_.cutouts;
+    if (!cutouts.active()) return;
+    const TriangleMesh& mesh = *cutouts.mesh;
+    std::vector<HoleRecord> holes;
+    for (std::size_t i = 0; i < mesh.triangles.size(); ++i) {
+        const auto triangle = static_cast<std::uint32_t>(i);
+        const Material& m = (*cutouts.materials)[mesh.material_ids[i]];
+        if (!m.textures.alpha_test) continue;
+        float t, b1, b2;
+        if (!intersect_triangle(ray.origin, ray.dir, prepare_triangle(mesh, mesh.triangles[i]), t_end, t, b1, b2)) continue;
+        if (surface_exists(cutouts, triangle, b1, b2)) continue;
+        holes.push_back({triangle, t, surface_alpha(cutouts, m, triangle, b1, b2), m.textures.alpha_cutoff});
+    }
+    std::sort(holes.begin(), holes.end(), [](const HoleRecord& a, const HoleRecord& b) { return a.t < b.t; });
+    v.holes_crossed = holes.size();
+    if (holes.size() > kMaxHolesListed) holes.resize(kMaxHolesListed);
+    v.holes = std::move(holes);
+}
+
 void SampleRecorder::escaped(const Ray& ray, Vec3 beta, Vec3 le, float w, float bsdf_pdf, float light_pdf) {
     VertexRecord v;
     v.depth = static_cast<int>(record_.vertices.size());
     v.ray_origin = ray.origin;
     v.ray_dir = normalize(ray.dir);
     v.hit = false;
+    find_holes(ray, ray.tmax, v);
     v.throughput = beta;
     v.emission = EmissionRecord{max_component(le) > 0.0f, le, w, bsdf_pdf, light_pdf, beta * le * w};
     record_.vertices.push_back(v);
@@ -53,6 +77,7 @@ void SampleRecorder::surface(const Ray& ray, const Hit& hit, const SurfaceIntera
     v.surface.uv = si.uv;
     v.surface.has_uv = si.has_uv;
     v.surface.shaded = material;
+    find_holes(ray, hit.t, v);
     v.throughput = beta;
     record_.vertices.push_back(v);
 }
