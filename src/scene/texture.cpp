@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <utility>
 
 #include "scene/texture.h"
 
@@ -89,11 +90,27 @@ Rgba eval_texture(const Texture& t, Vec2 uv, TextureWrap wrap_u, TextureWrap wra
     return out;
 }
 
-std::uint32_t add_texture(std::vector<Texture>& table, const Texture& texture) {
+namespace {
+
+// The index of an entry of `table` with the source and encoding of `texture`, or kNoEntry.
+constexpr std::size_t kNoEntry = static_cast<std::size_t>(-1);
+std::size_t find_texture(const std::vector<Texture>& table, const Texture& texture) {
     for (std::size_t i = 0; i < table.size(); ++i)
-        if (table[i].source == texture.source && table[i].encoding == texture.encoding)
-            return static_cast<std::uint32_t>(i);
+        if (table[i].source == texture.source && table[i].encoding == texture.encoding) return i;
+    return kNoEntry;
+}
+
+}  // namespace
+
+std::uint32_t add_texture(std::vector<Texture>& table, const Texture& texture) {
+    if (const std::size_t i = find_texture(table, texture); i != kNoEntry) return static_cast<std::uint32_t>(i);
     table.push_back(texture);
+    return static_cast<std::uint32_t>(table.size() - 1);
+}
+
+std::uint32_t add_texture(std::vector<Texture>& table, Texture&& texture) {
+    if (const std::size_t i = find_texture(table, texture); i != kNoEntry) return static_cast<std::uint32_t>(i);
+    table.push_back(std::move(texture));
     return static_cast<std::uint32_t>(table.size() - 1);
 }
 

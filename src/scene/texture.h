@@ -95,5 +95,8 @@ inline Vec3 rgb_of(const Rgba& c) { return {c[0], c[1], c[2]}; }
 // The index of `texture` in `table`, appending it unless an entry with the
 // same source and encoding is there already (then that entry's index).
 std::uint32_t add_texture(std::vector<Texture>& table, const Texture& texture);
+// The same for a texture that is not needed afterwards (a loader's freshly
+// decoded one): appended by moving its texels rather than copying them.
+std::uint32_t add_texture(std::vector<Texture>& table, Texture&& texture);
 
 }  // namespace sombra
