@@ -61,7 +61,7 @@ TEST_F(ExplainCli, MipmappedTexturesAreTheRenderedPixelBitForBit) {
     const Pfm image = read_pfm(dir_ / "out.pfm");
     ASSERT_EQ(image.width, 48);
     int footprints = 0;
-    for (const auto [x, y] : {std::pair{24, 28}, std::pair{24, 14}, std::pair{5, 12}, std::pair{20, 12}, std::pair{40, 15},
+    for (const auto& [x, y] : {std::pair{24, 28}, std::pair{24, 14}, std::pair{5, 12}, std::pair{20, 12}, std::pair{40, 15},
                               std::pair{30, 18}, std::pair{2, 30}}) {
         const RunResult r = run("explain " + scene + " " + std::to_string(x) + " " + std::to_string(y) + " --json " + args);
         ASSERT_EQ(r.status, 0) << r.err;

@@ -22,7 +22,11 @@
 // texture's detail it meets is integrated over the pixel's samples like any
 // other detail of the incident light (noise that converges, not the aliasing
 // of a regular pixel grid), and it keeps indirect light exactly that of the
-// bilinear render.
+// bilinear render. It also keeps multiple importance sampling consistent: a
+// textured emitter that a non-delta bounce meets is weighted against light
+// sampling, which reads its texture at full resolution (emission_at), so
+// both strategies must see the same emission; filtered lookups happen only
+// after the camera or delta scattering, where light sampling has no share.
 #pragma once
 
 #include <cmath>
