@@ -53,6 +53,10 @@ void add_render_options(CLI::App& command, CliOptions& o) {
                        "Choose emitters by a light tree: auto (from 8 emitters on), on, or off (in proportion to power)")
         ->check(CLI::IsMember({"auto", "on", "off"}))
         ->capture_default_str();
+    command.add_option("--texture-filter", o.texture_filter,
+                       "Texture lookups: bilinear (full resolution, the default) or mipmap (by the ray's footprint; "
+                       "overrides the scene)")
+        ->check(CLI::IsMember({"bilinear", "mipmap"}));
     command.add_flag("-q,--quiet", o.quiet, "No progress bar, no summary");
 }
 

@@ -25,6 +25,7 @@ struct CliOptions {
     std::optional<std::string> integrator;  // "direct" or "path", overrides the scene
     std::optional<int> max_depth;           // overrides the scene; checked against kMaxDepth
     std::string light_tree = "auto";        // "auto", "on" or "off": how path chooses among emitters
+    std::optional<std::string> texture_filter;  // "bilinear" or "mipmap", overrides the scene
     std::string stats_json;            // empty = none
     bool quiet = false;
 

@@ -53,6 +53,17 @@ TEST_F(Cli, LightTreeChoices) {
     }
 }
 
+TEST_F(Cli, TextureFilterIsReportedAndOverridesTheScene) {
+    write_text(dir_ / "s.json", scene());
+    ASSERT_EQ(run("render s.json -o out.pfm --width 8 --height 4 --quiet --stats-json plain.json").status, 0);
+    EXPECT_EQ(nlohmann::json::parse(read_text(dir_ / "plain.json"))["texture_filter"], "bilinear");
+    const RunResult r = run("render s.json -o out.pfm --width 8 --height 4 --quiet --texture-filter mipmap --stats-json mip.json");
+    ASSERT_EQ(r.status, 0) << r.err;
+    const auto stats = nlohmann::json::parse(read_text(dir_ / "mip.json"));
+    EXPECT_EQ(stats["texture_filter"], "mipmap");
+    EXPECT_GE(stats["mipmap_seconds"].get<double>(), 0.0);
+}
+
 TEST_F(Cli, DefaultOutputIsRenderPng) {
     write_text(dir_ / "s.json", scene());
     ASSERT_EQ(run("render s.json --quiet").status, 0);
@@ -71,7 +82,8 @@ TEST_F(Cli, WrongCommandLinesExitWithTwo) {
     for (const char* args : {"", "render", "paint s.json", "render s.json --bogus", "render s.json --spp", "render s.json --spp x",
                              "render s.json --accel nope", "render s.json --threads -1",
                              "render s.json --threads 100000", "render s.json --seed -1", "render s.json --exposure x",
-                             "render s.json --light-tree maybe"}) {
+                             "render s.json --light-tree maybe", "render s.json --texture-filter trilinear",
+                             "render s.json --texture-filter"}) {
         const RunResult r = run(args);
         EXPECT_EQ(r.status, 2) << args << ": " << r.err;
         EXPECT_EQ(r.err.rfind("sombra: error: ", 0), 0u) << args << ": " << r.err;

@@ -51,6 +51,30 @@ TEST_F(ExplainCli, JsonValueIsTheRenderedPixelBitForBit) {
     }
 }
 
+TEST_F(ExplainCli, MipmappedTexturesAreTheRenderedPixelBitForBit) {
+    // The repository's textured scene (checker floor to the horizon, sign,
+    // normal-mapped tiles, roughness-mapped metal) with mip-mapping on: explain
+    // re-traces the sample with the same ray cones, so the same levels.
+    const std::string scene = shell_quote(kSource + "/scenes/textured.json");
+    const std::string args = "--width 48 --height 32 --spp 1 --max-depth 3 --texture-filter mipmap --quiet";
+    ASSERT_EQ(run("render " + scene + " -o out.pfm " + args).status, 0);
+    const Pfm image = read_pfm(dir_ / "out.pfm");
+    ASSERT_EQ(image.width, 48);
+    int footprints = 0;
+    for (const auto& [x, y] : {std::pair{24, 28}, std::pair{24, 14}, std::pair{5, 12}, std::pair{20, 12}, std::pair{40, 15},
+                              std::pair{30, 18}, std::pair{2, 30}}) {
+        const RunResult r = run("explain " + scene + " " + std::to_string(x) + " " + std::to_string(y) + " --json " + args);
+        ASSERT_EQ(r.status, 0) << r.err;
+        const nlohmann::json j = nlohmann::json::parse(r.out);
+        const float value[3] = {static_cast<float>(j["value"][0].get<double>()), static_cast<float>(j["value"][1].get<double>()),
+                                static_cast<float>(j["value"][2].get<double>())};
+        const float* pixel = &image.rgb[(static_cast<std::size_t>(31 - y) * 48 + static_cast<std::size_t>(x)) * 3];
+        EXPECT_EQ(std::memcmp(value, pixel, sizeof value), 0) << "pixel (" << x << ", " << y << ")";
+        footprints += r.out.find("\"uv_footprint\"") != std::string::npos;
+    }
+    EXPECT_GT(footprints, 0) << "some of these pixels see a texture through a footprint";
+}
+
 TEST_F(ExplainCli, TextTellsTheStoryAndSvgDrawsIt) {
     const RunResult r = run("explain " + cornell() + " 12 20 --width 24 --height 24 --spp 2 --sample 1 --svg story.svg --quiet");
     ASSERT_EQ(r.status, 0) << r.err;

@@ -44,10 +44,11 @@ int run_explain(const CliOptions& o) {
     return reporting_errors(o, [&] {
         if (!o.svg.empty()) check_svg_path(o.svg);
         Diagnostics diag;
-        const Scene scene = load_input(o.input, diag);
+        Scene scene = load_input(o.input, diag);
         const RenderSettings settings = resolve_settings(scene.render, o);
         print_warnings(diag, scene, settings, o);
         check_pixel(o, settings);
+        prepare_textures(scene, settings);  // the lookups must be the render's
 
         const Accel accel = make_accel(scene, *parse_accel_kind(o.accel));
         const RenderJob job = make_render_job(scene, accel, settings, o.threads, light_selection(o));

@@ -4,6 +4,7 @@
 #include <iostream>
 
 #include "core/error.h"
+#include "scene/texture_mipmap.h"
 
 namespace sombra {
 
@@ -45,7 +46,12 @@ RenderSettings resolve_settings(const RenderSettings& scene_settings, const CliO
     if (o.seed) s.seed = *o.seed;
     if (o.integrator) s.integrator = *o.integrator == "path" ? IntegratorKind::Path : IntegratorKind::Direct;
     if (o.max_depth) { s.max_depth = *o.max_depth; check("--max-depth"); }
+    if (o.texture_filter) s.texture_filter = *o.texture_filter == "mipmap" ? TextureFilter::Mipmap : TextureFilter::Bilinear;
     return s;
+}
+
+void prepare_textures(Scene& scene, const RenderSettings& settings) {
+    if (settings.texture_filter == TextureFilter::Mipmap) build_mip_pyramids(scene.textures);
 }
 
 LightSelection light_selection(const CliOptions& o) {

@@ -34,6 +34,10 @@ Scene load_input(const std::filesystem::path& input, Diagnostics& diag);
 // names the option that caused it). Throws Error.
 RenderSettings resolve_settings(const RenderSettings& scene_settings, const CliOptions& options);
 
+// What the textures need for `settings`: their mip pyramids under
+// TextureFilter::Mipmap (scene/texture_mipmap.h), nothing otherwise.
+void prepare_textures(Scene& scene, const RenderSettings& settings);
+
 // The light choice --light-tree asks for.
 LightSelection light_selection(const CliOptions& options);
 

@@ -49,6 +49,10 @@ int run_render(const CliOptions& o) {
         print_warnings(diag, scene, settings, o);
         const AccelKind kind = *parse_accel_kind(o.accel);  // the command line checked the name
 
+        const auto mipmap_start = Clock::now();
+        prepare_textures(scene, settings);
+        stats.mipmap_seconds = seconds_since(mipmap_start);
+
         const auto build_start = Clock::now();
         const Accel accel = make_accel(scene, kind);
         stats.build_seconds = seconds_since(build_start);
@@ -87,6 +91,7 @@ int run_render(const CliOptions& o) {
         stats.accel_bytes = accel_memory_bytes(accel);
         stats.integrator = settings.integrator == IntegratorKind::Path ? "path" : "direct";
         stats.max_depth = settings.max_depth;
+        stats.texture_filter = settings.texture_filter == TextureFilter::Mipmap ? "mipmap" : "bilinear";
         stats.bounce_rays = rendered.counters.bounce_rays;
         stats.camera_rays = rendered.counters.camera_rays;
         stats.shadow_rays = rendered.counters.shadow_rays;

@@ -15,9 +15,11 @@ struct RunStats {
     std::string accel;
     std::string integrator;  // "direct" or "path"
     int max_depth = 0;
+    std::string texture_filter;  // "bilinear" or "mipmap"
     std::size_t accel_bytes = 0;
     double load_seconds = 0;    // parsing the scene and mesh files
     double build_seconds = 0;   // building the acceleration structure
+    double mipmap_seconds = 0;  // building the textures' mip pyramids (0 unless --texture-filter mipmap)
     double render_seconds = 0;
     double write_seconds = 0;
     double total_seconds = 0;

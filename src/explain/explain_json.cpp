@@ -81,6 +81,7 @@ private:
         j["n_s"] = vec(h.n_s);
         j["outside"] = h.outside;
         if (h.has_uv) j["uv"] = {number(h.uv.x), number(h.uv.y)};
+        if (h.uv_footprint > 0.0f) j["uv_footprint"] = number(h.uv_footprint);
         j["material"] = material(h);
         return j;
     }

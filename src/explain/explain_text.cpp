@@ -61,6 +61,7 @@ private:
         }
         if (named.textured)
             s += "\n           (textured: the values at this hit's uv " + readable(h.uv.x) + ", " + readable(h.uv.y) +
+                 (h.uv_footprint > 0.0f ? ", mip-mapped over a footprint " + readable(h.uv_footprint) + " wide in uv" : "") +
                  "; n_s after its normal or bump map)";
         return s;
     }

@@ -49,6 +49,12 @@ struct IntegratorContext {
     const LightSet* lights = nullptr;
     int max_depth = 8;  // path: the most scattering events on a path (spec §10)
     LightStrategy strategy = LightStrategy::Mis;
+    // Mip-mapping (--texture-filter mipmap): the rays given to trace_direct
+    // and trace_path are camera rays of a camera whose pixel is
+    // camera_pixel_area (render/ray_cone.h), and their cones choose the
+    // textures' levels. False: every lookup at full resolution.
+    bool ray_cones = false;
+    Vec3 camera_pixel_area{0.0f};
 };
 
 // Linear RGB radiance arriving at the ray's origin along -ray.dir (ray.dir

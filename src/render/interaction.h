@@ -24,6 +24,10 @@ struct SurfaceInteraction {
     // corners have one (has_uv), else (0, 0) (spec §12).
     Vec2 uv;
     bool has_uv = false;
+    // Under mip-mapping, the width in uv of the ray cone's footprint that
+    // textures were filtered over at this hit (render/shading.h); 0: read at
+    // full resolution.
+    float uv_footprint = 0;
     std::uint32_t triangle = 0;
     std::uint32_t material = 0;
 };

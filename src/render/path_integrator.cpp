@@ -11,6 +11,7 @@
 #include "render/integrator.h"
 #include "render/interaction.h"
 #include "render/point_lights.h"
+#include "render/ray_cone.h"
 #include "render/sample_recorder.h"
 #include "render/shading.h"
 
@@ -69,6 +70,8 @@ Vec3 trace_path_recorded(const IntegratorContext& ctx, const Ray& camera_ray, Sa
     Vec3 previous_position{0.0f};
     Vec3 previous_normal{0.0f};  // its shading normal: the light tree's choice depends on both
     Ray ray = camera_ray;
+    // The current ray's cone for choosing mip levels (render/ray_cone.h).
+    RayCone cone = ctx.ray_cones ? camera_ray_cone(ctx.camera_pixel_area, camera_ray.dir) : RayCone{};
     Material textured;  // the hit's material when it has textures (render/shading.h)
     // The weight of an emitter or the environment reached by a BSDF-sampled
     // bounce whose density was bsdf_pdf, where next-event estimation would
@@ -100,7 +103,8 @@ Vec3 trace_path_recorded(const IntegratorContext& ctx, const Ray& camera_ray, Sa
         }
 
         SurfaceInteraction si = make_surface_interaction(scene.geometry, ray, hit);
-        const Material& material = resolve_material(scene, si, textured);
+        const float hit_distance = cone.active() ? hit.t * length(ray.dir) : 0.0f;
+        const Material& material = resolve_material(scene, si, textured, surface_footprint(cone, hit_distance, ray.dir, si.n_g));
         const Vec3 wo = -normalize(ray.dir);
         recorder.surface(ray, hit, si, material, beta);
 
@@ -155,6 +159,7 @@ Vec3 trace_path_recorded(const IntegratorContext& ctx, const Ray& camera_ray, Sa
         previous_position = si.position;
         previous_normal = si.n_s;
         ray = Ray{spawn_origin(si, bs.wi), bs.wi};
+        cone = scattered_cone(cone, hit_distance, bs.delta);
         ++counters.bounce_rays;
 
         // Russian roulette, unbiased: survivors are re-weighted by 1/q.

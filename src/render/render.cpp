@@ -9,6 +9,7 @@
 
 #include <optional>
 
+#include "render/ray_cone.h"
 #include "render/sampler.h"
 
 namespace sombra {
@@ -62,7 +63,12 @@ RenderJob make_render_job(const Scene& scene, const Accel& accel, const RenderSe
 }
 
 IntegratorContext make_integrator_context(const RenderJob& job) {
-    return IntegratorContext{job.scene, job.accel, &job.lights, job.settings.max_depth};
+    IntegratorContext ctx{job.scene, job.accel, &job.lights, job.settings.max_depth};
+    if (job.settings.texture_filter == TextureFilter::Mipmap) {
+        ctx.ray_cones = true;
+        ctx.camera_pixel_area = camera_pixel_area(job.camera.left, job.camera.up, job.settings.width, job.settings.height);
+    }
+    return ctx;
 }
 
 Vec3 trace_pixel_sample(const RenderJob& job, int i, int j, int k, RayCounters& counters, SampleRecord& record) {

@@ -35,6 +35,7 @@ struct HitRecord {
     bool outside = true;                   // arrived on the winding normal's side
     Vec2 uv;                               // texture coordinates at the hit ((0, 0) without)
     bool has_uv = false;
+    float uv_footprint = 0;  // mip-mapping: the ray cone's width in uv that textures were filtered over; 0: full resolution
     // The material as the BSDFs saw it here: for a textured material, each
     // textured parameter is its value at uv (spec §12), not the constant.
     Material shaded;

@@ -76,6 +76,7 @@ void SampleRecorder::surface(const Ray& ray, const Hit& hit, const SurfaceIntera
     v.surface.outside = si.outside;
     v.surface.uv = si.uv;
     v.surface.has_uv = si.has_uv;
+    v.surface.uv_footprint = si.uv_footprint;
     v.surface.shaded = material;
     find_holes(ray, hit.t, v);
     v.throughput = beta;

@@ -11,7 +11,22 @@ namespace {
 // How far above n_g's horizon a perturbed shading normal is kept (cos θ).
 constexpr float kMinShadingCos = 1e-2f;
 
-Rgba lookup(const Scene& scene, const TextureRef& ref, Vec2 uv) { return eval_texture_ref(scene.textures, ref, uv); }
+// ref's image at uv, filtered over a footprint uv_footprint wide (0: full resolution).
+Rgba lookup(const Scene& scene, const TextureRef& ref, Vec2 uv, float uv_footprint) {
+    return eval_texture_ref_filtered(scene.textures, ref, uv, uv_footprint);
+}
+
+// How many uv units one world unit is on the triangle (√ of its uv area over
+// its world area), or 0 when either is degenerate.
+float uv_per_world(const TriangleMesh& mesh, std::uint32_t triangle) {
+    const Index3& p = mesh.triangles[triangle];
+    const Index3& t = mesh.uv_indices[triangle];
+    const float world = length(cross(mesh.positions[p[1]] - mesh.positions[p[0]], mesh.positions[p[2]] - mesh.positions[p[0]]));
+    const Vec2 t0 = mesh.uvs[t[0]], t1 = mesh.uvs[t[1]], t2 = mesh.uvs[t[2]];
+    const float uv = std::fabs((t1.x - t0.x) * (t2.y - t0.y) - (t1.y - t0.y) * (t2.x - t0.x));
+    const float scale = std::sqrt(uv / world);
+    return std::isfinite(scale) ? scale : 0.0f;
+}
 
 Vec3 clamp_rgb(Vec3 c, float hi) {
     return {std::clamp(c.x, 0.0f, hi), std::clamp(c.y, 0.0f, hi), std::clamp(c.z, 0.0f, hi)};
@@ -53,7 +68,7 @@ Vec3 mapped_normal(const Scene& scene, const MaterialTextures& t, const SurfaceI
     const Vec3 front = si.outside ? si.n_s : -si.n_s;
     Vec3 n = front;
     if (t.normal_map.is_set()) {
-        const Rgba c = lookup(scene, t.normal_map, si.uv);
+        const Rgba c = lookup(scene, t.normal_map, si.uv, si.uv_footprint);
         const Vec3 m{2.0f * c[0] - 1.0f, 2.0f * c[1] - 1.0f, 2.0f * c[2] - 1.0f};
         const float len = length(m);
         if (len > 1e-6f && std::isfinite(len)) n = apply_normal_map(front, dpdu, dpdv, m / len);
@@ -61,7 +76,7 @@ Vec3 mapped_normal(const Scene& scene, const MaterialTextures& t, const SurfaceI
         const Texture& h = scene.textures[t.bump_map.texture];
         // Central differences one texel apart around the hit.
         const float du = 1.0f / static_cast<float>(h.width), dv = 1.0f / static_cast<float>(h.height);
-        const auto height = [&](float u, float v) { return lookup(scene, t.bump_map, Vec2{u, v})[0]; };
+        const auto height = [&](float u, float v) { return lookup(scene, t.bump_map, Vec2{u, v}, si.uv_footprint)[0]; };
         const float dhdu = t.bump_scale * (height(si.uv.x + 0.5f * du, si.uv.y) - height(si.uv.x - 0.5f * du, si.uv.y)) / du;
         const float dhdv = t.bump_scale * (height(si.uv.x, si.uv.y + 0.5f * dv) - height(si.uv.x, si.uv.y - 0.5f * dv)) / dv;
         n = apply_bump(front, dpdu, dpdv, dhdu, dhdv);
@@ -93,21 +108,22 @@ Vec3 apply_bump(Vec3 n, Vec3 dpdu, Vec3 dpdv, float dhdu, float dhdv) {
     return dot(bumped, n) < 0.0f ? -bumped / len : bumped / len;
 }
 
-const Material& resolve_material(const Scene& scene, SurfaceInteraction& si, Material& scratch) {
+const Material& resolve_material(const Scene& scene, SurfaceInteraction& si, Material& scratch, float surface_footprint) {
     const Material& m = scene.materials[si.material];
     if (!m.textured) return m;
     copy_parameters(m, scratch);
+    if (surface_footprint > 0.0f && si.has_uv) si.uv_footprint = surface_footprint * uv_per_world(scene.geometry, si.triangle);
     const MaterialTextures& t = m.textures;
     for (const RgbTextureSlot& slot : kRgbTextureSlots) {
         const TextureRef& ref = t.*slot.texture;
         if (!ref.is_set()) continue;
-        const Vec3 value = m.*slot.value * rgb_of(lookup(scene, ref, si.uv));
+        const Vec3 value = m.*slot.value * rgb_of(lookup(scene, ref, si.uv, si.uv_footprint));
         scratch.*slot.value = clamp_rgb(value, slot.reflectance ? 1.0f : std::numeric_limits<float>::max());
     }
     for (const ScalarTextureSlot& slot : kScalarTextureSlots) {
         const TextureRef& ref = t.*slot.texture;
         if (!ref.is_set()) continue;
-        scratch.*slot.value = std::clamp(m.*slot.value * lookup(scene, ref, si.uv)[ref.channel & 3u], 0.0f, 1.0f);
+        scratch.*slot.value = std::clamp(m.*slot.value * lookup(scene, ref, si.uv, si.uv_footprint)[ref.channel & 3u], 0.0f, 1.0f);
     }
     if (si.has_uv && (t.normal_map.is_set() || t.bump_map.is_set())) si.n_s = mapped_normal(scene, t, si);
     return scratch;
@@ -120,7 +136,7 @@ Vec3 emission_at(const Scene& scene, const Material& material, std::uint32_t tri
     float b1 = 0, b2 = 0;
     if (scene.geometry.has_uvs() && point_barycentrics(scene.geometry, triangle, y, b1, b2))
         interpolate_uv(scene.geometry, triangle, b1, b2, uv);
-    return clamp_rgb(material.ke * rgb_of(lookup(scene, ref, uv)), std::numeric_limits<float>::max());
+    return clamp_rgb(material.ke * rgb_of(lookup(scene, ref, uv, 0.0f)), std::numeric_limits<float>::max());
 }
 
 }  // namespace sombra

@@ -19,7 +19,13 @@ namespace sombra {
 // ke to >= 0); and on faces with uvs (si.has_uv) a normal map, else a bump
 // map, replaces si.n_s, kept within n_g's hemisphere. The result lives as
 // long as `scratch` (or the scene).
-const Material& resolve_material(const Scene& scene, SurfaceInteraction& si, Material& scratch);
+// `surface_footprint` is the ray cone's footprint on the surface, world
+// units (render/ray_cone.h): when > 0 on a textured face with uvs, every
+// lookup is filtered at that footprint (eval_texture_ref_filtered) and
+// si.uv_footprint says how wide it was in uv. 0: full resolution, as spec
+// §12's default.
+const Material& resolve_material(const Scene& scene, SurfaceInteraction& si, Material& scratch,
+                                 float surface_footprint = 0.0f);
 
 // The radiance `material` emits at point y of `triangle` (towards a side
 // where it emits): ke, times ke's texture at y's uv when it has one. For

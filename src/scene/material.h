@@ -9,6 +9,7 @@
 
 #include "core/vec3.h"
 #include "scene/texture.h"
+#include "scene/texture_mipmap.h"
 
 namespace sombra {
 
@@ -113,6 +114,17 @@ inline constexpr ScalarTextureSlot kScalarTextureSlots[] = {
 // in one place.
 inline Rgba eval_texture_ref(const std::vector<Texture>& table, const TextureRef& ref, Vec2 uv) {
     return eval_texture(table[ref.texture], uv, ref.wrap_u, ref.wrap_v);
+}
+
+// eval_texture_ref filtered for a footprint `uv_footprint` wide in uv units
+// (render/ray_cone.h): the trilinear lookup of the reference's mip pyramid at
+// that footprint's level (scene/texture_mipmap.h). A footprint of 0, or a
+// texture without a pyramid, reads as eval_texture_ref, bit for bit.
+inline Rgba eval_texture_ref_filtered(const std::vector<Texture>& table, const TextureRef& ref, Vec2 uv,
+                                      float uv_footprint) {
+    if (!(uv_footprint > 0.0f)) return eval_texture_ref(table, ref, uv);
+    const Texture& t = table[ref.texture];
+    return eval_texture_lod(t, uv, mip_lod(t, uv_footprint), ref.wrap_u, ref.wrap_v);
 }
 
 // True when some slot, the normal map, the bump map or the alpha of `t` is set.

@@ -21,6 +21,12 @@ enum class IntegratorKind {
     Path,    // the whole rendering equation by path tracing
 };
 
+// How material textures are looked up (spec §12).
+enum class TextureFilter {
+    Bilinear,  // the default: bilinear at full resolution for every ray; supersampling antialiases
+    Mipmap,    // trilinear in a mip pyramid at the level of the camera ray's cone footprint (render/ray_cone.h)
+};
+
 struct RenderSettings {
     int width = 640;
     int height = 480;
@@ -28,6 +34,9 @@ struct RenderSettings {
     std::uint64_t seed = 0;
     IntegratorKind integrator = IntegratorKind::Direct;
     int max_depth = 8;  // path: the most scattering events on a path, 0 … kMaxDepth
+    // Mipmap needs the textures' pyramids (build_mip_pyramids, scene/texture_mipmap.h)
+    // built before rendering; without them lookups stay at full resolution.
+    TextureFilter texture_filter = TextureFilter::Bilinear;
 };
 
 // Limits on what a render may ask for: anything beyond is a mistake, not a

@@ -90,6 +90,12 @@ TEST_F(SceneV2, RenderIntegratorAndMaxDepth) {
     EXPECT_EQ(defaults.render.max_depth, 8);
 }
 
+TEST_F(SceneV2, RenderTextureFilter) {
+    EXPECT_EQ(load(scene("")).render.texture_filter, TextureFilter::Bilinear);
+    EXPECT_EQ(load(scene(R"("render": {"texture_filter": "bilinear"})")).render.texture_filter, TextureFilter::Bilinear);
+    EXPECT_EQ(load(scene(R"("render": {"texture_filter": "mipmap"})")).render.texture_filter, TextureFilter::Mipmap);
+}
+
 TEST_F(SceneV2, MaterialsOfVersionTwo) {
     const Scene s = load(scene(R"("materials": {
         "mirror": {"type": "mirror", "kr": [0.9, 0.8, 0.7], "ke": [1, 0, 0]},
@@ -152,6 +158,9 @@ TEST_F(SceneV2, HostileValuesNameWhereAndWhat) {
         {scene(R"("render": {"integrator": "bdpt"})"),
          ": /render/integrator: unknown integrator 'bdpt' (expected 'direct' or 'path')"},
         {scene(R"("render": {"integrator": 1})"), ": /render/integrator: expected a string"},
+        {scene(R"("render": {"texture_filter": "trilinear"})"),
+         ": /render/texture_filter: unknown texture filter 'trilinear' (expected 'bilinear' or 'mipmap')"},
+        {scene(R"("render": {"texture_filter": true})"), ": /render/texture_filter: expected a string"},
         {with_material(R"({"type": "dielectric", "ior": 1})"), ": /materials/m/ior: ior must be greater than 1"},
         {with_material(R"({"type": "dielectric", "ior": 0.5})"), ": /materials/m/ior: ior must be greater than 1"},
         {with_material(R"({"type": "dielectric", "ior": "NaN"})"), ": /materials/m/ior: expected a number"},

@@ -125,7 +125,7 @@ std::string transform_problem(const Transform& t) {
 }  // namespace
 
 RenderSettings read_render(const SceneJson& s, const Json& v, std::string_view pointer) {
-    expect_keys(s, v, pointer, {"width", "height", "spp", "seed", "integrator", "max_depth"});
+    expect_keys(s, v, pointer, {"width", "height", "spp", "seed", "integrator", "max_depth", "texture_filter"});
     RenderSettings r;
     if (const Json* w = find_member(v, "width"))
         r.width = static_cast<int>(read_integer(s, *w, json_child(pointer, "width"), 1, kMaxImageSide));
@@ -146,6 +146,16 @@ RenderSettings read_render(const SceneJson& s, const Json& v, std::string_view p
     }
     if (const Json* depth = find_member(v, "max_depth"))
         r.max_depth = static_cast<int>(read_integer(s, *depth, json_child(pointer, "max_depth"), 0, kMaxDepth));
+    if (const Json* filter = find_member(v, "texture_filter")) {
+        const std::string p = json_child(pointer, "texture_filter");
+        const std::string& name = read_string(s, *filter, p);
+        if (name == "bilinear")
+            r.texture_filter = TextureFilter::Bilinear;
+        else if (name == "mipmap")
+            r.texture_filter = TextureFilter::Mipmap;
+        else
+            json_fail(s, p, "unknown texture filter '" + name + "' (expected 'bilinear' or 'mipmap')");
+    }
     if (const std::string problem = render_settings_problem(r); !problem.empty()) json_fail(s, pointer, problem);
     return r;
 }

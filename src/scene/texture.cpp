@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <utility>
 
 #include "scene/texture.h"
 
@@ -48,12 +49,12 @@ Span span(float u, int n, TextureWrap wrap) {
     return {wrap_index(i, n, wrap), wrap_index(i + 1, n, wrap), x - base};
 }
 
-// The RGBA of texel (column x, row y from the top).
-Rgba texel(const Texture& t, int x, int y) {
-    const std::size_t at = (static_cast<std::size_t>(y) * static_cast<std::size_t>(t.width) + static_cast<std::size_t>(x)) *
-                           static_cast<std::size_t>(t.channels);
-    const float* p = t.texels.data() + at;
-    switch (t.channels) {
+// The RGBA of texel (column x, row y from the top) of a grid `width` texels wide.
+Rgba texel(const float* texels, int width, int channels, int x, int y) {
+    const std::size_t at = (static_cast<std::size_t>(y) * static_cast<std::size_t>(width) + static_cast<std::size_t>(x)) *
+                           static_cast<std::size_t>(channels);
+    const float* p = texels + at;
+    switch (channels) {
         case 1: return {p[0], p[0], p[0], 1.0f};
         case 2: return {p[0], p[0], p[0], p[1]};
         case 3: return {p[0], p[1], p[2], 1.0f};
@@ -74,12 +75,17 @@ float srgb_decode(unsigned code, unsigned max_code) {
 }
 
 Rgba eval_texture(const Texture& t, Vec2 uv, TextureWrap wrap_u, TextureWrap wrap_v) {
-    const Span s = span(uv.x, t.width, wrap_u);
-    const Span r = span(uv.y, t.height, wrap_v);
+    return eval_texels(t.texels.data(), t.width, t.height, t.channels, uv, wrap_u, wrap_v);
+}
+
+Rgba eval_texels(const float* texels, int width, int height, int channels, Vec2 uv, TextureWrap wrap_u,
+                 TextureWrap wrap_v) {
+    const Span s = span(uv.x, width, wrap_u);
+    const Span r = span(uv.y, height, wrap_v);
     // Rows count from the bottom in uv, from the top in memory.
-    const int y0 = t.height - 1 - r.i0, y1 = t.height - 1 - r.i1;
-    const Rgba a = texel(t, s.i0, y0), b = texel(t, s.i1, y0);
-    const Rgba c = texel(t, s.i0, y1), d = texel(t, s.i1, y1);
+    const int y0 = height - 1 - r.i0, y1 = height - 1 - r.i1;
+    const Rgba a = texel(texels, width, channels, s.i0, y0), b = texel(texels, width, channels, s.i1, y0);
+    const Rgba c = texel(texels, width, channels, s.i0, y1), d = texel(texels, width, channels, s.i1, y1);
     Rgba out;
     for (std::size_t k = 0; k < 4; ++k) {
         const float bottom = (1.0f - s.f) * a[k] + s.f * b[k];
@@ -89,11 +95,27 @@ Rgba eval_texture(const Texture& t, Vec2 uv, TextureWrap wrap_u, TextureWrap wra
     return out;
 }
 
-std::uint32_t add_texture(std::vector<Texture>& table, const Texture& texture) {
+namespace {
+
+// The index of an entry of `table` with the source and encoding of `texture`, or kNoEntry.
+constexpr std::size_t kNoEntry = static_cast<std::size_t>(-1);
+std::size_t find_texture(const std::vector<Texture>& table, const Texture& texture) {
     for (std::size_t i = 0; i < table.size(); ++i)
-        if (table[i].source == texture.source && table[i].encoding == texture.encoding)
-            return static_cast<std::uint32_t>(i);
+        if (table[i].source == texture.source && table[i].encoding == texture.encoding) return i;
+    return kNoEntry;
+}
+
+}  // namespace
+
+std::uint32_t add_texture(std::vector<Texture>& table, const Texture& texture) {
+    if (const std::size_t i = find_texture(table, texture); i != kNoEntry) return static_cast<std::uint32_t>(i);
     table.push_back(texture);
+    return static_cast<std::uint32_t>(table.size() - 1);
+}
+
+std::uint32_t add_texture(std::vector<Texture>& table, Texture&& texture) {
+    if (const std::size_t i = find_texture(table, texture); i != kNoEntry) return static_cast<std::uint32_t>(i);
+    table.push_back(std::move(texture));
     return static_cast<std::uint32_t>(table.size() - 1);
 }
 

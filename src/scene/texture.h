@@ -40,6 +40,13 @@ enum class TextureWrap : std::uint8_t {
     MirroredRepeat,  // every other repetition mirrored
 };
 
+// One level of a texture's mip pyramid (scene/texture_mipmap.h): a smaller
+// copy of the image, laid out as Texture::texels, with the texture's channels.
+struct TextureLevel {
+    int width = 0, height = 0;
+    std::vector<float> texels;
+};
+
 struct Texture {
     // The file's path (or a loader's name for an embedded image, e.g.
     // "model.glb: /images/3"): messages name it, and textures with the same
@@ -51,6 +58,10 @@ struct Texture {
     // Row-major, the image's TOP row first (as files store it), `channels`
     // floats per texel: finite and >= 0 (8- and 16-bit ones also <= 1).
     std::vector<float> texels;
+    // Levels 1, 2, … of the mip pyramid, each about half the previous one's
+    // size per side (level 0 is `texels`). Empty unless build_mip_pyramid
+    // (scene/texture_mipmap.h) ran: only renders with mip-mapping build it.
+    std::vector<TextureLevel> mip_levels;
 };
 
 // The most values (width × height × channels) one texture may hold: 1 GiB of
@@ -90,10 +101,19 @@ using Rgba = std::array<float, 4>;
 Rgba eval_texture(const Texture& t, Vec2 uv, TextureWrap wrap_u = TextureWrap::Repeat,
                   TextureWrap wrap_v = TextureWrap::Repeat);
 
+// The same lookup on any grid of texels laid out as Texture::texels (a
+// texture's own, or one level of its pyramid): `width` × `height` texels of
+// `channels` floats, top row first.
+Rgba eval_texels(const float* texels, int width, int height, int channels, Vec2 uv, TextureWrap wrap_u,
+                 TextureWrap wrap_v);
+
 inline Vec3 rgb_of(const Rgba& c) { return {c[0], c[1], c[2]}; }
 
 // The index of `texture` in `table`, appending it unless an entry with the
 // same source and encoding is there already (then that entry's index).
 std::uint32_t add_texture(std::vector<Texture>& table, const Texture& texture);
+// The same for a texture that is not needed afterwards (a loader's freshly
+// decoded one): appended by moving its texels rather than copying them.
+std::uint32_t add_texture(std::vector<Texture>& table, Texture&& texture);
 
 }  // namespace sombra

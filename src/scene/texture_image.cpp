@@ -7,11 +7,13 @@
 #include <stb_image.h>
 
 #include <algorithm>
+#include <array>
 #include <cctype>
 #include <cstring>
 #include <fstream>
 #include <memory>
 #include <string_view>
+#include <vector>
 
 #include "core/error.h"
 #include "scene/hdr_image.h"
@@ -147,26 +149,40 @@ Texture decode_stb(std::span<const unsigned char> bytes, Format format, const ch
     const std::size_t count =
         static_cast<std::size_t>(width) * static_cast<std::size_t>(height) * static_cast<std::size_t>(channels);
     t.texels.resize(count);
-    if (sixteen) {
-        const auto* v = static_cast<const std::uint16_t*>(pixels);
-        for (std::size_t i = 0; i < count; ++i) {
-            t.texels[i] = is_colour_channel(encoding, static_cast<int>(i % static_cast<std::size_t>(channels)), channels)
-                              ? srgb_decode(v[i], 65535)
-                              : static_cast<float>(v[i]) / 65535.0f;
+    // Each channel's values through a table built once: the value for code c
+    // is the formula's (srgb_decode, or c/max), so the floats are the same as
+    // evaluating it per value, at a table look-up's cost instead of a pow. A
+    // 16-bit image with fewer values than its table has entries gets none.
+    const auto fill = [&](const auto* v, unsigned max_code) {
+        if (count <= max_code) {
+            for (std::size_t i = 0; i < count; ++i)
+                t.texels[i] = is_colour_channel(encoding, static_cast<int>(i % static_cast<std::size_t>(channels)), channels)
+                                  ? srgb_decode(v[i], max_code)
+                                  : static_cast<float>(v[i]) / static_cast<float>(max_code);
+            return;
         }
-        return t;
-    }
-    // 8 bit: one table per kind of channel.
-    std::array<float, 256> data{}, colour{};
-    for (int c = 0; c < 256; ++c) {
-        data[c] = static_cast<float>(c) / 255.0f;
-        colour[c] = srgb_decode(static_cast<unsigned>(c), 255);
-    }
-    const auto* v = static_cast<const unsigned char*>(pixels);
-    for (std::size_t i = 0; i < count; ++i) {
-        const bool srgb = is_colour_channel(encoding, static_cast<int>(i % static_cast<std::size_t>(channels)), channels);
-        t.texels[i] = srgb ? colour[v[i]] : data[v[i]];
-    }
+        std::vector<float> data(max_code + 1), colour;
+        for (unsigned c = 0; c <= max_code; ++c) data[c] = static_cast<float>(c) / static_cast<float>(max_code);
+        std::array<const float*, 4> table_of{};
+        for (int c = 0; c < channels; ++c) {
+            if (!is_colour_channel(encoding, c, channels)) {
+                table_of[static_cast<std::size_t>(c)] = data.data();
+                continue;
+            }
+            if (colour.empty()) {
+                colour.resize(max_code + 1);
+                for (unsigned code = 0; code <= max_code; ++code) colour[code] = srgb_decode(code, max_code);
+            }
+            table_of[static_cast<std::size_t>(c)] = colour.data();
+        }
+        const auto n = static_cast<std::size_t>(channels);
+        for (std::size_t i = 0; i < count; i += n)
+            for (std::size_t c = 0; c < n; ++c) t.texels[i + c] = table_of[c][v[i + c]];
+    };
+    if (sixteen)
+        fill(static_cast<const std::uint16_t*>(pixels), 65535);
+    else
+        fill(static_cast<const unsigned char*>(pixels), 255);
     return t;
 }
 

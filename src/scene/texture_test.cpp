@@ -123,6 +123,23 @@ TEST(Texture, SixteenBitPngKeepsSixteenBits) {
     EXPECT_LT(data.texels[4], 1.0f);
 }
 
+TEST(Texture, SixteenBitColourIsSrgbDecodedAtEveryCode) {
+    // Every code once, grey + alpha (256 × 256): large enough that decoding
+    // goes through a table of the 65536 codes, which must give the formula's floats.
+    TempFolder tmp;
+    std::vector<std::uint16_t> codes;
+    for (int c = 0; c < 65536; ++c) codes.insert(codes.end(), {static_cast<std::uint16_t>(c), static_cast<std::uint16_t>(65535 - c)});
+    write_png_file(tmp.path / "all.png", 256, 256, 2, 16, codes);
+    const Texture colour = read_texture_file(tmp.path / "all.png", TextureEncoding::Color);
+    ASSERT_EQ(colour.texels.size(), codes.size());
+    int wrong = 0;
+    for (std::size_t i = 0; i < codes.size(); i += 2) {
+        wrong += colour.texels[i] != static_cast<float>(srgb_reference(codes[i] / 65535.0));
+        wrong += colour.texels[i + 1] != static_cast<float>(codes[i + 1]) / 65535.0f;
+    }
+    EXPECT_EQ(wrong, 0);
+}
+
 TEST(Texture, TgaBmpAndJpegReadBack) {
     TempFolder tmp;
     // 2×2 RGB, top row red, green; bottom row blue, white.
