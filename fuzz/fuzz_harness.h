@@ -165,6 +165,13 @@ inline std::string textures_problem(const std::vector<Material>& materials, cons
         if (m.textured != any_texture(m.textures)) return "material '" + m.name + "': textured flag wrong";
         if (!std::isfinite(m.textures.bump_scale) || !(m.textures.alpha_cutoff >= 0 && m.textures.alpha_cutoff <= 1))
             return "material '" + m.name + "': bad bump scale or alpha cutoff";
+        if (!std::isfinite(m.textures.normal_scale)) return "material '" + m.name + "': normal scale not finite";
+        for_each_texture_ref(m.textures, [&](TextureRef& r) {
+            const UvTransform& u = r.uv_transform;
+            for (float x : {u.uu, u.uv, u.u0, u.vu, u.vv, u.v0})
+                if (!std::isfinite(x)) problem = "uv transform not finite";
+        });
+        if (!problem.empty()) return "material '" + m.name + "': " + problem;
     }
     return {};
 }

@@ -43,6 +43,17 @@ Vec3 keep_above(Vec3 n, Vec3 n_g) {
     return tangent * (std::sqrt(1.0f - kMinShadingCos * kMinShadingCos) / len) + kMinShadingCos * n_g;
 }
 
+// The unit tangent-space normal a normal map's texel encodes, its x and y
+// scaled by `scale` (glTF's normalTexture.scale: normalize((2·texel − 1) ⊙
+// (scale, scale, 1))); false when that has no direction.
+bool normal_map_value(const Rgba& texel, float scale, Vec3& n_map) {
+    const Vec3 m{(2.0f * texel[0] - 1.0f) * scale, (2.0f * texel[1] - 1.0f) * scale, 2.0f * texel[2] - 1.0f};
+    const float len = length(m);
+    if (!(len > 1e-6f) || !std::isfinite(len)) return false;
+    n_map = m / len;
+    return true;
+}
+
 // A normal or bump map's shading normal at si (si.has_uv), or si.n_s.
 Vec3 mapped_normal(const Scene& scene, const MaterialTextures& t, const SurfaceInteraction& si) {
     Vec3 dpdu, dpdv;
@@ -53,10 +64,9 @@ Vec3 mapped_normal(const Scene& scene, const MaterialTextures& t, const SurfaceI
     const Vec3 front = si.outside ? si.n_s : -si.n_s;
     Vec3 n = front;
     if (t.normal_map.is_set()) {
-        const Rgba c = lookup(scene, t.normal_map, si.uv);
-        const Vec3 m{2.0f * c[0] - 1.0f, 2.0f * c[1] - 1.0f, 2.0f * c[2] - 1.0f};
-        const float len = length(m);
-        if (len > 1e-6f && std::isfinite(len)) n = apply_normal_map(front, dpdu, dpdv, m / len);
+        Vec3 n_map;
+        if (normal_map_value(lookup(scene, t.normal_map, si.uv), t.normal_scale, n_map))
+            n = apply_normal_map(front, dpdu, dpdv, n_map);
     } else {
         const Texture& h = scene.textures[t.bump_map.texture];
         // Central differences one texel apart around the hit.

@@ -100,7 +100,8 @@ PrimitiveData decode_draco(const AccessorReader& r, const tinygltf::Primitive& p
                            const tinygltf::Value& extension, const std::string& what);
 
 // Every material of the file as sombra's `pbr` (spec §11), in file order,
-// with its texture references; warns once that textures are not applied.
+// with its texture references as the file gives them (apply_textures
+// turns them into texture slots).
 struct Materials {
     std::vector<Material> materials;
     std::vector<GltfMaterialTextures> texture_refs;
@@ -114,12 +115,19 @@ Materials convert_materials(const tinygltf::Model& model, const std::string& fil
 // with the samplers' wrap modes; occlusion is ignored (spec §13). Images come
 // from buffer views (checked against their buffers), data: URIs, or files
 // beside the model (a missing one is a warning and the constant is used; a
-// path leaving the model's folder is an error). A reference with a texCoord
-// other than 0 or a KHR_texture_transform other than the identity is not
-// applied: the constant is used, with one warning each. Throws Error(file, ...) for a broken image.
+// path leaving the model's folder is an error). A KHR_texture_transform other
+// than the identity becomes the slot's uv transform (uv_transform_of). A
+// reference with a texCoord other than 0 (its own or the extension's) is not
+// applied: the constant is used, with one warning. Throws Error(file, ...)
+// for a broken image or a transform that overflows.
 void apply_textures(const tinygltf::Model& model, const std::filesystem::path& path,
                     const std::vector<GltfMaterialTextures>& refs, std::vector<Material>& materials,
                     std::vector<Texture>& textures, Diagnostics& diag);
+
+// KHR_texture_transform's offset, rotation (radians) and scale, which map
+// glTF texture coordinates (v = 0 at the image's top), as the same map of
+// sombra's stored coordinates (u, 1 − v): the transform a TextureRef applies.
+UvTransform uv_transform_of(Vec2 offset, float rotation, Vec2 scale);
 
 // The KHR_lights_punctual light `index` as a point light's intensity (W/sr,
 // spec §13: colour × intensity / 683), or nothing for spot and directional
