@@ -124,6 +124,28 @@ inline std::string mesh_problem(const TriangleMesh& m, std::size_t material_coun
             if (i != kNoNormal && i >= m.normals.size()) return "normal index out of range";
     for (const Vec3& n : m.normals)
         if (!is_finite(n) || std::fabs(length(n) - 1) > 1e-3f) return "normal not of unit length";
+    // uvs, tangents and colours follow the normals' convention.
+    const auto corners_problem = [&](const std::vector<Index3>& indices, std::size_t values, std::uint32_t none,
+                                     const char* name) -> std::string {
+        if (!indices.empty() && indices.size() != m.triangles.size())
+            return std::string(name) + " indices and triangles differ in size";
+        if (indices.empty() && values != 0) return std::string(name) + " without indices";
+        for (const Index3& t : indices)
+            for (std::uint32_t i : t)
+                if (i != none && i >= values) return std::string(name) + " index out of range";
+        return {};
+    };
+    if (std::string p = corners_problem(m.uv_indices, m.uvs.size(), kNoUv, "uv"); !p.empty()) return p;
+    if (std::string p = corners_problem(m.tangent_indices, m.tangents.size(), kNoTangent, "tangent"); !p.empty())
+        return p;
+    if (std::string p = corners_problem(m.color_indices, m.colors.size(), kNoColor, "colour"); !p.empty()) return p;
+    for (const VertexTangent& t : m.tangents)
+        if (!is_finite(t.direction) || std::fabs(length(t.direction) - 1) > 1e-3f ||
+            (t.handedness != 1.0f && t.handedness != -1.0f))
+            return "tangent not of unit length or handedness not ±1";
+    for (const Rgba& c : m.colors)
+        for (float x : c)
+            if (!(x >= 0.0f && x <= 1.0f)) return "colour outside [0, 1]";
     return {};
 }
 

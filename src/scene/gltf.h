@@ -89,13 +89,24 @@ struct PrimitiveData {
     std::vector<Vec3> positions;
     std::vector<Vec3> normals;           // empty, or one per position
     std::vector<Vec2> uvs;               // empty, or one per position; sombra's convention (v = 0 at the bottom)
+    std::vector<VertexTangent> tangents; // empty, or one per position (TANGENT; not yet normalised)
+    std::vector<Rgba> colors;            // empty, or one per position (COLOR_0, clamped to [0, 1])
     std::vector<std::uint32_t> indices;  // three per triangle, each < positions.size()
     int material = -1;                   // index into the file's materials; -1: none
+    std::size_t clamped_colors = 0;      // colour components the file gave outside [0, 1]
 };
+
+// TANGENT as read (x, y, z, w per vertex) → tangents, the handedness the
+// sign of w (glTF asks for ±1 exactly; its sign is what the frame needs).
+std::vector<VertexTangent> tangents_of(const std::vector<float>& xyzw);
+// COLOR_0 as read (RGBA per vertex) → colours clamped to [0, 1], counting
+// the components clamped into `clamped`.
+std::vector<Rgba> colors_of(const std::vector<float>& rgba, std::size_t& clamped);
 
 // Decodes a KHR_draco_mesh_compression primitive with Draco: the
 // extension's bufferView holds the compressed mesh, its "attributes" object
-// maps POSITION, NORMAL and TEXCOORD_0 to Draco attribute ids. Throws Error.
+// maps POSITION, NORMAL, TEXCOORD_0, TANGENT and COLOR_0 to Draco attribute
+// ids (those the primitive lists). Throws Error.
 PrimitiveData decode_draco(const AccessorReader& r, const tinygltf::Primitive& primitive,
                            const tinygltf::Value& extension, const std::string& what);
 
