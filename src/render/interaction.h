@@ -24,6 +24,10 @@ struct SurfaceInteraction {
     // corners have one (has_uv), else (0, 0) (spec §12).
     Vec2 uv;
     bool has_uv = false;
+    // The hit's barycentric weights of corners 1 and 2 (corner 0 weighs
+    // 1 − b1 − b2), for the vertex attributes read only while shading
+    // (tangents, colours).
+    float b1 = 0, b2 = 0;
     std::uint32_t triangle = 0;
     std::uint32_t material = 0;
 };
