@@ -124,6 +124,28 @@ inline std::string mesh_problem(const TriangleMesh& m, std::size_t material_coun
             if (i != kNoNormal && i >= m.normals.size()) return "normal index out of range";
     for (const Vec3& n : m.normals)
         if (!is_finite(n) || std::fabs(length(n) - 1) > 1e-3f) return "normal not of unit length";
+    // uvs, tangents and colours follow the normals' convention.
+    const auto corners_problem = [&](const std::vector<Index3>& indices, std::size_t values, std::uint32_t none,
+                                     const char* name) -> std::string {
+        if (!indices.empty() && indices.size() != m.triangles.size())
+            return std::string(name) + " indices and triangles differ in size";
+        if (indices.empty() && values != 0) return std::string(name) + " without indices";
+        for (const Index3& t : indices)
+            for (std::uint32_t i : t)
+                if (i != none && i >= values) return std::string(name) + " index out of range";
+        return {};
+    };
+    if (std::string p = corners_problem(m.uv_indices, m.uvs.size(), kNoUv, "uv"); !p.empty()) return p;
+    if (std::string p = corners_problem(m.tangent_indices, m.tangents.size(), kNoTangent, "tangent"); !p.empty())
+        return p;
+    if (std::string p = corners_problem(m.color_indices, m.colors.size(), kNoColor, "colour"); !p.empty()) return p;
+    for (const VertexTangent& t : m.tangents)
+        if (!is_finite(t.direction) || std::fabs(length(t.direction) - 1) > 1e-3f ||
+            (t.handedness != 1.0f && t.handedness != -1.0f))
+            return "tangent not of unit length or handedness not ±1";
+    for (const Rgba& c : m.colors)
+        for (float x : c)
+            if (!(x >= 0.0f && x <= 1.0f)) return "colour outside [0, 1]";
     return {};
 }
 
@@ -165,6 +187,13 @@ inline std::string textures_problem(const std::vector<Material>& materials, cons
         if (m.textured != any_texture(m.textures)) return "material '" + m.name + "': textured flag wrong";
         if (!std::isfinite(m.textures.bump_scale) || !(m.textures.alpha_cutoff >= 0 && m.textures.alpha_cutoff <= 1))
             return "material '" + m.name + "': bad bump scale or alpha cutoff";
+        if (!std::isfinite(m.textures.normal_scale)) return "material '" + m.name + "': normal scale not finite";
+        for_each_texture_ref(m.textures, [&](TextureRef& r) {
+            const UvTransform& u = r.uv_transform;
+            for (float x : {u.uu, u.uv, u.u0, u.vu, u.vv, u.v0})
+                if (!std::isfinite(x)) problem = "uv transform not finite";
+        });
+        if (!problem.empty()) return "material '" + m.name + "': " + problem;
     }
     return {};
 }

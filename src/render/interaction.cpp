@@ -42,6 +42,8 @@ SurfaceInteraction make_surface_interaction(const TriangleMesh& mesh, const Ray&
         }
     }
     si.has_uv = interpolate_uv(mesh, hit.triangle, hit.b1, hit.b2, si.uv);
+    si.b1 = hit.b1;
+    si.b2 = hit.b2;
     si.triangle = hit.triangle;
     si.material = mesh.material_ids[hit.triangle];
     return si;

@@ -28,6 +28,10 @@ struct SurfaceInteraction {
     // textures were filtered over at this hit (render/shading.h); 0: read at
     // full resolution.
     float uv_footprint = 0;
+    // The hit's barycentric weights of corners 1 and 2 (corner 0 weighs
+    // 1 − b1 − b2), for the vertex attributes read only while shading
+    // (tangents, colours).
+    float b1 = 0, b2 = 0;
     std::uint32_t triangle = 0;
     std::uint32_t material = 0;
 };

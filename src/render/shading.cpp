@@ -58,21 +58,51 @@ Vec3 keep_above(Vec3 n, Vec3 n_g) {
     return tangent * (std::sqrt(1.0f - kMinShadingCos * kMinShadingCos) / len) + kMinShadingCos * n_g;
 }
 
+// The two directions of the tangent frame at si around the unit normal n,
+// as apply_normal_map takes them: the vertex tangent t and
+// handedness·(n × t) where the triangle's corners all have one (glTF
+// TANGENT, spec §12) and it is not along n, else the triangle's uv
+// derivatives dpdu, dpdv. False when neither exists.
+bool tangent_frame(const TriangleMesh& mesh, const SurfaceInteraction& si, Vec3 n, Vec3& along_u, Vec3& along_v) {
+    Vec3 t;
+    float handedness = 1;
+    if (interpolate_tangent(mesh, si.triangle, si.b1, si.b2, t, handedness)) {
+        const float in_plane = length(t - dot(n, t) * n);
+        if (in_plane > 1e-6f * length(t) && std::isfinite(in_plane)) {
+            along_u = t;
+            along_v = handedness * cross(n, t);
+            return true;
+        }
+    }
+    return position_derivatives(mesh, si.triangle, along_u, along_v);
+}
+
+// The unit tangent-space normal a normal map's texel encodes, its x and y
+// scaled by `scale` (glTF's normalTexture.scale: normalize((2·texel − 1) ⊙
+// (scale, scale, 1))); false when that has no direction.
+bool normal_map_value(const Rgba& texel, float scale, Vec3& n_map) {
+    const Vec3 m{(2.0f * texel[0] - 1.0f) * scale, (2.0f * texel[1] - 1.0f) * scale, 2.0f * texel[2] - 1.0f};
+    const float len = length(m);
+    if (!(len > 1e-6f) || !std::isfinite(len)) return false;
+    n_map = m / len;
+    return true;
+}
+
 // A normal or bump map's shading normal at si (si.has_uv), or si.n_s.
 Vec3 mapped_normal(const Scene& scene, const MaterialTextures& t, const SurfaceInteraction& si) {
-    Vec3 dpdu, dpdv;
-    if (!position_derivatives(scene.geometry, si.triangle, dpdu, dpdv)) return si.n_s;
     // The maps perturb the surface's front (its winding normal's side); seen
     // from the back the same sheet shows the mirror image: the result is
     // turned back to the side the ray came from.
     const Vec3 front = si.outside ? si.n_s : -si.n_s;
     Vec3 n = front;
     if (t.normal_map.is_set()) {
-        const Rgba c = lookup(scene, t.normal_map, si.uv, si.uv_footprint);
-        const Vec3 m{2.0f * c[0] - 1.0f, 2.0f * c[1] - 1.0f, 2.0f * c[2] - 1.0f};
-        const float len = length(m);
-        if (len > 1e-6f && std::isfinite(len)) n = apply_normal_map(front, dpdu, dpdv, m / len);
+        Vec3 along_u, along_v, n_map;
+        if (!tangent_frame(scene.geometry, si, front, along_u, along_v)) return si.n_s;
+        if (normal_map_value(lookup(scene, t.normal_map, si.uv, si.uv_footprint), t.normal_scale, n_map))
+            n = apply_normal_map(front, along_u, along_v, n_map);
     } else {
+        Vec3 dpdu, dpdv;
+        if (!position_derivatives(scene.geometry, si.triangle, dpdu, dpdv)) return si.n_s;
         const Texture& h = scene.textures[t.bump_map.texture];
         // Central differences one texel apart around the hit.
         const float du = 1.0f / static_cast<float>(h.width), dv = 1.0f / static_cast<float>(h.height);
@@ -110,14 +140,20 @@ Vec3 apply_bump(Vec3 n, Vec3 dpdu, Vec3 dpdv, float dhdu, float dhdv) {
 
 const Material& resolve_material(const Scene& scene, SurfaceInteraction& si, Material& scratch, float surface_footprint) {
     const Material& m = scene.materials[si.material];
-    if (!m.textured) return m;
+    // Vertex colours (glTF COLOR_0) tint a pbr material's base colour, so
+    // such a hit resolves even without textures; other types ignore them.
+    Rgba vertex_color;
+    const bool colored =
+        m.type == MaterialType::Pbr && interpolate_color(scene.geometry, si.triangle, si.b1, si.b2, vertex_color);
+    if (!m.textured && !colored) return m;
     copy_parameters(m, scratch);
     if (surface_footprint > 0.0f && si.has_uv) si.uv_footprint = surface_footprint * uv_per_world(scene.geometry, si.triangle);
+    if (colored) scratch.base_color = m.base_color * rgb_of(vertex_color);
     const MaterialTextures& t = m.textures;
     for (const RgbTextureSlot& slot : kRgbTextureSlots) {
         const TextureRef& ref = t.*slot.texture;
         if (!ref.is_set()) continue;
-        const Vec3 value = m.*slot.value * rgb_of(lookup(scene, ref, si.uv, si.uv_footprint));
+        const Vec3 value = scratch.*slot.value * rgb_of(lookup(scene, ref, si.uv, si.uv_footprint));
         scratch.*slot.value = clamp_rgb(value, slot.reflectance ? 1.0f : std::numeric_limits<float>::max());
     }
     for (const ScalarTextureSlot& slot : kScalarTextureSlots) {

@@ -12,13 +12,16 @@
 
 namespace sombra {
 
-// The material at `si` as the BSDFs see it. Untextured:
-// scene.materials[si.material] itself, `si` and `scratch` untouched.
-// Textured: `scratch`, holding the material's parameters with each textured
-// one replaced by constant × texel at si.uv (reflectances clamped to [0, 1],
-// ke to >= 0); and on faces with uvs (si.has_uv) a normal map, else a bump
-// map, replaces si.n_s, kept within n_g's hemisphere. The result lives as
-// long as `scratch` (or the scene).
+// The material at `si` as the BSDFs see it. Untextured, and not a pbr
+// material on a triangle with vertex colours: scene.materials[si.material]
+// itself, `si` and `scratch` untouched. Otherwise `scratch`, holding the
+// material's parameters with a pbr base colour times the interpolated
+// vertex colour's RGB (glTF COLOR_0; its alpha is the cut-outs'), then each
+// textured parameter times its texel at si.uv (reflectances clamped to
+// [0, 1], ke to >= 0); and on faces with uvs (si.has_uv) a normal map (in
+// the vertex tangents' frame where the triangle has them, else its uv
+// parameterisation's), else a bump map, replaces si.n_s, kept within n_g's
+// hemisphere. The result lives as long as `scratch` (or the scene).
 // `surface_footprint` is the ray cone's footprint on the surface, world
 // units (render/ray_cone.h): when > 0 on a textured face with uvs, every
 // lookup is filtered at that footprint (eval_texture_ref_filtered) and
@@ -37,6 +40,8 @@ Vec3 emission_at(const Scene& scene, const Material& material, std::uint32_t tri
 // (unit) and whose position changes by dpdu, dpdv per unit of u and v
 // (OpenGL convention: +x along dpdu, +y along dpdv, Gram–Schmidt
 // orthonormalised against n). Returns n when the uvs are degenerate there.
+// A vertex tangent t with its handedness w gives the frame as
+// dpdu = t, dpdv = w·(n × t).
 Vec3 apply_normal_map(Vec3 n, Vec3 dpdu, Vec3 dpdv, Vec3 n_map);
 
 // The shading normal of a bump map (pbrt's): the surface displaced by height

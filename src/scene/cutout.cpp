@@ -17,6 +17,9 @@ float surface_alpha(const Cutouts& cutouts, const Material& m, std::uint32_t tri
         interpolate_uv(*cutouts.mesh, triangle, b1, b2, uv);
         alpha *= eval_texture_ref(*cutouts.textures, t.alpha, uv)[t.alpha.channel & 3u];
     }
+    // glTF COLOR_0's alpha multiplies the material's (spec §13).
+    Rgba color;
+    if (interpolate_color(*cutouts.mesh, triangle, b1, b2, color)) alpha *= color[3];
     return alpha;
 }
 

@@ -32,7 +32,8 @@ Cutouts make_cutouts(const TriangleMesh& mesh, const std::vector<Material>& mate
                      const std::vector<Texture>& textures);
 
 // The alpha of `m` at barycentric weights (b1, b2) of `triangle`: alpha_factor,
-// times the alpha texture (at the point's uv, (0, 0) without uvs) when set.
+// times the alpha texture (at the point's uv, (0, 0) without uvs) when set,
+// times the vertex colours' alpha (glTF COLOR_0) where the triangle has them.
 float surface_alpha(const Cutouts& cutouts, const Material& m, std::uint32_t triangle, float b1, float b2);
 
 // False where the surface of `triangle` is cut out at (b1, b2).

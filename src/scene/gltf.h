@@ -89,18 +89,30 @@ struct PrimitiveData {
     std::vector<Vec3> positions;
     std::vector<Vec3> normals;           // empty, or one per position
     std::vector<Vec2> uvs;               // empty, or one per position; sombra's convention (v = 0 at the bottom)
+    std::vector<VertexTangent> tangents; // empty, or one per position (TANGENT; not yet normalised)
+    std::vector<Rgba> colors;            // empty, or one per position (COLOR_0, clamped to [0, 1])
     std::vector<std::uint32_t> indices;  // three per triangle, each < positions.size()
     int material = -1;                   // index into the file's materials; -1: none
+    std::size_t clamped_colors = 0;      // colour components the file gave outside [0, 1]
 };
+
+// TANGENT as read (x, y, z, w per vertex) → tangents, the handedness the
+// sign of w (glTF asks for ±1 exactly; its sign is what the frame needs).
+std::vector<VertexTangent> tangents_of(const std::vector<float>& xyzw);
+// COLOR_0 as read (RGBA per vertex) → colours clamped to [0, 1], counting
+// the components clamped into `clamped`.
+std::vector<Rgba> colors_of(const std::vector<float>& rgba, std::size_t& clamped);
 
 // Decodes a KHR_draco_mesh_compression primitive with Draco: the
 // extension's bufferView holds the compressed mesh, its "attributes" object
-// maps POSITION, NORMAL and TEXCOORD_0 to Draco attribute ids. Throws Error.
+// maps POSITION, NORMAL, TEXCOORD_0, TANGENT and COLOR_0 to Draco attribute
+// ids (those the primitive lists). Throws Error.
 PrimitiveData decode_draco(const AccessorReader& r, const tinygltf::Primitive& primitive,
                            const tinygltf::Value& extension, const std::string& what);
 
 // Every material of the file as sombra's `pbr` (spec §11), in file order,
-// with its texture references; warns once that textures are not applied.
+// with its texture references as the file gives them (apply_textures
+// turns them into texture slots).
 struct Materials {
     std::vector<Material> materials;
     std::vector<GltfMaterialTextures> texture_refs;
@@ -114,12 +126,19 @@ Materials convert_materials(const tinygltf::Model& model, const std::string& fil
 // with the samplers' wrap modes; occlusion is ignored (spec §13). Images come
 // from buffer views (checked against their buffers), data: URIs, or files
 // beside the model (a missing one is a warning and the constant is used; a
-// path leaving the model's folder is an error). A reference with a texCoord
-// other than 0 or a KHR_texture_transform other than the identity is not
-// applied: the constant is used, with one warning each. Throws Error(file, ...) for a broken image.
+// path leaving the model's folder is an error). A KHR_texture_transform other
+// than the identity becomes the slot's uv transform (uv_transform_of). A
+// reference with a texCoord other than 0 (its own or the extension's) is not
+// applied: the constant is used, with one warning. Throws Error(file, ...)
+// for a broken image or a transform that overflows.
 void apply_textures(const tinygltf::Model& model, const std::filesystem::path& path,
                     const std::vector<GltfMaterialTextures>& refs, std::vector<Material>& materials,
                     std::vector<Texture>& textures, Diagnostics& diag);
+
+// KHR_texture_transform's offset, rotation (radians) and scale, which map
+// glTF texture coordinates (v = 0 at the image's top), as the same map of
+// sombra's stored coordinates (u, 1 − v): the transform a TextureRef applies.
+UvTransform uv_transform_of(Vec2 offset, float rotation, Vec2 scale);
 
 // The KHR_lights_punctual light `index` as a point light's intensity (W/sr,
 // spec §13: colour × intensity / 683), or nothing for spot and directional

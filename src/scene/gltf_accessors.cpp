@@ -3,6 +3,7 @@
 // checked against the buffer view and the buffer (in 64-bit arithmetic,
 // without overflow) before a single byte is read, so a file's claims never
 // size an allocation beyond the bytes it really holds.
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <limits>
@@ -248,6 +249,24 @@ std::vector<std::uint32_t> read_indices(const AccessorReader& r, int index, std:
                                      " vertices");
         out[i] = x;
     }
+    return out;
+}
+
+std::vector<VertexTangent> tangents_of(const std::vector<float>& xyzw) {
+    std::vector<VertexTangent> out(xyzw.size() / 4);
+    for (std::size_t i = 0; i < out.size(); ++i)
+        out[i] = {{xyzw[4 * i], xyzw[4 * i + 1], xyzw[4 * i + 2]}, xyzw[4 * i + 3] < 0.0f ? -1.0f : 1.0f};
+    return out;
+}
+
+std::vector<Rgba> colors_of(const std::vector<float>& rgba, std::size_t& clamped) {
+    std::vector<Rgba> out(rgba.size() / 4);
+    for (std::size_t i = 0; i < out.size(); ++i)
+        for (std::size_t c = 0; c < 4; ++c) {
+            const float x = rgba[4 * i + c];
+            out[i][c] = std::clamp(x, 0.0f, 1.0f);
+            clamped += out[i][c] != x;
+        }
     return out;
 }
 

@@ -20,13 +20,35 @@ std::optional<std::uint32_t> draco_id(const tinygltf::Value& attributes, const c
     return static_cast<std::uint32_t>(*id);
 }
 
-// One float vector per Draco point from attribute `id` (`components` each);
-// empty when the attribute is missing. Throws when it is unusable.
+const draco::PointAttribute* find_attribute(const draco::Mesh& mesh, std::uint32_t id, const std::string& file,
+                                            const std::string& what, const char* name) {
+    const draco::PointAttribute* att = mesh.GetAttributeByUniqueId(id);
+    if (!att) throw Error(file, what + ": the Draco mesh has no attribute " + std::to_string(id) + " for " + name);
+    return att;
+}
+
+// What divides an unsigned integer attribute Draco does not mark as
+// normalised into glTF's normalised reading, c / (2ⁿ − 1) (1 for anything
+// else): glTF colours are floats or normalised unsigned integers, whatever
+// the encoder recorded.
+float unsigned_normalisation(const draco::PointAttribute& att) {
+    if (att.normalized()) return 1.0f;
+    switch (att.data_type()) {
+        case draco::DT_UINT8: return 255.0f;
+        case draco::DT_UINT16: return 65535.0f;
+        default: return 1.0f;
+    }
+}
+
+// One float vector per Draco point from attribute `id` (`components` each),
+// with unsigned integers normalised when `normalise_unsigned` (above); empty
+// when the attribute is missing. Throws when it is unusable.
 std::vector<float> read_attribute(const draco::Mesh& mesh, std::optional<std::uint32_t> id, int components,
-                                  const std::string& file, const std::string& what, const char* name) {
+                                  const std::string& file, const std::string& what, const char* name,
+                                  bool normalise_unsigned = false) {
     if (!id) return {};
-    const draco::PointAttribute* att = mesh.GetAttributeByUniqueId(*id);
-    if (!att) throw Error(file, what + ": the Draco mesh has no attribute " + std::to_string(*id) + " for " + name);
+    const draco::PointAttribute* att = find_attribute(mesh, *id, file, what, name);
+    const float divisor = normalise_unsigned ? unsigned_normalisation(*att) : 1.0f;
     if (att->num_components() < components)
         throw Error(file, what + ": Draco attribute " + std::to_string(*id) + " (" + name + ") has " +
                               std::to_string(att->num_components()) + " components, " + std::to_string(components) +
@@ -40,10 +62,25 @@ std::vector<float> read_attribute(const draco::Mesh& mesh, std::optional<std::ui
         float* dst = out.data() + p * static_cast<std::size_t>(components);
         if (value.value() >= att->size() || !att->ConvertValue<float>(value, static_cast<std::int8_t>(components), dst))
             throw Error(file, what + ": Draco attribute " + std::to_string(*id) + " (" + name + ") cannot be read");
-        for (int c = 0; c < components; ++c)
+        for (int c = 0; c < components; ++c) {
+            dst[c] /= divisor;
             if (!std::isfinite(dst[c]))
                 throw Error(file, what + ": Draco attribute " + std::to_string(*id) + " (" + name + ") is not finite");
+        }
     }
+    return out;
+}
+
+// COLOR_0 from attribute `id` as RGBA per point (alpha 1 for RGB); empty when missing.
+std::vector<float> read_colors(const draco::Mesh& mesh, std::optional<std::uint32_t> id, const std::string& file,
+                               const std::string& what) {
+    if (!id) return {};
+    const bool rgba = find_attribute(mesh, *id, file, what, "COLOR_0")->num_components() >= 4;
+    const std::vector<float> read = read_attribute(mesh, id, rgba ? 4 : 3, file, what, "COLOR_0", true);
+    if (rgba) return read;
+    std::vector<float> out(read.size() / 3 * 4, 1.0f);
+    for (std::size_t i = 0; i < read.size() / 3; ++i)
+        for (std::size_t c = 0; c < 3; ++c) out[4 * i + c] = read[3 * i + c];
     return out;
 }
 
@@ -79,6 +116,13 @@ PrimitiveData decode_draco(const AccessorReader& r, const tinygltf::Primitive& p
         primitive.attributes.count("TEXCOORD_0")
             ? read_attribute(*mesh, draco_id(attributes, "TEXCOORD_0"), 2, r.file, what, "TEXCOORD_0")
             : std::vector<float>{};
+    const std::vector<float> tangents =
+        primitive.attributes.count("TANGENT")
+            ? read_attribute(*mesh, draco_id(attributes, "TANGENT"), 4, r.file, what, "TANGENT")
+            : std::vector<float>{};
+    const std::vector<float> colors = primitive.attributes.count("COLOR_0")
+                                          ? read_colors(*mesh, draco_id(attributes, "COLOR_0"), r.file, what)
+                                          : std::vector<float>{};
 
     PrimitiveData out;
     out.material = primitive.material;
@@ -94,6 +138,8 @@ PrimitiveData decode_draco(const AccessorReader& r, const tinygltf::Primitive& p
         // glTF's v = 0 is the image's top row, sombra's (and OBJ's) the bottom.
         for (std::size_t i = 0; i < points; ++i) out.uvs[i] = {uvs[2 * i], 1.0f - uvs[2 * i + 1]};
     }
+    out.tangents = tangents_of(tangents);
+    out.colors = colors_of(colors, out.clamped_colors);
     out.indices.reserve(std::size_t{mesh->num_faces()} * 3);
     for (draco::FaceIndex f(0); f < mesh->num_faces(); ++f) {
         for (const draco::PointIndex& p : mesh->face(f)) {

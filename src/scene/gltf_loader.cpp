@@ -162,6 +162,17 @@ PrimitiveData read_primitive(const gltf::AccessorReader& r, const tinygltf::Prim
         // glTF's v = 0 is the image's top row; sombra's uvs (like OBJ's) put v = 0 at the bottom.
         for (std::size_t i = 0; i < n; ++i) out.uvs[i] = {uv[2 * i], 1.0f - uv[2 * i + 1]};
     }
+    if (attribute("TANGENT") >= 0) {
+        const std::vector<float> t =
+            read_floats(r, attribute("TANGENT"), gltf::Semantic::Tangent, "TANGENT of " + what);
+        if (t.size() / 4 != n) throw Error(r.file, what + ": TANGENT and POSITION differ in count");
+        out.tangents = gltf::tangents_of(t);
+    }
+    if (attribute("COLOR_0") >= 0) {
+        const std::vector<float> c = read_floats(r, attribute("COLOR_0"), gltf::Semantic::Color, "COLOR_0 of " + what);
+        if (c.size() / 4 != n) throw Error(r.file, what + ": COLOR_0 and POSITION differ in count");
+        out.colors = gltf::colors_of(c, out.clamped_colors);
+    }
     if (p.indices >= 0) {
         out.indices = read_indices(r, p.indices, n, "indices of " + what);
     } else {
@@ -176,6 +187,8 @@ void append_instance(MeshBuilder& b, const PrimitiveData& p, const Transform& wo
     const auto base = static_cast<std::uint32_t>(b.positions.size());
     const auto normal_base = static_cast<std::uint32_t>(b.normals.size());
     const auto uv_base = static_cast<std::uint32_t>(b.uvs.size());
+    const auto tangent_base = static_cast<std::uint32_t>(b.tangents.size());
+    const auto color_base = static_cast<std::uint32_t>(b.colors.size());
     for (const Vec3 v : p.positions) b.positions.push_back(transform_point(world, v));
     const Transform to_world = normal_transform(world);
     for (const Vec3 n : p.normals) b.normals.push_back(transform_vector(to_world, n));
@@ -183,14 +196,24 @@ void append_instance(MeshBuilder& b, const PrimitiveData& p, const Transform& wo
     // A mirroring node (negative determinant) reverses the winding; swapping
     // two corners restores it, so the dielectric's outside stays outside (§11).
     const bool mirrored = determinant3(world) < 0;
+    // Tangents are surface directions: they move with the linear part. The
+    // mirror also turns M·(n × t) into −(M⁻ᵀn × Mt) (up to positive
+    // factors), so the handedness flips for bitangent = w·(n × t) to keep
+    // following the mirrored surface.
+    for (const VertexTangent& t : p.tangents)
+        b.tangents.push_back({transform_vector(world, t.direction), mirrored ? -t.handedness : t.handedness});
+    b.colors.insert(b.colors.end(), p.colors.begin(), p.colors.end());
+    const auto corners = [](bool present, std::uint32_t first, const std::uint32_t (&c)[3], std::uint32_t (&out)[3]) {
+        for (int k = 0; k < 3; ++k) out[k] = first + c[k];
+        return present ? std::span<const std::uint32_t>(out) : std::span<const std::uint32_t>{};
+    };
     for (std::size_t t = 0; t + 2 < p.indices.size(); t += 3) {
         std::uint32_t c[3] = {p.indices[t], p.indices[t + 1], p.indices[t + 2]};
         if (mirrored) std::swap(c[1], c[2]);
-        const std::uint32_t pos[3] = {base + c[0], base + c[1], base + c[2]};
-        const std::uint32_t nor[3] = {normal_base + c[0], normal_base + c[1], normal_base + c[2]};
-        const std::uint32_t uv[3] = {uv_base + c[0], uv_base + c[1], uv_base + c[2]};
-        b.add_face(pos, p.normals.empty() ? std::span<const std::uint32_t>{} : nor, material,
-                   p.uvs.empty() ? std::span<const std::uint32_t>{} : uv);
+        std::uint32_t pos[3], nor[3], uv[3], tan[3], col[3];
+        b.add_face(corners(true, base, c, pos), corners(!p.normals.empty(), normal_base, c, nor), material,
+                   corners(!p.uvs.empty(), uv_base, c, uv), corners(!p.tangents.empty(), tangent_base, c, tan),
+                   corners(!p.colors.empty(), color_base, c, col));
     }
 }
 
@@ -257,6 +280,7 @@ LoadedMesh load_gltf(const std::filesystem::path& path, Diagnostics& diag) {
     std::optional<std::pair<int, ModelCamera>> camera;                  // the lowest camera index placed
     std::vector<PointLight> lights;
     bool any_triangles = false;
+    std::size_t clamped_colors = 0;
     for (const Instance& in : instances) {
         const tinygltf::Node& node = model.nodes[std::size_t(in.node)];
         if (node.skin >= 0) ++skipped["skins (the bind pose is used)"];
@@ -291,9 +315,10 @@ LoadedMesh load_gltf(const std::filesystem::path& path, Diagnostics& diag) {
                     throw Error(file, what + " names material " + std::to_string(p.material) + ", but the file has " +
                                           std::to_string(materials.materials.size()));
                 for (const auto& [name, accessor] : p.attributes)
-                    if (name == "TANGENT" || name == "COLOR_0" || name.rfind("TEXCOORD_", 0) == 0 ||
+                    if (name.rfind("TEXCOORD_", 0) == 0 || name.rfind("COLOR_", 0) == 0 ||
                         name.rfind("JOINTS_", 0) == 0 || name.rfind("WEIGHTS_", 0) == 0)
-                        if (name != "TEXCOORD_0") ++skipped["attribute " + name + " (not used yet)"];
+                        if (name != "TEXCOORD_0" && name != "COLOR_0")
+                            ++skipped["attribute " + name + " (not used yet)"];
                 if (!p.targets.empty()) ++skipped["morph targets"];
                 try {
                     const auto draco = p.extensions.find(gltf::kDraco);
@@ -304,6 +329,7 @@ LoadedMesh load_gltf(const std::filesystem::path& path, Diagnostics& diag) {
                     continue;
                 }
                 if (cache[i]->indices.size() % 3 != 0) ++skipped["trailing indices that make no whole triangle"];
+                clamped_colors += cache[i]->clamped_colors;
             }
             if (!cache[i]) continue;
             const std::uint32_t material = cache[i]->material < 0 ? kNoMaterial : std::uint32_t(cache[i]->material);
@@ -320,6 +346,8 @@ LoadedMesh load_gltf(const std::filesystem::path& path, Diagnostics& diag) {
         throw Error(file, "the default scene has no triangles to draw" + list);
     }
     for (const auto& [what, count] : skipped) diag.warn(file, "skipped " + what + " (" + std::to_string(count) + ")");
+    if (clamped_colors > 0)
+        diag.warn(file, "COLOR_0: " + std::to_string(clamped_colors) + " components outside [0, 1] clamped");
 
     LoadedMesh out = builder.finish(std::move(materials.materials), diag);
     materials.texture_refs.resize(out.materials.size());  // the default material, if added, has none

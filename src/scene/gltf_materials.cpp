@@ -1,5 +1,6 @@
 // glTF materials → sombra's `pbr` material (spec §11, §13), their texture
-// references (kept, not applied yet), and KHR_lights_punctual point lights.
+// references (as the file gives them; gltf_textures.cpp applies them), and
+// KHR_lights_punctual point lights.
 #include <algorithm>
 #include <cmath>
 

@@ -1,6 +1,7 @@
 // glTF materials' textures (spec §12, §13): the images their texture
 // references name, decoded by the texture module and wired into the
 // materials' texture slots.
+#include <cmath>
 #include <map>
 #include <span>
 
@@ -87,14 +88,35 @@ private:
     std::map<std::pair<int, TextureEncoding>, std::uint32_t> decoded_;
 };
 
+}  // namespace
+
+UvTransform uv_transform_of(Vec2 offset, float rotation, Vec2 scale) {
+    // glTF (v down): uv' = offset + R · (scale ⊙ uv), R = [[cos, sin], [−sin, cos]]
+    // (the extension's column-major GLSL mat3). sombra keeps w = 1 − v, so
+    //   u' = cos·sx·u − sin·sy·w + (ox + sin·sy)
+    //   w' = sin·sx·u + cos·sy·w + (1 − oy − cos·sy).
+    const double c = std::cos(double(rotation)), s = std::sin(double(rotation));
+    const double sx = scale.x, sy = scale.y, ox = offset.x, oy = offset.y;
+    UvTransform t;
+    t.uu = float(c * sx), t.uv = float(-s * sy), t.u0 = float(ox + s * sy);
+    t.vu = float(s * sx), t.vv = float(c * sy), t.v0 = float(1.0 - oy - c * sy);
+    return t;
+}
+
+namespace {
+
+bool finite_transform(const UvTransform& t) {
+    return std::isfinite(t.uu) && std::isfinite(t.uv) && std::isfinite(t.u0) && std::isfinite(t.vu) &&
+           std::isfinite(t.vv) && std::isfinite(t.v0);
+}
+
 // The texture slot for a glTF texture reference: its image decoded as
-// `encoding`, its sampler's wrap modes, channel `channel`.
+// `encoding`, its sampler's wrap modes, its KHR_texture_transform, channel `channel`.
 struct SlotMaker {
     const tinygltf::Model& model;
     const std::string& file;
     TextureTable& table;
     int& unapplied_texcoords;
-    int& unapplied_transforms;
 
     TextureRef operator()(const GltfTextureRef& ref, TextureEncoding encoding, std::uint8_t channel = 0) const {
         TextureRef slot;
@@ -103,12 +125,14 @@ struct SlotMaker {
             ++unapplied_texcoords;
             return slot;
         }
-        // An atlas read untransformed would paint the wrong part of the image: the constant is less wrong.
-        if (ref.offset.x != 0 || ref.offset.y != 0 || ref.rotation != 0 || ref.scale.x != 1 || ref.scale.y != 1) {
-            ++unapplied_transforms;
-            return slot;
-        }
         if (ref.image < 0) return slot;
+        if (ref.offset.x != 0 || ref.offset.y != 0 || ref.rotation != 0 || ref.scale.x != 1 || ref.scale.y != 1) {
+            slot.transformed = true;
+            slot.uv_transform = uv_transform_of(ref.offset, ref.rotation, ref.scale);
+            if (!finite_transform(slot.uv_transform))
+                throw Error(file, "texture " + std::to_string(ref.texture) + ": " + kTextureTransform +
+                                      " overflows (offset, rotation and scale give a non-finite matrix)");
+        }
         slot.texture = table.index(ref.image, encoding);
         slot.wrap_u = wrap_of(ref.wrap_s);
         slot.wrap_v = wrap_of(ref.wrap_t);
@@ -124,8 +148,8 @@ void apply_textures(const tinygltf::Model& model, const std::filesystem::path& p
                     std::vector<Texture>& textures, Diagnostics& diag) {
     const std::string file = path.string();
     TextureTable table(model, path, textures, diag);
-    int unapplied_texcoords = 0, unapplied_transforms = 0;
-    const SlotMaker slot{model, file, table, unapplied_texcoords, unapplied_transforms};
+    int unapplied_texcoords = 0;
+    const SlotMaker slot{model, file, table, unapplied_texcoords};
     for (std::size_t i = 0; i < refs.size() && i < materials.size(); ++i) {
         const GltfMaterialTextures& r = refs[i];
         MaterialTextures& t = materials[i].textures;
@@ -133,6 +157,7 @@ void apply_textures(const tinygltf::Model& model, const std::filesystem::path& p
         t.roughness = slot(r.metallic_roughness, TextureEncoding::Data, 1);
         t.metallic = slot(r.metallic_roughness, TextureEncoding::Data, 2);
         t.normal_map = slot(r.normal, TextureEncoding::Data);
+        t.normal_scale = r.normal.strength;
         t.ke = slot(r.emissive, TextureEncoding::Color);
         if (r.alpha_mode != AlphaMode::Opaque) {
             // Alpha is baseColorFactor's A times the base colour image's A
@@ -150,9 +175,6 @@ void apply_textures(const tinygltf::Model& model, const std::filesystem::path& p
     if (unapplied_texcoords > 0)
         diag.warn(file, std::to_string(unapplied_texcoords) +
                             " texture references use a TEXCOORD other than 0: not applied (their constants are used)");
-    if (unapplied_transforms > 0)
-        diag.warn(file, std::string(kTextureTransform) + " on " + std::to_string(unapplied_transforms) +
-                            " texture references is not supported yet: their constants are used");
 }
 
 }  // namespace sombra::gltf

@@ -4,7 +4,9 @@
 // alpha masks reach the right slots; missing and escaping image paths.
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
+#include <set>
 
 #include "core/base64.h"
 #include "scene/cutout.h"
@@ -166,6 +168,28 @@ TEST(GltfTextures, MaskCutsWhereFactorTimesImageAlphaIsBelowTheCutoff) {
     expect_cut_beyond(load("OPAQUE", 0.4, 0.1), 2.0f, "OPAQUE ignores alpha");
 }
 
+TEST(GltfTextures, VertexColourAlphaMultipliesTheMask) {
+    // No image: COLOR_0's alpha 1 at x = 0 and 0 at x = 1, times a factor of
+    // 0.8, is 0.8(1 − x); a MASK at 0.5 cuts x > 0.375.
+    TempFolder dir;
+    GltfFile f;
+    const int p = f.add_positions({{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}});
+    const std::vector<float> rgba = {1, 1, 1, 1, 1, 1, 1, 0, 1, 1, 1, 0, 1, 1, 1, 1};
+    const int colours = f.add_array(rgba, gltf_test::kFloat, 4, "VEC4");
+    f.add_mesh({{"POSITION", p}, {"COLOR_0", colours}}, f.add_indices({0, 1, 2, 0, 2, 3}), 0);
+    f.doc["materials"] = {{{"alphaMode", "MASK"}, {"pbrMetallicRoughness", {{"baseColorFactor", {1, 1, 1, 0.8}}}}}};
+    f.add_node({{"mesh", 0}});
+    f.set_scene({0});
+    f.save(dir.path / "c.gltf");
+    Diagnostics diag;
+    const LoadedMesh m = load_mesh_file(dir.path / "c.gltf", diag);
+    ASSERT_TRUE(m.mesh.has_colors());
+    for (int k = 0; k < 20; ++k) {
+        const float x = 0.02f + 0.05f * static_cast<float>(k);  // never within 0.005 of the edge
+        EXPECT_EQ(exists_at(m, x, 0.3f), x < 0.375f) << "x = " << x;
+    }
+}
+
 TEST(GltfTextures, MissingImageIsAWarningAndAPathOutOfTheFolderAnError) {
     TempFolder dir;
     textured_quad({{"uri", "no%20such.png"}}).save(dir.path / "m.gltf");
@@ -192,6 +216,131 @@ TEST(GltfTextures, ABrokenEmbeddedImageIsAnError) {
     textured_quad({{"uri", "data:image/png;base64," + base64_encode(junk)}}).save(dir.path / "m.gltf");
     Diagnostics diag;
     EXPECT_THROW(load_mesh_file(dir.path / "m.gltf", diag), Error);
+}
+
+// A 4×4 RGB image, texel (column i, row j from the top) = (10 + 60i, 10 + 60j, 128):
+// no two alike, so a texel seen names where the lookup went.
+void write_four_by_four_png(const std::filesystem::path& file) {
+    std::vector<std::uint16_t> values;
+    for (int j = 0; j < 4; ++j)
+        for (int i = 0; i < 4; ++i)
+            values.insert(values.end(), {std::uint16_t(10 + 60 * i), std::uint16_t(10 + 60 * j), 128});
+    testing::write_png_file(file, 4, 4, 3, 8, values);
+}
+
+// textured_quad with that image and `transform` as the base colour's KHR_texture_transform.
+GltfFile transformed_quad(const nlohmann::json& transform) {
+    GltfFile f = textured_quad({{"uri", "grid.png"}});
+    nlohmann::json& base_colour = f.doc["materials"][0]["pbrMetallicRoughness"]["baseColorTexture"];
+    base_colour["extensions"]["KHR_texture_transform"] = transform;
+    f.use_extension("KHR_texture_transform");
+    return f;
+}
+
+// Where glTF's uv lands under offset, rotation, scale: the extension's GLSL,
+// its column-major mat3s written out as they appear in the specification,
+// multiplied as 3×3 matrices (translation · rotation · scale).
+Vec2 spec_transformed_uv(Vec2 uv, Vec2 offset, double rotation, Vec2 scale) {
+    using Mat3 = std::array<std::array<double, 3>, 3>;  // [column][row], as GLSL
+    const double c = std::cos(rotation), s = std::sin(rotation);
+    const Mat3 translation{{{1, 0, 0}, {0, 1, 0}, {offset.x, offset.y, 1}}};
+    const Mat3 rotate{{{c, -s, 0}, {s, c, 0}, {0, 0, 1}}};
+    const Mat3 scaling{{{scale.x, 0, 0}, {0, scale.y, 0}, {0, 0, 1}}};
+    const auto multiply = [](const Mat3& a, const Mat3& b) {
+        Mat3 out{};
+        for (int col = 0; col < 3; ++col)
+            for (int row = 0; row < 3; ++row)
+                for (int k = 0; k < 3; ++k) out[col][row] += a[k][row] * b[col][k];
+        return out;
+    };
+    const Mat3 m = multiply(multiply(translation, rotate), scaling);
+    const double in[3] = {uv.x, uv.y, 1};
+    double out[2] = {0, 0};
+    for (int row = 0; row < 2; ++row)
+        for (int k = 0; k < 3; ++k) out[row] += m[k][row] * in[k];
+    return {float(out[0]), float(out[1])};
+}
+
+// The base colour texture of `m` read at glTF uv (u, v): through the loaded
+// reference, at sombra's stored (u, 1 − v), as the renderer reads it.
+Rgba lookup_at_gltf_uv(const LoadedMesh& m, Vec2 uv) {
+    return eval_texture_ref(m.textures, m.materials[0].textures.base_color, Vec2{uv.x, 1.0f - uv.y});
+}
+
+TEST(GltfTextures, TextureTransformMovesEachLookupWhereTheSpecificationSays) {
+    TempFolder dir;
+    write_four_by_four_png(dir.path / "grid.png");
+    // A quarter turn, unequal scales and an offset: every glTF uv below lands
+    // on a texel centre ((i + ½)/4, (j + ½)/4), a different one each time.
+    const Vec2 offset{0.125f, 0.875f}, scale{2.0f, 0.5f};
+    const double quarter_turn = std::acos(-1.0) / 2;
+    transformed_quad({{"offset", {offset.x, offset.y}}, {"rotation", quarter_turn}, {"scale", {scale.x, scale.y}}})
+        .save(dir.path / "m.gltf");
+    Diagnostics diag;
+    const LoadedMesh m = load_mesh_file(dir.path / "m.gltf", diag);
+    EXPECT_TRUE(diag.warnings.empty()) << diag.warnings.front();
+    ASSERT_TRUE(m.materials[0].textures.base_color.is_set());
+    EXPECT_TRUE(m.materials[0].textures.base_color.transformed);
+    std::set<std::pair<int, int>> seen;
+    for (const float u : {0.0f, 0.125f, 0.25f, 0.375f})
+        for (const float v : {0.0f, 0.5f, 1.0f, 1.5f}) {
+            const Vec2 target = spec_transformed_uv({u, v}, offset, quarter_turn, scale);
+            const int i = int(std::floor(target.x * 4)), j = int(std::floor(target.y * 4));
+            ASSERT_TRUE(i >= 0 && i < 4 && j >= 0 && j < 4) << "the test's uvs must stay inside the image";
+            ASSERT_NEAR(target.x * 4, float(i) + 0.5f, 1e-5f);
+            ASSERT_NEAR(target.y * 4, float(j) + 0.5f, 1e-5f);
+            seen.insert({i, j});
+            const Rgba got = lookup_at_gltf_uv(m, {u, v});
+            // Texel centres are exact up to the rounding of cos(π/2) and the sums.
+            EXPECT_NEAR(got[0], srgb_decode(unsigned(10 + 60 * i), 255), 1e-5f) << "glTF uv (" << u << ", " << v << ")";
+            EXPECT_NEAR(got[1], srgb_decode(unsigned(10 + 60 * j), 255), 1e-5f) << "glTF uv (" << u << ", " << v << ")";
+        }
+    EXPECT_EQ(seen.size(), 16u);
+
+    // Any rotation, between texel centres: the bilinear lookup at the
+    // specification's uv, written in sombra's convention (u, 1 − v).
+    const Vec2 offset2{-0.3f, 0.2f}, scale2{1.7f, -0.6f};
+    const double rotation2 = 0.3;
+    transformed_quad({{"offset", {offset2.x, offset2.y}}, {"rotation", rotation2}, {"scale", {scale2.x, scale2.y}}})
+        .save(dir.path / "n.gltf");
+    const LoadedMesh n = load_mesh_file(dir.path / "n.gltf", diag);
+    const Texture& grid = n.textures[n.materials[0].textures.base_color.texture];
+    for (const Vec2 uv : {Vec2{0.1f, 0.2f}, Vec2{0.7f, 0.35f}, Vec2{0.45f, 0.9f}, Vec2{0.95f, 0.05f}}) {
+        const Vec2 target = spec_transformed_uv(uv, offset2, rotation2, scale2);
+        const Rgba want = eval_texture(grid, {target.x, 1.0f - target.y});
+        const Rgba got = lookup_at_gltf_uv(n, uv);
+        // The texture changes by at most one texel step (~0.7) per 1/4 of uv;
+        // float rounding of the two matrix forms stays below 1e-6 in uv.
+        for (int c = 0; c < 3; ++c) EXPECT_NEAR(got[c], want[c], 1e-5f) << "glTF uv (" << uv.x << ", " << uv.y << ")";
+    }
+}
+
+TEST(GltfTextures, IdentityTextureTransformLooksUpExactlyAsNone) {
+    TempFolder dir;
+    write_four_by_four_png(dir.path / "grid.png");
+    transformed_quad({{"offset", {0, 0}}, {"rotation", 0}, {"scale", {1, 1}}}).save(dir.path / "identity.gltf");
+    GltfFile plain = textured_quad({{"uri", "grid.png"}});
+    plain.save(dir.path / "plain.gltf");
+    Diagnostics diag;
+    const LoadedMesh a = load_mesh_file(dir.path / "identity.gltf", diag);
+    const LoadedMesh b = load_mesh_file(dir.path / "plain.gltf", diag);
+    EXPECT_FALSE(a.materials[0].textures.base_color.transformed);
+    for (const Vec2 uv : {Vec2{0.1f, 0.2f}, Vec2{0.7f, 0.35f}, Vec2{0.4999f, 0.9f}, Vec2{-3.3f, 7.05f}}) {
+        EXPECT_EQ(lookup_at_gltf_uv(a, uv), lookup_at_gltf_uv(b, uv));
+        // ... and exactly the texture itself at the stored uv.
+        EXPECT_EQ(lookup_at_gltf_uv(b, uv), eval_texture(b.textures[0], Vec2{uv.x, 1.0f - uv.y}));
+    }
+}
+
+TEST(GltfTextures, ATexCoordOverrideInTheTransformIsStillNotApplied) {
+    TempFolder dir;
+    write_four_by_four_png(dir.path / "grid.png");
+    transformed_quad({{"offset", {0.5, 0}}, {"texCoord", 1}}).save(dir.path / "m.gltf");
+    Diagnostics diag;
+    const LoadedMesh m = load_mesh_file(dir.path / "m.gltf", diag);
+    EXPECT_FALSE(m.materials[0].textures.base_color.is_set());
+    ASSERT_EQ(diag.warnings.size(), 1u);
+    EXPECT_NE(diag.warnings[0].find("TEXCOORD other than 0"), std::string::npos) << diag.warnings[0];
 }
 
 }  // namespace

@@ -3,6 +3,7 @@
 // version-1 BRDF terms that the direct integrator evaluates).
 #pragma once
 
+#include <cmath>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -25,14 +26,33 @@ enum class MaterialType {
 // Marks a material parameter without a texture.
 inline constexpr std::uint32_t kNoTexture = 0xffffffffu;
 
+// An affine map of texture coordinates in sombra's convention (v = 0 at the
+// image's bottom row): uv ↦ (uu·u + uv·v + u0, vu·u + vv·v + v0). What a
+// glTF KHR_texture_transform becomes (gltf_textures.cpp converts it from
+// glTF's v-down convention); the default is the identity.
+struct UvTransform {
+    float uu = 1, uv = 0, u0 = 0;
+    float vu = 0, vv = 1, v0 = 0;
+};
+
+inline Vec2 apply_uv_transform(const UvTransform& t, Vec2 uv) {
+    return {t.uu * uv.x + t.uv * uv.y + t.u0, t.vu * uv.x + t.vv * uv.y + t.v0};
+}
+
 // A material parameter's image (spec §12): an index into the scene's texture
 // table (Scene::textures; LoadedMesh::textures for a mesh file's own), how
-// lookups wrap, and for a scalar parameter which channel it reads.
+// lookups wrap, for a scalar parameter which channel it reads, and where
+// the hit's uv is moved before the lookup.
 struct TextureRef {
     std::uint32_t texture = kNoTexture;
     TextureWrap wrap_u = TextureWrap::Repeat;
     TextureWrap wrap_v = TextureWrap::Repeat;
     std::uint8_t channel = 0;  // scalar parameters: 0 r, 1 g, 2 b, 3 a
+    // Lookups read at apply_uv_transform(uv_transform, uv) when set, else at
+    // the hit's uv itself (so untransformed lookups never pay for, nor round
+    // through, an identity map).
+    bool transformed = false;
+    UvTransform uv_transform{};
     bool is_set() const { return texture != kNoTexture; }
 };
 
@@ -43,8 +63,10 @@ struct MaterialTextures {
     TextureRef kd, ks, kr, kt, ke, base_color;  // RGB parameters (see kRgbTextureSlots)
     TextureRef roughness, metallic;             // scalar parameters (see kScalarTextureSlots)
     // Tangent-space normal map (OpenGL convention, +y toward increasing v):
-    // data, n = 2·texel − 1. Wins over the bump map.
+    // data, n = normalize((2·texel − 1) ⊙ (normal_scale, normal_scale, 1))
+    // (glTF normalTexture.scale; 1 elsewhere). Wins over the bump map.
     TextureRef normal_map;
+    float normal_scale = 1;
     // Height map (MTL bump): its first channel times bump_scale is a
     // displacement along n_s in world units (as pbrt's bump mapping).
     TextureRef bump_map;
@@ -52,7 +74,8 @@ struct MaterialTextures {
     // Cut-out (spec §12, §13, scene/cutout.h): when alpha_test is set, the
     // surface does not exist where its alpha is below alpha_cutoff. Alpha is
     // alpha_factor (glTF's baseColorFactor A) times the alpha texture's
-    // channel (the A channel, else the first) when one is set.
+    // channel (the A channel, else the first) when one is set, times the
+    // vertex colour's alpha (glTF COLOR_0) on triangles that have colours.
     bool alpha_test = false;
     TextureRef alpha;
     float alpha_cutoff = 0.5f;
@@ -109,20 +132,29 @@ inline constexpr ScalarTextureSlot kScalarTextureSlots[] = {
     {"metallic", &Material::metallic, &MaterialTextures::metallic},
 };
 
-// The image of `ref` (set) in `table` at uv: where every texture lookup of a
+// The image of `ref` (set) in `table` at the hit's uv, moved by the
+// reference's uv transform when it has one: where every texture lookup of a
 // material parameter goes, so that how a reference reads its image is decided
 // in one place.
 inline Rgba eval_texture_ref(const std::vector<Texture>& table, const TextureRef& ref, Vec2 uv) {
+    if (ref.transformed) uv = apply_uv_transform(ref.uv_transform, uv);
     return eval_texture(table[ref.texture], uv, ref.wrap_u, ref.wrap_v);
 }
 
 // eval_texture_ref filtered for a footprint `uv_footprint` wide in uv units
 // (render/ray_cone.h): the trilinear lookup of the reference's mip pyramid at
 // that footprint's level (scene/texture_mipmap.h). A footprint of 0, or a
-// texture without a pyramid, reads as eval_texture_ref, bit for bit.
+// texture without a pyramid, reads as eval_texture_ref, bit for bit. A
+// transformed reference moves uv as eval_texture_ref does and scales the
+// footprint by the transform's own scale, √|det|.
 inline Rgba eval_texture_ref_filtered(const std::vector<Texture>& table, const TextureRef& ref, Vec2 uv,
                                       float uv_footprint) {
     if (!(uv_footprint > 0.0f)) return eval_texture_ref(table, ref, uv);
+    if (ref.transformed) {
+        const UvTransform& m = ref.uv_transform;
+        uv = apply_uv_transform(m, uv);
+        uv_footprint *= std::sqrt(std::fabs(m.uu * m.vv - m.uv * m.vu));
+    }
     const Texture& t = table[ref.texture];
     return eval_texture_lod(t, uv, mip_lod(t, uv_footprint), ref.wrap_u, ref.wrap_v);
 }

@@ -23,6 +23,18 @@ using Index3 = std::array<std::uint32_t, 3>;
 inline constexpr std::uint32_t kNoNormal = 0xffffffffu;
 // Marks a triangle corner without a texture coordinate (the renderer uses (0, 0)).
 inline constexpr std::uint32_t kNoUv = 0xffffffffu;
+// Marks a triangle corner without a vertex tangent, and one without a vertex colour.
+inline constexpr std::uint32_t kNoTangent = 0xffffffffu;
+inline constexpr std::uint32_t kNoColor = 0xffffffffu;
+
+// A vertex tangent (glTF TANGENT): a unit direction in the surface along
+// which u increases, and the handedness that completes the normal map's
+// frame: bitangent = handedness · (n × direction), toward increasing v in
+// sombra's convention (spec §12). handedness is +1 or −1.
+struct VertexTangent {
+    Vec3 direction;
+    float handedness = 1;
+};
 
 struct TriangleMesh {
     std::vector<Vec3> positions;
@@ -42,6 +54,23 @@ struct TriangleMesh {
     std::vector<Vec2> uvs;
     std::vector<Index3> uv_indices;
 
+    // Vertex tangents (glTF TANGENT), the same convention: either both empty,
+    // or tangent_indices.size() == triangles.size() with each entry an index
+    // into tangents or kNoTangent. A normal map uses them where all three
+    // corners have one, else the triangle's uv parameterisation (spec §12).
+    // In world space (once assembled) as positions are.
+    std::vector<VertexTangent> tangents;
+    std::vector<Index3> tangent_indices;
+
+    // Vertex colours (glTF COLOR_0), linear RGBA in [0, 1] (alpha 1 where the
+    // file gives RGB), the same convention: either both empty, or
+    // color_indices.size() == triangles.size() with each entry an index into
+    // colors or kNoColor. RGB multiplies a pbr material's base colour where
+    // all three corners have one (render/shading.h); alpha is kept for the
+    // cut-outs, which multiply it into the material's alpha (spec §13).
+    std::vector<Rgba> colors;
+    std::vector<Index3> color_indices;
+
     // One material index per triangle: into the loader's material list for a
     // loaded file, into Scene::materials for the scene's world geometry.
     std::vector<std::uint32_t> material_ids;
@@ -49,6 +78,8 @@ struct TriangleMesh {
     std::size_t triangle_count() const { return triangles.size(); }
     bool has_normals() const { return !normal_indices.empty(); }
     bool has_uvs() const { return !uv_indices.empty(); }
+    bool has_tangents() const { return !tangent_indices.empty(); }
+    bool has_colors() const { return !color_indices.empty(); }
 };
 
 // The barycentric weights (b1, b2) of point y in the plane of `triangle`,
@@ -80,6 +111,34 @@ inline bool interpolate_uv(const TriangleMesh& mesh, std::uint32_t triangle, flo
     return true;
 }
 
+// The vertex colour at barycentric weights (b1, b2) of `triangle`, or false,
+// leaving `color` untouched, when some corner has none.
+inline bool interpolate_color(const TriangleMesh& mesh, std::uint32_t triangle, float b1, float b2, Rgba& color) {
+    if (!mesh.has_colors()) return false;
+    const Index3& ci = mesh.color_indices[triangle];
+    if (ci[0] == kNoColor || ci[1] == kNoColor || ci[2] == kNoColor) return false;
+    const Rgba &c0 = mesh.colors[ci[0]], &c1 = mesh.colors[ci[1]], &c2 = mesh.colors[ci[2]];
+    const float b0 = 1.0f - b1 - b2;
+    for (std::size_t k = 0; k < 4; ++k) color[k] = b0 * c0[k] + b1 * c1[k] + b2 * c2[k];
+    return true;
+}
+
+// The tangent at barycentric weights (b1, b2) of `triangle`: the blend of
+// its corners' directions (not normalised: a caller orthonormalises it
+// against its shading normal) and the handedness the weights favour; false,
+// leaving both untouched, when some corner has none.
+inline bool interpolate_tangent(const TriangleMesh& mesh, std::uint32_t triangle, float b1, float b2, Vec3& direction,
+                                float& handedness) {
+    if (!mesh.has_tangents()) return false;
+    const Index3& ti = mesh.tangent_indices[triangle];
+    if (ti[0] == kNoTangent || ti[1] == kNoTangent || ti[2] == kNoTangent) return false;
+    const VertexTangent &t0 = mesh.tangents[ti[0]], &t1 = mesh.tangents[ti[1]], &t2 = mesh.tangents[ti[2]];
+    const float b0 = 1.0f - b1 - b2;
+    direction = b0 * t0.direction + b1 * t1.direction + b2 * t2.direction;
+    handedness = b0 * t0.handedness + b1 * t1.handedness + b2 * t2.handedness < 0.0f ? -1.0f : 1.0f;
+    return true;
+}
+
 // A pinhole camera that a model file places (glTF), in the file's
 // coordinates: at `origin`, looking along `forward`, with `up` (both unit,
 // perpendicular), a vertical field of view, and the image aspect (width /
@@ -102,7 +161,8 @@ struct LoadedMesh {
     // What only glTF files carry (empty for OBJ and PLY): the point lights
     // and the first camera the file's scene places, in the file's
     // coordinates; and per material (parallel to `materials`, or empty) the
-    // texture references the renderer does not apply yet.
+    // glTF texture references as the file gives them (what the materials'
+    // TextureRefs were made from; alpha mode and cutoff for cut-outs).
     std::vector<PointLight> lights;
     std::optional<ModelCamera> camera;
     std::vector<GltfMaterialTextures> texture_refs;

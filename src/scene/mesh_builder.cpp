@@ -170,14 +170,68 @@ PolygonSplit triangulate_polygon(std::span<const Vec3> corners, PolygonScratch& 
 
 namespace {
 
-constexpr Index3 kNoNormals{kNoNormal, kNoNormal, kNoNormal};
-constexpr Index3 kNoUvs{kNoUv, kNoUv, kNoUv};
+// Every per-corner attribute marks a missing corner with the same value.
+static_assert(kNoNormal == kNoUv && kNoUv == kNoTangent && kNoTangent == kNoColor);
+constexpr Index3 kNoCorners{kNoNormal, kNoNormal, kNoNormal};
 // Marks a vertex or normal removed from the compacted arrays.
 constexpr std::uint32_t kRemoved = 0xffffffffu;
 
 // "1 face", "3 faces"; `many` for irregular plurals.
 std::string plural(std::size_t count, const std::string& one, const std::string& many = "") {
     return std::to_string(count) + " " + (count == 1 ? one : (many.empty() ? one + "s" : many));
+}
+
+// The corners of one optional per-corner attribute (normals, uvs, tangents,
+// colours) for a face of n corners: `corners`, or empty when it does not
+// give one per corner. The first face that has the attribute starts its
+// index array, the earlier triangles without.
+std::span<const std::uint32_t> start_corners(std::span<const std::uint32_t> corners, std::size_t n, bool& present,
+                                             std::vector<Index3>& indices, std::size_t triangles_before) {
+    if (corners.size() != n) return {};
+    if (!present) {
+        indices.assign(triangles_before, kNoCorners);
+        present = true;
+    }
+    return corners;
+}
+
+void push_corners(std::vector<Index3>& indices, bool present, std::span<const std::uint32_t> corners, std::uint32_t a,
+                  std::uint32_t b, std::uint32_t c) {
+    if (present) indices.push_back(corners.empty() ? kNoCorners : Index3{corners[a], corners[b], corners[c]});
+}
+
+// Scales the direction (direction_of(value)) of every value to unit length
+// and removes those of zero length or not finite, their corners then
+// without; the attribute goes when no corner keeps one. Returns how many
+// were removed.
+template <class T, class DirectionOf>
+std::size_t keep_unit_directions(std::vector<T>& values, std::vector<Index3>& indices, DirectionOf direction_of) {
+    std::vector<std::uint32_t> remap(values.size(), kRemoved);
+    std::size_t kept = 0;
+    for (std::size_t i = 0; i < values.size(); ++i) {
+        const Vec3 d = direction_of(values[i]);
+        // In double, so that tiny but valid directions do not underflow.
+        const double len = std::sqrt(double(d.x) * d.x + double(d.y) * d.y + double(d.z) * d.z);
+        if (!(len > 0) || !std::isfinite(len)) continue;
+        values[kept] = values[i];
+        direction_of(values[kept]) = Vec3{float(d.x / len), float(d.y / len), float(d.z / len)};
+        remap[i] = static_cast<std::uint32_t>(kept++);
+    }
+    const std::size_t removed = values.size() - kept;
+    values.resize(kept);
+
+    bool any_corner = false;
+    for (Index3& corners : indices) {
+        for (std::uint32_t& c : corners) {
+            if (c != kNoCorners[0]) c = c < remap.size() ? remap[c] : kNoCorners[0];
+            any_corner |= c != kNoCorners[0];
+        }
+    }
+    if (!any_corner) {
+        values.clear();
+        indices.clear();
+    }
+    return removed;
 }
 
 }  // namespace
@@ -189,33 +243,24 @@ void MeshBuilder::reserve_triangles(std::size_t count) {
 
 void MeshBuilder::add_face(std::span<const std::uint32_t> position_corners,
                            std::span<const std::uint32_t> normal_corners, std::uint32_t material,
-                           std::span<const std::uint32_t> uv_corners) {
+                           std::span<const std::uint32_t> uv_corners, std::span<const std::uint32_t> tangent_corners,
+                           std::span<const std::uint32_t> color_corners) {
     const std::size_t n = position_corners.size();
     if (n < 3) {
         ++skipped_small_faces;
         return;
     }
-    if (normal_corners.size() != n) normal_corners = {};
-    if (!normal_corners.empty() && !has_normals_) {
-        // First face with normals: the earlier triangles had none.
-        mesh_.normal_indices.assign(mesh_.triangles.size(), kNoNormals);
-        has_normals_ = true;
-    }
-    if (uv_corners.size() != n) uv_corners = {};
-    if (!uv_corners.empty() && !has_uvs_) {
-        mesh_.uv_indices.assign(mesh_.triangles.size(), kNoUvs);
-        has_uvs_ = true;
-    }
+    const std::size_t before = mesh_.triangles.size();
+    normal_corners = start_corners(normal_corners, n, has_normals_, mesh_.normal_indices, before);
+    uv_corners = start_corners(uv_corners, n, has_uvs_, mesh_.uv_indices, before);
+    tangent_corners = start_corners(tangent_corners, n, has_tangents_, mesh_.tangent_indices, before);
+    color_corners = start_corners(color_corners, n, has_colors_, mesh_.color_indices, before);
     auto emit = [&](std::uint32_t a, std::uint32_t b, std::uint32_t c) {
         mesh_.triangles.push_back({position_corners[a], position_corners[b], position_corners[c]});
-        if (has_normals_) {
-            mesh_.normal_indices.push_back(
-                normal_corners.empty() ? kNoNormals : Index3{normal_corners[a], normal_corners[b], normal_corners[c]});
-        }
-        if (has_uvs_) {
-            mesh_.uv_indices.push_back(uv_corners.empty() ? kNoUvs
-                                                          : Index3{uv_corners[a], uv_corners[b], uv_corners[c]});
-        }
+        push_corners(mesh_.normal_indices, has_normals_, normal_corners, a, b, c);
+        push_corners(mesh_.uv_indices, has_uvs_, uv_corners, a, b, c);
+        push_corners(mesh_.tangent_indices, has_tangents_, tangent_corners, a, b, c);
+        push_corners(mesh_.color_indices, has_colors_, color_corners, a, b, c);
         mesh_.material_ids.push_back(material);
     };
     if (n == 3) {
@@ -229,38 +274,15 @@ void MeshBuilder::add_face(std::span<const std::uint32_t> position_corners,
     for (const PolygonTriangle& t : split_) emit(t[0], t[1], t[2]);
 }
 
-void MeshBuilder::clean_normals(Diagnostics& diag) {
-    if (!has_normals_) {
-        mesh_.normals.clear();
-        return;
-    }
-    std::vector<Vec3>& normals_out = mesh_.normals;
-    std::vector<std::uint32_t> remap(normals_out.size(), kRemoved);
-    std::size_t kept = 0;
-    for (std::size_t i = 0; i < normals_out.size(); ++i) {
-        const Vec3 n = normals_out[i];
-        // In double, so that tiny but valid normals do not underflow.
-        const double len = std::sqrt(double(n.x) * n.x + double(n.y) * n.y + double(n.z) * n.z);
-        if (!(len > 0) || !std::isfinite(len)) continue;
-        const Vec3 unit{float(n.x / len), float(n.y / len), float(n.z / len)};
-        normals_out[kept] = unit;
-        remap[i] = static_cast<std::uint32_t>(kept++);
-    }
-    const std::size_t bad = normals_out.size() - kept;
-    normals_out.resize(kept);
-
-    bool any_normal = false;
-    for (Index3& corners : mesh_.normal_indices) {
-        for (std::uint32_t& c : corners) {
-            if (c != kNoNormal) c = c < remap.size() ? remap[c] : kNoNormal;
-            any_normal |= c != kNoNormal;
-        }
-    }
-    if (!any_normal) {
-        mesh_.normals.clear();
-        mesh_.normal_indices.clear();
-    }
-    if (bad > 0) diag.warn(where_, plural(bad, "normal") + " of zero length or not finite ignored");
+void MeshBuilder::clean_directions(Diagnostics& diag) {
+    if (!has_normals_) mesh_.normals.clear();
+    if (!has_tangents_) mesh_.tangents.clear();
+    const std::size_t bad_normals =
+        keep_unit_directions(mesh_.normals, mesh_.normal_indices, [](Vec3& n) -> Vec3& { return n; });
+    const std::size_t bad_tangents = keep_unit_directions(mesh_.tangents, mesh_.tangent_indices,
+                                                          [](VertexTangent& t) -> Vec3& { return t.direction; });
+    if (bad_normals > 0) diag.warn(where_, plural(bad_normals, "normal") + " of zero length or not finite ignored");
+    if (bad_tangents > 0) diag.warn(where_, plural(bad_tangents, "tangent") + " of zero length or not finite ignored");
 }
 
 void MeshBuilder::drop_non_finite_positions(Diagnostics& diag) {
@@ -278,23 +300,24 @@ void MeshBuilder::drop_non_finite_positions(Diagnostics& diag) {
     }
     pos.resize(kept);
 
-    const bool with_normals = mesh_.has_normals();
-    const bool with_uvs = mesh_.has_uvs();
+    // The per-corner attributes that are present follow their triangles.
+    std::vector<std::vector<Index3>*> per_corner;
+    for (std::vector<Index3>* indices :
+         {&mesh_.normal_indices, &mesh_.uv_indices, &mesh_.tangent_indices, &mesh_.color_indices})
+        if (!indices->empty()) per_corner.push_back(indices);
     std::size_t out = 0;
     for (std::size_t t = 0; t < mesh_.triangles.size(); ++t) {
         const Index3& tri = mesh_.triangles[t];
         const Index3 mapped{remap[tri[0]], remap[tri[1]], remap[tri[2]]};
         if (mapped[0] == kRemoved || mapped[1] == kRemoved || mapped[2] == kRemoved) continue;
         mesh_.triangles[out] = mapped;
-        if (with_normals) mesh_.normal_indices[out] = mesh_.normal_indices[t];
-        if (with_uvs) mesh_.uv_indices[out] = mesh_.uv_indices[t];
+        for (std::vector<Index3>* indices : per_corner) (*indices)[out] = (*indices)[t];
         mesh_.material_ids[out] = mesh_.material_ids[t];
         ++out;
     }
     const std::size_t dropped = mesh_.triangles.size() - out;
     mesh_.triangles.resize(out);
-    if (with_normals) mesh_.normal_indices.resize(out);
-    if (with_uvs) mesh_.uv_indices.resize(out);
+    for (std::vector<Index3>* indices : per_corner) indices->resize(out);
     mesh_.material_ids.resize(out);
     diag.warn(where_, "dropped " + plural(dropped, "triangle") + " touching " +
                           plural(bad_vertices, "vertex", "vertices") + " with non-finite (nan/inf) coordinates");
@@ -313,8 +336,11 @@ LoadedMesh MeshBuilder::finish(std::vector<Material> materials, Diagnostics& dia
     mesh_.normals = std::move(normals);
     mesh_.uvs = std::move(uvs);
     if (!has_uvs_) mesh_.uvs.clear();
+    mesh_.tangents = std::move(tangents);
+    mesh_.colors = std::move(colors);
+    if (!has_colors_) mesh_.colors.clear();
     const bool had_triangles = !mesh_.triangles.empty();
-    clean_normals(diag);
+    clean_directions(diag);
     drop_non_finite_positions(diag);
     if (mesh_.triangles.empty()) {
         throw Error(where_, had_triangles ? "no triangles left: every triangle touches a non-finite vertex"

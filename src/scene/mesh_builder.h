@@ -59,7 +59,9 @@ struct MeshBuilder {
     // The file's vertices and normals, in file order; the loader fills these.
     std::vector<Vec3> positions;
     std::vector<Vec3> normals;
-    std::vector<Vec2> uvs;  // texture coordinates, in file order
+    std::vector<Vec2> uvs;                 // texture coordinates, in file order
+    std::vector<VertexTangent> tangents;   // glTF only, like the rest
+    std::vector<Rgba> colors;              // glTF only, like the rest
 
     // Faces with fewer than 3 corners that the loader saw but could not add.
     std::size_t skipped_small_faces = 0;
@@ -70,12 +72,16 @@ struct MeshBuilder {
     // them, knowing where they came from); `normal_corners` empty when the
     // face has no normals, else one per corner, each < normals.size() or
     // kNoNormal; `material` an index into finish()'s list, or kNoMaterial.
-    // `uv_corners` likewise: empty, or one per corner, < uvs.size() or kNoUv.
+    // `uv_corners`, `tangent_corners` and `color_corners` likewise: empty, or
+    // one per corner, < uvs.size() (tangents, colors) or kNoUv (kNoTangent, kNoColor).
     void add_face(std::span<const std::uint32_t> position_corners, std::span<const std::uint32_t> normal_corners,
-                  std::uint32_t material, std::span<const std::uint32_t> uv_corners = {});
+                  std::uint32_t material, std::span<const std::uint32_t> uv_corners = {},
+                  std::span<const std::uint32_t> tangent_corners = {},
+                  std::span<const std::uint32_t> color_corners = {});
 
-    // The finished mesh. Normals are unit length; zero or non-finite ones are
-    // removed (their corners get kNoNormal). Vertices with a non-finite
+    // The finished mesh. Normals and tangent directions are unit length; zero
+    // or non-finite ones are removed (their corners get kNoNormal, kNoTangent).
+    // Vertices with a non-finite
     // coordinate are removed with every triangle touching them (positions
     // then no longer match the file's numbering). When a face has no
     // material, default_material() is appended. Warnings go to `diag`.
@@ -84,12 +90,14 @@ struct MeshBuilder {
 
 private:
     void drop_non_finite_positions(Diagnostics& diag);
-    void clean_normals(Diagnostics& diag);
+    void clean_directions(Diagnostics& diag);
 
     std::string where_;
     TriangleMesh mesh_;
     bool has_normals_ = false;
     bool has_uvs_ = false;
+    bool has_tangents_ = false;
+    bool has_colors_ = false;
     std::size_t overlap_fans_ = 0;
     PolygonScratch scratch_;
     std::vector<Vec3> corner_positions_;

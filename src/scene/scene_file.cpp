@@ -14,6 +14,7 @@
 #include <sstream>
 #include <utility>
 
+#include "scene/corner_attributes.h"
 #include "scene/mesh_file.h"
 #include "scene/scene_json.h"
 #include "scene/transform.h"
@@ -71,8 +72,8 @@ ObjectSpec read_object(const SceneJson& s, const Json& v, std::string_view point
 }
 
 // Appends one loaded mesh to the world geometry (capacity already reserved):
-// positions and normals to world space, texture coordinates as they are,
-// indices offset, materials remapped.
+// positions and the per-corner attributes to world space, indices offset,
+// materials remapped.
 void append_object(Scene& scene, const LoadedMesh& loaded, const ObjectSpec& spec, const SceneJson& s) {
     TriangleMesh& out = scene.geometry;
     const TriangleMesh& in = loaded.mesh;
@@ -93,67 +94,17 @@ void append_object(Scene& scene, const LoadedMesh& loaded, const ObjectSpec& spe
 
     // A mirroring transform (negative determinant) reverses every triangle's
     // winding; swapping two corners restores it, so the winding normal keeps
-    // its side of the surface (spec §11, "sides for glass"). The normal and
-    // uv corners swap with them.
+    // its side of the surface (spec §11, "sides for glass"). The normal, uv,
+    // tangent and colour corners swap with them (append_corner_attributes).
     const bool mirrored = determinant3(spec.transform) < 0;
-    const auto wound = [mirrored](Index3 t) {
-        if (mirrored) std::swap(t[1], t[2]);
-        return t;
-    };
-
     const std::uint32_t vertex_count = static_cast<std::uint32_t>(in.positions.size());
-    for (const Index3& t : in.triangles) {
+    for (Index3 t : in.triangles) {
         if (t[0] >= vertex_count || t[1] >= vertex_count || t[2] >= vertex_count)
             throw Error(mesh_name, "a triangle refers to a vertex that does not exist");
-        out.triangles.push_back(wound({t[0] + position_base, t[1] + position_base, t[2] + position_base}));
+        if (mirrored) std::swap(t[1], t[2]);
+        out.triangles.push_back({t[0] + position_base, t[1] + position_base, t[2] + position_base});
     }
-
-    // Normals: inverse transpose, renormalised; those that vanish or blow up are dropped.
-    const bool in_has_normals = in.has_normals() && in.normal_indices.size() == in.triangles.size();
-    if (in_has_normals || out.has_normals()) {
-        const std::size_t triangles_before = out.triangles.size() - in.triangles.size();
-        if (!out.has_normals()) out.normal_indices.assign(triangles_before, {kNoNormal, kNoNormal, kNoNormal});
-        if (!in_has_normals) {
-            out.normal_indices.insert(out.normal_indices.end(), in.triangles.size(), {kNoNormal, kNoNormal, kNoNormal});
-        } else {
-            const auto normal_base = static_cast<std::uint32_t>(out.normals.size());
-            const Transform to_world = normal_transform(spec.transform);
-            std::vector<bool> usable(in.normals.size());
-            for (std::size_t i = 0; i < in.normals.size(); ++i) {
-                const Vec3 n = transform_vector(to_world, in.normals[i]);
-                const float len = length(n);
-                usable[i] = len > 0 && std::isfinite(len);
-                out.normals.push_back(usable[i] ? n / len : Vec3{});
-            }
-            for (const Index3& corners : in.normal_indices) {
-                Index3 mapped;
-                for (int c = 0; c < 3; ++c) {
-                    const std::uint32_t n = corners[c];
-                    mapped[c] = n < usable.size() && usable[n] ? normal_base + n : kNoNormal;
-                }
-                out.normal_indices.push_back(wound(mapped));
-            }
-        }
-    }
-
-    // Texture coordinates: unchanged by the transform; indices offset, kNoUv kept.
-    const bool in_has_uvs = in.has_uvs() && in.uv_indices.size() == in.triangles.size();
-    if (in_has_uvs || out.has_uvs()) {
-        constexpr Index3 kNoUvs{kNoUv, kNoUv, kNoUv};
-        const std::size_t triangles_before = out.triangles.size() - in.triangles.size();
-        if (!out.has_uvs()) out.uv_indices.assign(triangles_before, kNoUvs);
-        if (!in_has_uvs) {
-            out.uv_indices.insert(out.uv_indices.end(), in.triangles.size(), kNoUvs);
-        } else {
-            const auto uv_base = static_cast<std::uint32_t>(out.uvs.size());
-            out.uvs.insert(out.uvs.end(), in.uvs.begin(), in.uvs.end());
-            for (const Index3& corners : in.uv_indices) {
-                Index3 mapped;
-                for (int c = 0; c < 3; ++c) mapped[c] = corners[c] < in.uvs.size() ? uv_base + corners[c] : kNoUv;
-                out.uv_indices.push_back(wound(mapped));
-            }
-        }
-    }
+    append_corner_attributes(out, in, spec.transform);
 
     if (spec.material) {
         out.material_ids.insert(out.material_ids.end(), in.triangles.size(), *spec.material);
@@ -271,8 +222,8 @@ Scene load_scene_text(const std::string& text, const fs::path& path, Diagnostics
     std::vector<std::size_t> mesh_of(specs.size());
     std::vector<std::size_t> last_use;
     std::map<fs::path, std::size_t> loaded_index;
-    std::size_t positions = 0, triangles = 0, normals = 0, uvs = 0;
-    bool any_normals = false, any_uvs = false;
+    std::size_t positions = 0, triangles = 0, normals = 0, uvs = 0, tangents = 0, colors = 0;
+    bool any_normals = false, any_uvs = false, any_tangents = false, any_colors = false;
     for (std::size_t i = 0; i < specs.size(); ++i) {
         const ObjectSpec& spec = specs[i];
         std::error_code ec;
@@ -293,6 +244,10 @@ Scene load_scene_text(const std::string& text, const fs::path& path, Diagnostics
         any_normals = any_normals || m.has_normals();
         uvs += m.uvs.size();
         any_uvs = any_uvs || m.has_uvs();
+        tangents += m.tangents.size();
+        any_tangents = any_tangents || m.has_tangents();
+        colors += m.colors.size();
+        any_colors = any_colors || m.has_colors();
     }
     for (const LoadedMesh& q : quad_meshes) {
         positions += q.mesh.positions.size();
@@ -300,7 +255,8 @@ Scene load_scene_text(const std::string& text, const fs::path& path, Diagnostics
     }
     // Indices are 32-bit; kNoNormal is reserved.
     constexpr std::size_t kMaxIndex = std::numeric_limits<std::uint32_t>::max() - 1;
-    if (positions > kMaxIndex || normals > kMaxIndex || uvs > kMaxIndex || triangles > kMaxIndex)
+    if (positions > kMaxIndex || normals > kMaxIndex || uvs > kMaxIndex || tangents > kMaxIndex ||
+        colors > kMaxIndex || triangles > kMaxIndex)
         json_fail(s, "/objects", "the scene has more than " + std::to_string(kMaxIndex) + " vertices or triangles");
 
     TriangleMesh& world = scene.geometry;
@@ -314,6 +270,14 @@ Scene load_scene_text(const std::string& text, const fs::path& path, Diagnostics
     if (any_uvs) {
         world.uvs.reserve(uvs);
         world.uv_indices.reserve(triangles);
+    }
+    if (any_tangents) {
+        world.tangents.reserve(tangents);
+        world.tangent_indices.reserve(triangles);
+    }
+    if (any_colors) {
+        world.colors.reserve(colors);
+        world.color_indices.reserve(triangles);
     }
     for (std::size_t i = 0; i < specs.size(); ++i) {
         // Point lights a glTF file places move with its object (§13).

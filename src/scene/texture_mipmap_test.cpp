@@ -5,6 +5,8 @@
 // levels around λ and are the bilinear lookup itself at λ <= 0.
 #include "scene/texture_mipmap.h"
 
+#include "scene/material.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -166,6 +168,27 @@ TEST(MipLookup, TrilinearBlendsTheTwoLevelsAroundLod) {
     float mean = 0;
     for (float v : values) mean += v;
     EXPECT_FLOAT_EQ(eval_texture_lod(t, {0.3f, 0.7f}, 7.0f)[0], mean / 64.0f);
+}
+
+TEST(MipLookup, TransformedReferencesMoveUvAndScaleTheFootprint) {
+    // A reference with KHR_texture_transform's scale 2 (uv' = 2·uv + offset)
+    // reads the pyramid at uv' and a footprint twice as wide in the image.
+    std::vector<float> values;
+    for (int i = 0; i < 64; ++i) values.push_back(static_cast<float>((i * 29) % 64) / 8.0f);
+    std::vector<Texture> table{make_texture(8, 8, 1, values)};
+    build_mip_pyramid(table[0]);
+    TextureRef ref;
+    ref.texture = 0;
+    ref.transformed = true;
+    ref.uv_transform = UvTransform{2, 0, 0.25f, 0, 2, -0.5f};
+    const Vec2 uv{0.3f, 0.45f}, moved = apply_uv_transform(ref.uv_transform, uv);
+    EXPECT_NEAR(moved.x, 0.85f, 1e-6f);
+    EXPECT_NEAR(moved.y, 0.4f, 1e-6f);
+    const float footprint = 0.3f;
+    EXPECT_EQ(eval_texture_ref_filtered(table, ref, uv, footprint)[0],
+              eval_texture_lod(table[0], moved, mip_lod(table[0], 2 * footprint))[0]);
+    // Footprint 0: the unfiltered transformed lookup, bit for bit.
+    EXPECT_EQ(eval_texture_ref_filtered(table, ref, uv, 0.0f)[0], eval_texture(table[0], moved)[0]);
 }
 
 }  // namespace

@@ -1,7 +1,6 @@
-// What a glTF material says about its textures (spec §12, §13), kept as plain
-// data for the texture module to apply. The glTF loader fills these; nothing
-// reads them yet: the images are not decoded and the renderer uses each
-// material's constant factors.
+// What a glTF material says about its textures (spec §12, §13), as plain
+// data: the glTF loader fills these from the file, and gltf_textures.cpp
+// turns them into the materials' texture slots (scene/material.h).
 #pragma once
 
 #include <string>
