@@ -47,6 +47,12 @@ std::string to_markdown(const Table& table) {
     return out;
 }
 
+std::string BenchQualities::label(AccelKind kind) const {
+    std::string name(accel_name(kind));
+    if (of(kind) == BuildQuality::High) name += " high";
+    return name;
+}
+
 std::vector<AccelKind> compared_accels() {
 #ifdef SOMBRA_HAVE_EMBREE
     return {AccelKind::Bvh, AccelKind::Embree};

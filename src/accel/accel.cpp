@@ -61,13 +61,29 @@ std::vector<std::string_view> available_accels() {
 #endif
 }
 
-Accel make_accel(const TriangleMesh& mesh, AccelKind kind) {
+std::optional<BuildQuality> parse_build_quality(std::string_view name) {
+    if (name == "fast") return BuildQuality::Fast;
+    if (name == "high") return BuildQuality::High;
+    return std::nullopt;
+}
+
+std::string_view build_quality_name(BuildQuality quality) {
+    return quality == BuildQuality::High ? "high" : "fast";
+}
+
+BvhBuildOptions bvh_build_options(BuildQuality quality) {
+    BvhBuildOptions options;
+    options.spatial_splits = quality == BuildQuality::High;
+    return options;
+}
+
+Accel make_accel(const TriangleMesh& mesh, AccelKind kind, BuildQuality quality) {
     Accel accel;
     accel.kind = kind;
     accel.mesh = &mesh;
-    if (kind == AccelKind::Bvh) accel.bvh = make_bvh(mesh);
+    if (kind == AccelKind::Bvh) accel.bvh = make_bvh(mesh, bvh_build_options(quality));
 #ifdef SOMBRA_HAVE_EMBREE
-    if (kind == AccelKind::Embree) accel.embree = make_embree_scene(mesh);
+    if (kind == AccelKind::Embree) accel.embree = make_embree_scene(mesh, quality == BuildQuality::High);
 #endif
     return accel;
 }

@@ -123,9 +123,9 @@ struct Collapser {
 
 }  // namespace
 
-Bvh make_bvh(const TriangleMesh& mesh) {
+Bvh make_bvh(const TriangleMesh& mesh, const BvhBuildOptions& options) {
     Bvh bvh;
-    const BinaryBvh binary = make_binary_bvh(mesh);
+    const BinaryBvh binary = make_binary_bvh(mesh, options);
     if (binary.nodes.empty()) return bvh;
 
     bvh.nodes.reserve(binary.triangle_order.size() / 16 + 1);  // about one node per seven leaves of three or four

@@ -7,6 +7,7 @@
 #include <new>
 #include <string>
 
+#include "accel/accel.h"
 #include "app/cli.h"
 #include "core/error.h"
 #include "render/lights.h"
@@ -36,6 +37,9 @@ RenderSettings resolve_settings(const RenderSettings& scene_settings, const CliO
 
 // The light choice --light-tree asks for.
 LightSelection light_selection(const CliOptions& options);
+
+// The build quality --build-quality asks for (kDefaultBuildQuality without it).
+BuildQuality build_quality(const CliOptions& options);
 
 // Prints the loader's warnings, and the one about the direct integrator
 // meeting version-2 content (spec §10), to stderr.
