@@ -6,7 +6,30 @@
 #include <cmath>
 #include <cstdio>
 
+#ifdef SOMBRA_HAVE_EMBREE
+#include "accel/embree_backend.h"
+#endif
+
 namespace sombra::bench {
+
+Accel make_compared_accel(const TriangleMesh& mesh, AccelKind kind, EmbreeQuality embree_quality) {
+#ifdef SOMBRA_HAVE_EMBREE
+    if (kind == AccelKind::Embree && embree_quality == EmbreeQuality::High) {
+        Accel accel;
+        accel.kind = kind;
+        accel.mesh = &mesh;
+        accel.embree = make_embree_scene(mesh, true);
+        return accel;
+    }
+#endif
+    return make_accel(mesh, kind);
+}
+
+std::string accel_label(AccelKind kind, EmbreeQuality embree_quality) {
+    std::string label(accel_name(kind));
+    if (kind != AccelKind::Bvh && kind != AccelKind::Brute && embree_quality == EmbreeQuality::High) label += " high";
+    return label;
+}
 
 double median(std::vector<double> values) {
     if (values.empty()) return 0;
@@ -45,12 +68,6 @@ std::string to_markdown(const Table& table) {
     out += line(rule);
     for (const std::vector<std::string>& row : table.rows) out += line(row);
     return out;
-}
-
-std::string BenchQualities::label(AccelKind kind) const {
-    std::string name(accel_name(kind));
-    if (of(kind) == BuildQuality::High) name += " high";
-    return name;
 }
 
 std::vector<AccelKind> compared_accels() {

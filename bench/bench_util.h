@@ -43,16 +43,15 @@ std::string to_markdown(const Table& table);
 // The backends the benchmarks compare: bvh first, then embree when built in.
 std::vector<AccelKind> compared_accels();
 
-// The build quality each backend is measured at (--bvh-quality and
-// --embree-quality): sombra's tree with or without spatial splits against
-// Embree's MEDIUM (its default) or HIGH.
-struct BenchQualities {
-    BuildQuality bvh = kDefaultBuildQuality;
-    BuildQuality embree = BuildQuality::Fast;
-    BuildQuality of(AccelKind kind) const { return kind == AccelKind::Bvh ? bvh : embree; }
-    // "bvh", "embree", or with " high" when that backend is built at High.
-    std::string label(AccelKind kind) const;
-};
+// How Embree builds in the benchmarks (--embree-quality): at its default
+// RTC_BUILD_QUALITY_MEDIUM, or at HIGH (its spatial-split builder), the
+// yardstick issue 10's render target names.
+enum class EmbreeQuality { Medium, High };
+
+// What make_accel builds, but Embree at `embree_quality`.
+Accel make_compared_accel(const TriangleMesh& mesh, AccelKind kind, EmbreeQuality embree_quality);
+// accel_name(kind), with " high" for Embree at High.
+std::string accel_label(AccelKind kind, EmbreeQuality embree_quality);
 
 // Pixel-by-pixel agreement of two films of the same size. Two pixels agree
 // when every channel does to 1e-3 relative (below what an 8-bit PNG shows,

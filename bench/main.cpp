@@ -17,13 +17,10 @@
 
 namespace {
 
-// --bvh-quality and --embree-quality, each fast or high.
-void add_quality_options(CLI::App& command, sombra::bench::BenchQualities& qualities) {
-    const std::map<std::string, sombra::BuildQuality> names{{"fast", sombra::BuildQuality::Fast},
-                                                            {"high", sombra::BuildQuality::High}};
-    command.add_option("--bvh-quality", qualities.bvh, "sombra's BVH: fast, or high (spatial splits)")
-        ->transform(CLI::CheckedTransformer(names));
-    command.add_option("--embree-quality", qualities.embree, "Embree: fast (RTC_BUILD_QUALITY_MEDIUM, its default) or high")
+void add_embree_quality_option(CLI::App& command, sombra::bench::EmbreeQuality& quality) {
+    using sombra::bench::EmbreeQuality;
+    const std::map<std::string, EmbreeQuality> names{{"medium", EmbreeQuality::Medium}, {"high", EmbreeQuality::High}};
+    command.add_option("--embree-quality", quality, "Embree's build quality: medium (its default) or high (spatial splits)")
         ->transform(CLI::CheckedTransformer(names));
 }
 
@@ -44,7 +41,7 @@ int main(int argc, char** argv) {
         ->capture_default_str();
     scenes->add_option("--width", scene_options.width, "Image width (overrides the scenes)");
     scenes->add_option("--height", scene_options.height, "Image height (overrides the scenes)");
-    add_quality_options(*scenes, scene_options.qualities);
+    add_embree_quality_option(*scenes, scene_options.embree_quality);
 
     int load_reps = 5;
     std::string obj_file;
@@ -80,20 +77,13 @@ int main(int argc, char** argv) {
     path->add_option("--max-depth", path_options.max_depth, "Most scattering events on a path")
         ->check(CLI::Range(0, 1024))
         ->capture_default_str();
-    add_quality_options(*path, path_options.qualities);
+    add_embree_quality_option(*path, path_options.embree_quality);
 
     int tree_reps = 5;
     std::vector<std::string> tree_files;
-    CLI::App* tree = app.add_subcommand("tree", "The BVH's tree at each build quality: SAH cost, size, build time");
+    CLI::App* tree = app.add_subcommand("tree", "The BVH's tree on scenes: SAH cost, size, build time");
     tree->add_option("scene", tree_files, "Scene files (.json)")->required()->check(CLI::ExistingFile);
-    tree->add_option("--reps", tree_reps, "Timed builds per quality (median reported)")
-        ->check(CLI::Range(1, 1000))
-        ->capture_default_str();
-    sombra::BvhBuildOptions tree_high = sombra::bvh_build_options(sombra::BuildQuality::High);
-    tree->add_option("--overlap", tree_high.spatial_split_overlap, "High: spatial splits where the children overlap by more than this fraction of the root's area")
-        ->capture_default_str();
-    tree->add_option("--budget", tree_high.spatial_split_budget, "High: extra references allowed, a fraction of the triangles")
-        ->capture_default_str();
+    tree->add_option("--reps", tree_reps, "Timed builds (median reported)")->check(CLI::Range(1, 1000))->capture_default_str();
 
     PathErrorOptions error_options;
     std::string error_file;
@@ -131,7 +121,7 @@ int main(int argc, char** argv) {
         }
         if (*growth) run_growth_bench(model_files, growth_options, std::cout);
         if (*path) run_path_bench(path_files, path_options, std::cout);
-        if (*tree) run_tree_bench(tree_files, tree_reps, tree_high, std::cout);
+        if (*tree) run_tree_bench(tree_files, tree_reps, std::cout);
         if (*path_error) run_path_error_bench(error_file, error_options, std::cout);
     } catch (const sombra::Error& e) {
         std::cerr << "sombra-bench: error: " << e.what() << '\n';

@@ -19,10 +19,10 @@ struct Round {
     RenderOutput output;
 };
 
-Round build_and_render(const Scene& scene, const RenderSettings& settings, AccelKind kind, BuildQuality quality) {
+Round build_and_render(const Scene& scene, const RenderSettings& settings, AccelKind kind, EmbreeQuality embree_quality) {
     Round round;
     const auto build_start = Clock::now();
-    const Accel accel = make_accel(scene.geometry, kind, quality);
+    const Accel accel = make_compared_accel(scene.geometry, kind, embree_quality);
     round.build_seconds = seconds_since(build_start);
     round.accel_bytes = accel_memory_bytes(accel);
 
@@ -37,8 +37,8 @@ Round build_and_render(const Scene& scene, const RenderSettings& settings, Accel
 // The radiance at the centres of sampled pixels, traced through the BVH and
 // through the brute-force loop (bench_util.h): they must agree to the last
 // bit in theory, and within compare_films' tolerance here.
-ImageAgreement direct_bvh_against_brute(const Scene& scene, const RenderSettings& settings, BuildQuality quality) {
-    const Accel bvh = make_accel(scene.geometry, AccelKind::Bvh, quality);
+ImageAgreement direct_bvh_against_brute(const Scene& scene, const RenderSettings& settings) {
+    const Accel bvh = make_accel(scene.geometry, AccelKind::Bvh);
     const Camera camera = make_camera(scene.camera, settings.width, settings.height);
     const LightSet lights = make_light_set(scene, make_constant_environment(scene.background), false);
     return bvh_against_brute(scene.geometry, bvh, settings.width, settings.height, 1.0 + double(scene.lights.size()), 64,
@@ -53,7 +53,7 @@ ImageAgreement direct_bvh_against_brute(const Scene& scene, const RenderSettings
 }  // namespace
 
 SceneMeasurement measure_scene(const Scene& scene, const RenderSettings& settings, int reps, const std::string& name,
-                               const BenchQualities& qualities) {
+                               EmbreeQuality embree_quality) {
     const std::vector<AccelKind> kinds = compared_accels();
     SceneMeasurement m;
     m.triangles = scene.geometry.triangle_count();
@@ -61,7 +61,7 @@ SceneMeasurement measure_scene(const Scene& scene, const RenderSettings& setting
     // The check, which also warms caches and thread pools for the rounds.
     std::vector<Film> films;
     for (const AccelKind kind : kinds) {
-        Round round = build_and_render(scene, settings, kind, qualities.of(kind));
+        Round round = build_and_render(scene, settings, kind, embree_quality);
         BackendTiming timing;
         timing.kind = kind;
         timing.rays = round.output.counters.camera_rays + round.output.counters.shadow_rays;
@@ -75,14 +75,14 @@ SceneMeasurement measure_scene(const Scene& scene, const RenderSettings& setting
         const ImageAgreement a = compare_films(films[0], films[k]);
         if (a.fraction() < m.agreement.fraction()) m.agreement = a;
         if (a.fraction() < kMinEqualFraction) {
-            throw Error(name, qualities.label(kinds[k]) + " and " + qualities.label(kinds[0]) +
+            throw Error(name, accel_label(kinds[k], embree_quality) + " and " + std::string(accel_name(kinds[0])) +
                                   " images differ in " + thousands(a.pixels - a.equal) + " of " +
                                   thousands(a.pixels) + " pixels (more than 0.1 %): not timing a wrong result");
         }
     }
     films.clear();
 
-    m.brute_agreement = direct_bvh_against_brute(scene, settings, qualities.bvh);
+    m.brute_agreement = direct_bvh_against_brute(scene, settings);
     if (m.brute_agreement.equal != m.brute_agreement.pixels) {
         const ImageAgreement& a = m.brute_agreement;
         throw Error(name, "bvh and brute disagree at " + thousands(a.pixels - a.equal) + " of " + thousands(a.pixels) +
@@ -93,7 +93,7 @@ SceneMeasurement measure_scene(const Scene& scene, const RenderSettings& setting
     for (int rep = 0; rep < reps; ++rep) {
         for (std::size_t i = 0; i < kinds.size(); ++i) {
             const std::size_t k = rep % 2 == 0 ? i : kinds.size() - 1 - i;
-            const Round round = build_and_render(scene, settings, kinds[k], qualities.of(kinds[k]));
+            const Round round = build_and_render(scene, settings, kinds[k], embree_quality);
             builds[k].push_back(round.build_seconds);
             renders[k].push_back(round.render_seconds);
         }

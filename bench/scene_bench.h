@@ -13,7 +13,7 @@ namespace sombra::bench {
 struct SceneBenchOptions {
     int reps = 5;
     std::optional<int> width, height;  // override the scenes' own image size
-    BenchQualities qualities;
+    EmbreeQuality embree_quality = EmbreeQuality::Medium;
 };
 
 // Measures each scene file (measure.h) and writes one Markdown table to

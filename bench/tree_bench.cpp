@@ -75,36 +75,27 @@ double binary_sah(const BinaryBvh& binary) {
 
 }  // namespace
 
-void run_tree_bench(const std::vector<std::string>& scene_files, int reps, const BvhBuildOptions& high,
-                    std::ostream& out) {
+void run_tree_bench(const std::vector<std::string>& scene_files, int reps, std::ostream& out) {
     Table table;
-    table.header = {"scene", "triangles", "quality", "build s", "references", "nodes", "blocks", "MB", "SAH cost", "binary SAH cost"};
-    table.right = {false, true, false, true, true, true, true, true, true, true};
-    const BuildQuality qualities[2] = {BuildQuality::Fast, BuildQuality::High};
-    const BvhBuildOptions options[2] = {bvh_build_options(BuildQuality::Fast), high};
+    table.header = {"scene", "triangles", "build s", "references", "nodes", "blocks", "MB", "SAH cost", "binary SAH cost"};
+    table.right = {false, true, true, true, true, true, true, true, true};
     for (const std::string& file : scene_files) {
         const std::string name = std::filesystem::path(file).stem().string();
-        std::cerr << "sombra-bench: " << name << ": loading, then " << reps << " builds per quality\n";
+        std::cerr << "sombra-bench: " << name << ": loading, then " << reps << " builds\n";
         Diagnostics diag;
         const Scene scene = load_scene_file(file, diag);
-        std::vector<double> seconds_of[2];
+        std::vector<double> build_seconds;
         for (int rep = 0; rep < reps; ++rep) {
-            for (int i = 0; i < 2; ++i) {
-                const int q = rep % 2 == 0 ? i : 1 - i;
-                const auto start = Clock::now();
-                const Bvh bvh = make_bvh(scene.geometry, options[q]);
-                seconds_of[q].push_back(seconds_since(start));
-            }
+            const auto start = Clock::now();
+            const Bvh bvh = make_bvh(scene.geometry);
+            build_seconds.push_back(seconds_since(start));
         }
-        for (int q = 0; q < 2; ++q) {
-            const Bvh bvh = make_bvh(scene.geometry, options[q]);
-            const TreeShape shape = tree_shape(bvh);
-            table.rows.push_back({q == 0 ? name : "", q == 0 ? thousands(scene.geometry.triangle_count()) : "",
-                                  std::string(build_quality_name(qualities[q])), seconds(median(seconds_of[q])),
-                                  thousands(shape.references), thousands(bvh.nodes.size()),
-                                  thousands(bvh.blocks.size()), fixed(double(bvh_memory_bytes(bvh)) / 1e6, 2),
-                                  fixed(shape.sah, 2), fixed(binary_sah(make_binary_bvh(scene.geometry, options[q])), 2)});
-        }
+        const Bvh bvh = make_bvh(scene.geometry);
+        const TreeShape shape = tree_shape(bvh);
+        table.rows.push_back({name, thousands(scene.geometry.triangle_count()), seconds(median(build_seconds)),
+                              thousands(shape.references), thousands(bvh.nodes.size()), thousands(bvh.blocks.size()),
+                              fixed(double(bvh_memory_bytes(bvh)) / 1e6, 2), fixed(shape.sah, 2),
+                              fixed(binary_sah(make_binary_bvh(scene.geometry)), 2)});
     }
     out << to_markdown(table);
 }

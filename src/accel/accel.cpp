@@ -61,29 +61,13 @@ std::vector<std::string_view> available_accels() {
 #endif
 }
 
-std::optional<BuildQuality> parse_build_quality(std::string_view name) {
-    if (name == "fast") return BuildQuality::Fast;
-    if (name == "high") return BuildQuality::High;
-    return std::nullopt;
-}
-
-std::string_view build_quality_name(BuildQuality quality) {
-    return quality == BuildQuality::High ? "high" : "fast";
-}
-
-BvhBuildOptions bvh_build_options(BuildQuality quality) {
-    BvhBuildOptions options;
-    options.spatial_splits = quality == BuildQuality::High;
-    return options;
-}
-
-Accel make_accel(const TriangleMesh& mesh, AccelKind kind, BuildQuality quality) {
+Accel make_accel(const TriangleMesh& mesh, AccelKind kind) {
     Accel accel;
     accel.kind = kind;
     accel.mesh = &mesh;
-    if (kind == AccelKind::Bvh) accel.bvh = make_bvh(mesh, bvh_build_options(quality));
+    if (kind == AccelKind::Bvh) accel.bvh = make_bvh(mesh);
 #ifdef SOMBRA_HAVE_EMBREE
-    if (kind == AccelKind::Embree) accel.embree = make_embree_scene(mesh, quality == BuildQuality::High);
+    if (kind == AccelKind::Embree) accel.embree = make_embree_scene(mesh);
 #endif
     return accel;
 }

@@ -42,24 +42,6 @@ std::string_view accel_name(AccelKind kind);
 // Names accepted by parse_accel_kind, in the order to list them to users.
 std::vector<std::string_view> available_accels();
 
-// How much build time to spend for a faster tree. Fast: sombra's BVH with
-// object splits only; Embree at its default RTC_BUILD_QUALITY_MEDIUM. High:
-// sombra's BVH with spatial splits (BvhBuildOptions); Embree at
-// RTC_BUILD_QUALITY_HIGH. Brute builds nothing either way.
-enum class BuildQuality { Fast, High };
-
-// The quality make_accel uses unless told otherwise: the faster of the two
-// for building and rendering the dragon at 1 spp (docs/performance.md,
-// optimisation log P7).
-inline constexpr BuildQuality kDefaultBuildQuality = BuildQuality::Fast;
-
-// "fast" or "high"; nullopt for anything else.
-std::optional<BuildQuality> parse_build_quality(std::string_view name);
-std::string_view build_quality_name(BuildQuality quality);
-
-// The BVH build options that `quality` stands for.
-BvhBuildOptions bvh_build_options(BuildQuality quality);
-
 struct EmbreeScene;  // accel/embree_backend.h
 
 struct Accel {
@@ -74,9 +56,8 @@ struct Accel {
 // Builds the structure for `mesh` (world space). The mesh must stay alive and
 // unchanged while the Accel is used. Brute builds nothing; Bvh builds in
 // parallel (TBB) and deterministically: the same tree for any thread count.
-// Embree builds its own BVH (and may throw Error("embree", ...)). The
-// quality changes the trees, never the hits.
-Accel make_accel(const TriangleMesh& mesh, AccelKind kind, BuildQuality quality = kDefaultBuildQuality);
+// Embree builds its own BVH (and may throw Error("embree", ...)).
+Accel make_accel(const TriangleMesh& mesh, AccelKind kind);
 
 // Closest hit with 0 < t < ray.tmax (tmax itself excluded). Returns false and
 // leaves `hit` untouched when nothing is hit. Between hits at exactly the same

@@ -90,26 +90,6 @@ inline std::vector<Ray> random_rays(const TriangleMesh& mesh, int count, std::ui
     return rays;
 }
 
-// Spatial splits at their most aggressive: tried at every node whose object
-// split's children overlap at all (α = 0), with room for as many extra
-// references as there are triangles.
-inline BvhBuildOptions aggressive_spatial_splits() {
-    BvhBuildOptions options;
-    options.spatial_splits = true;
-    options.spatial_split_overlap = 0.0f;
-    options.spatial_split_budget = 1.0f;
-    return options;
-}
-
-// A BVH accel built with `options` (make_accel offers only the two qualities).
-inline Accel make_bvh_accel(const TriangleMesh& mesh, const BvhBuildOptions& options) {
-    Accel accel;
-    accel.kind = AccelKind::Bvh;
-    accel.mesh = &mesh;
-    accel.bvh = make_bvh(mesh, options);
-    return accel;
-}
-
 // Traces every ray with both backends; counts hits and any difference in
 // (hit?, triangle, t, b1, b2) or in occluded(), describing the first.
 struct Comparison {
@@ -135,10 +115,9 @@ inline std::string describe(bool found, const Hit& hit) {
     return out.str();
 }
 
-inline Comparison compare_with_brute(const TriangleMesh& mesh, const std::vector<Ray>& rays,
-                                     const BvhBuildOptions& options = {}) {
+inline Comparison compare_with_brute(const TriangleMesh& mesh, const std::vector<Ray>& rays) {
     const Accel brute = make_accel(mesh, AccelKind::Brute);
-    const Accel bvh = make_bvh_accel(mesh, options);
+    const Accel bvh = make_accel(mesh, AccelKind::Bvh);
     Comparison result;
     for (const Ray& ray : rays) {
         Hit want, got;

@@ -1,6 +1,5 @@
 // sombra's own bounding volume hierarchy: built as a binary tree with binned
-// SAH (Wald 2007, bvh_build.cpp; optionally with spatial splits,
-// bvh_spatial_split.cpp), collapsed into an 8-wide tree of 256-byte
+// SAH (Wald 2007, bvh_build.cpp), collapsed into an 8-wide tree of 256-byte
 // nodes (bvh_collapse.cpp) and traversed iteratively with AVX box tests,
 // nearest child first (bvh.cpp).
 #pragma once
@@ -77,27 +76,11 @@ struct Bvh {
     TriangleBlockArray blocks;   // the leaves' triangles, each leaf's blocks contiguous
 };
 
-// How make_bvh builds its binary tree before the collapse.
-struct BvhBuildOptions {
-    // Spatial splits (SBVH, Stich et al. 2009): a node may be cut at a plane,
-    // the triangles crossing it going to both sides, each with the box of its
-    // part there. A triangle may then sit in several leaves.
-    bool spatial_splits = false;
-    // Tried only at nodes whose best object split leaves children that
-    // overlap by more than this fraction of the root's surface area (Stich's α).
-    float spatial_split_overlap = 1e-5f;
-    // At most this fraction of the triangle count in extra references, over
-    // the whole tree (Embree's split factor 1.3 is 0.3).
-    float spatial_split_budget = 0.3f;
-};
-
 // Builds the tree over every triangle of `mesh` that can be hit: triangles
 // with an out-of-range index, a non-finite corner or zero area are left out
-// (they never hit); every other one is in at least one leaf (in several
-// with spatial splits, each leaf's box then holding the part of it that
-// leaf was given). Deterministic: the same tree for any number of threads.
-// Subtrees above ~2k references are built in parallel with TBB.
-Bvh make_bvh(const TriangleMesh& mesh, const BvhBuildOptions& options = {});
+// (they never hit). Deterministic: the same tree for any number of threads.
+// Subtrees above ~2k triangles are built in parallel with TBB.
+Bvh make_bvh(const TriangleMesh& mesh);
 
 // Closest hit with 0 < t < ray.tmax, ties at equal t going to the lower
 // triangle index (see accel.h). Returns false and leaves `hit` untouched when

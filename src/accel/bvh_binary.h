@@ -5,7 +5,6 @@
 #include <cstdint>
 #include <vector>
 
-#include "accel/bvh.h"
 #include "core/vec3.h"
 #include "scene/mesh.h"
 
@@ -23,14 +22,11 @@ struct BinaryBvh {
     // nodes[0] is the root, children in adjacent pairs; sparse (slots no
     // node refers to are unused); empty when no triangle can be hit.
     std::vector<BvhNode> nodes;
-    // Leaf entries, indices into TriangleMesh::triangles; with spatial
-    // splits a triangle may appear in several leaves, and entries no leaf
-    // refers to are unused.
-    std::vector<std::uint32_t> triangle_order;
+    std::vector<std::uint32_t> triangle_order;  // leaf entries, indices into TriangleMesh::triangles
 };
 
 // Binned SAH over every triangle of `mesh` that can be hit (see make_bvh).
 // Deterministic: the same tree for any number of threads.
-BinaryBvh make_binary_bvh(const TriangleMesh& mesh, const BvhBuildOptions& options);
+BinaryBvh make_binary_bvh(const TriangleMesh& mesh);
 
 }  // namespace sombra

@@ -1,26 +1,16 @@
 // make_bvh: binned SAH build (Wald, "On fast construction of SAH-based bounding
 // volume hierarchies", 2007) over an array of triangle references that is
-// partitioned in place, subtrees above kParallelRefs built in parallel; with
-// BvhBuildOptions::spatial_splits, also spatial splits (bvh_spatial_split.h)
-// where the object split's children overlap much.
-//
-// The reference array has room for the spatial splits' extra references: a
-// node owns refs[begin, capacity_end), of which [begin, end) are in use, and
-// a split shares its spare room out to the children in proportion to their
-// references. So the budget is fixed at the root and memory cannot grow
-// past it; with spatial splits off there is no spare room at all.
+// partitioned in place, subtrees above kParallelRefs built in parallel.
 //
 // Determinism: every decision depends only on the references of the node
-// being split and its room, and a subtree with room for n references writes
-// only to node slots reserved for it in advance (a binary tree with n
-// leaves or fewer has at most 2n − 1 nodes), so the tree is the same for any
-// number of threads. The slots stay sparse: the collapse into the wide tree
-// reads them as they are.
+// being split, and a subtree of n references writes only to node slots
+// reserved for it in advance (a binary tree with n leaves or fewer has at most
+// 2n − 1 nodes), so the tree is the same for any number of threads. The
+// slots stay sparse: the collapse into the wide tree reads them as they are.
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdint>
-#include <cstring>
 #include <limits>
 #include <utility>
 #include <vector>
@@ -33,19 +23,9 @@
 
 #include "accel/bvh.h"
 #include "accel/bvh_binary.h"
-#include "accel/bvh_build_refs.h"
-#include "accel/bvh_spatial_split.h"
 
 namespace sombra {
 namespace {
-
-using bvh_build::blocks_of;
-using bvh_build::Box;
-using bvh_build::BoxRows;
-using bvh_build::kInf;
-using bvh_build::PrimRef;
-using bvh_build::RefRange;
-using bvh_build::SpatialSplit;
 
 constexpr int kBins = 32;
 // Subtrees with more references than this build their two halves in parallel.
@@ -56,6 +36,60 @@ static_assert(kBvhSahMaxDepth + 29 < kBvhMaxDepth, "traversal stacks must hold t
 // triangles (TriangleBlock: a leaf of 1 to 4 triangles costs the same).
 constexpr float kTraversalCost = 1.0f;
 constexpr float kIntersectionCost = 1.0f;
+constexpr float kInf = std::numeric_limits<float>::infinity();
+
+struct Box {
+    Vec3 bmin{kInf};
+    Vec3 bmax{-kInf};
+
+    void grow(Vec3 p) { bmin = min(bmin, p); bmax = max(bmax, p); }
+    void grow(const Box& b) { bmin = min(bmin, b.bmin); bmax = max(bmax, b.bmax); }
+    // Half the surface area: the SAH only compares areas. 0 for an empty box.
+    float half_area() const {
+        if (!(bmin.x <= bmax.x)) return 0.0f;
+        const Vec3 e = bmax - bmin;
+        return e.x * e.y + e.y * e.z + e.z * e.x;
+    }
+};
+
+// One triangle to place: its bounds and its index in the mesh. The in-place
+// partition moves these small records, so binning reads them sequentially
+// instead of chasing indices into the mesh. 32 bytes, aligned, so that each
+// corner of the box loads as one SSE row (lane 3 is not used).
+struct alignas(16) PrimRef {
+    Vec3 bmin;
+    std::uint32_t triangle = 0;
+    Vec3 bmax;
+    float unused = 0;
+    Box box() const { return {bmin, bmax}; }
+    // Twice the bounds' centroid (saves a multiply; only order matters).
+    Vec3 centroid2() const { return bmin + bmax; }
+    __m128 lo() const { return _mm_load_ps(&bmin.x); }
+    __m128 hi() const { return _mm_load_ps(&bmax.x); }
+};
+static_assert(sizeof(PrimRef) == 32);
+
+// A box as two SSE rows (lane 3 unused), grown with one min and one max.
+struct BoxRows {
+    __m128 lo = _mm_set1_ps(kInf);
+    __m128 hi = _mm_set1_ps(-kInf);
+    void grow(__m128 l, __m128 h) { lo = _mm_min_ps(lo, l); hi = _mm_max_ps(hi, h); }
+    void grow(__m128 p) { grow(p, p); }
+    Box box() const {
+        alignas(16) float l[4], h[4];
+        _mm_store_ps(l, lo);
+        _mm_store_ps(h, hi);
+        return {{l[0], l[1], l[2]}, {h[0], h[1], h[2]}};
+    }
+};
+
+// A node's references, refs[begin, end), with their bounds and the bounds of
+// their (doubled) centroids.
+struct RefRange {
+    std::uint32_t begin = 0, end = 0;
+    Box bounds, centroids;
+    std::uint32_t count() const { return end - begin; }
+};
 
 struct Split {
     int axis = -1;      // -1: no SAH split found
@@ -63,6 +97,9 @@ struct Split {
     float cost = kInf;  // sum over both sides of half_area · blocks_of(count)
     Box left_bounds, right_bounds;
 };
+
+// The blocks of four that `count` triangles fill, as a cost factor.
+float blocks_of(std::uint32_t count) { return static_cast<float>((count + 3) / 4); }
 
 // The bin of centroid coordinate c; NaN and overflow land in the end bins.
 int bin_of(float c, float cmin, float scale, int bins) {
@@ -77,18 +114,19 @@ int bin_count(std::uint32_t refs) { return refs < kBins ? static_cast<int>(refs)
 struct Builder {
     std::vector<PrimRef>& refs;
     std::vector<BvhNode>& slots;  // sparse: see the file comment
-    const TriangleMesh& mesh;     // spatial splits clip against the triangles' corners
-    bool spatial_splits = false;
-    // Spatial splits are tried where the object split's children overlap by
-    // more than this half area (α times the root's, Stich's criterion).
-    float min_spatial_overlap = kInf;
 
     RefRange measure(std::uint32_t begin, std::uint32_t end) const {
-        return bvh_build::measure_refs(refs.data(), begin, end);
+        BoxRows bounds, centroids;
+        for (std::uint32_t i = begin; i < end; ++i) {
+            const __m128 lo = refs[i].lo(), hi = refs[i].hi();
+            bounds.grow(lo, hi);
+            centroids.grow(_mm_add_ps(lo, hi));
+        }
+        return {begin, end, bounds.box(), centroids.box()};
     }
 
     // Fills slots[node] for `range`. Its descendants, if any, go to slots
-    // [free, free + 2·capacity − 2).
+    // [free, free + 2·count − 2).
     void build(std::uint32_t node, const RefRange& range, std::uint32_t free, int depth) {
         BvhNode& out = slots[node];
         out.bmin = range.bounds.bmin;
@@ -102,7 +140,7 @@ struct Builder {
         out.left_or_first = free;
         out.count = 0;
         const std::uint32_t left_free = free + 2;
-        const std::uint32_t right_free = left_free + 2 * left.capacity() - 2;
+        const std::uint32_t right_free = left_free + 2 * left.count() - 2;
         auto build_left = [&] { build(free, left, left_free, depth + 1); };
         auto build_right = [&] { build(free + 1, right, right_free, depth + 1); };
         if (range.count() > kParallelRefs) {
@@ -113,9 +151,8 @@ struct Builder {
         }
     }
 
-    // Reorders the range's references into two non-empty halves, each with
-    // its share of the range's room, or returns false when the node should
-    // be a leaf.
+    // Reorders the range's references into two non-empty halves, or returns
+    // false when the node should be a leaf.
     bool split(const RefRange& range, int depth, RefRange& left, RefRange& right) {
         const std::uint32_t count = range.count();
         // One block's worth: the SAH below would choose a leaf anyway (a leaf
@@ -131,59 +168,16 @@ struct Builder {
             if (may_be_leaf) return false;
             return median_split(range, left, right);
         }
-        SpatialSplit spatial;
-        if (spatial_splits && range.spare() > 0 &&
-            bvh_build::intersection(best.left_bounds, best.right_bounds).half_area() > min_spatial_overlap) {
-            spatial = bvh_build::find_spatial_split(refs.data(), range, mesh);
-        }
         // Costs are scaled by the node's half area, which spares a division
         // (and a zero area gives "leaf", not NaN).
         const float area = range.bounds.half_area();
         const float leaf_cost = kIntersectionCost * blocks_of(count) * area;
-        const float split_cost = kTraversalCost * area + kIntersectionCost * std::min(best.cost, spatial.cost);
+        const float split_cost = kTraversalCost * area + kIntersectionCost * best.cost;
         if (may_be_leaf && leaf_cost <= split_cost) return false;
 
-        if (spatial.cost < best.cost && spatial_partition(range, spatial, left, right)) return true;
         partition(range, best, left, right);
         // Binning guarantees both sides are non-empty; stay safe regardless.
         if (left.count() == 0 || right.count() == 0) return median_split(range, left, right);
-        share_room(range, left, right);
-        return true;
-    }
-
-    // Gives the children the range's spare room in proportion to their
-    // references: the left keeps its place and room after it, the right's
-    // references move up to start where that room ends.
-    void share_room(const RefRange& range, RefRange& left, RefRange& right) {
-        const std::uint64_t used = std::uint64_t{left.count()} + right.count();
-        const std::uint64_t spare = range.capacity() - used;
-        const auto left_room = static_cast<std::uint32_t>(spare * left.count() / used);
-        left.capacity_end = left.end + left_room;
-        const std::uint32_t right_count = right.count();
-        if (right.begin != left.capacity_end) {
-            std::memmove(refs.data() + left.capacity_end, refs.data() + right.begin, right_count * sizeof(PrimRef));
-            right.begin = left.capacity_end;
-            right.end = right.begin + right_count;
-        }
-        right.capacity_end = range.capacity_end;
-    }
-
-    // Applies a spatial split: the children's references are written after
-    // each other into the range's room. False (references untouched) when a
-    // side came out empty after unsplitting.
-    bool spatial_partition(const RefRange& range, const SpatialSplit& split, RefRange& left, RefRange& right) {
-        std::vector<PrimRef> left_refs, right_refs;
-        left_refs.reserve(split.left_count);
-        right_refs.reserve(split.right_count);
-        bvh_build::partition_spatial(refs.data(), range, split, mesh, left_refs, right_refs);
-        if (left_refs.empty() || right_refs.empty()) return false;
-        const auto left_count = static_cast<std::uint32_t>(left_refs.size());
-        const auto right_count = static_cast<std::uint32_t>(right_refs.size());
-        std::copy(left_refs.begin(), left_refs.end(), refs.begin() + range.begin);
-        std::copy(right_refs.begin(), right_refs.end(), refs.begin() + range.begin + left_count);
-        left = measure(range.begin, range.begin + left_count);
-        right = measure(left.end, left.end + right_count);
-        share_room(range, left, right);
         return true;
     }
 
@@ -261,8 +255,8 @@ struct Builder {
         const int nbins = bin_count(range.count());
         const float scale = static_cast<float>(nbins) / (range.centroids.bmax[axis] - cmin);
         auto goes_left = [&](const PrimRef& r) { return bin_of(r.centroid2()[axis], cmin, scale, nbins) < best.bin; };
-        left = RefRange{range.begin, range.begin, range.begin, best.left_bounds, {}};
-        right = RefRange{range.end, range.end, range.end, best.right_bounds, {}};
+        left = RefRange{range.begin, range.begin, best.left_bounds, {}};
+        right = RefRange{range.end, range.end, best.right_bounds, {}};
         std::uint32_t& i = left.end;
         std::uint32_t& j = right.begin;
         BoxRows left_centroids, right_centroids;
@@ -294,7 +288,6 @@ struct Builder {
         }
         left = measure(range.begin, mid);
         right = measure(mid, range.end);
-        share_room(range, left, right);
         return true;
     }
 };
@@ -329,33 +322,18 @@ std::vector<PrimRef> make_prim_refs(const TriangleMesh& mesh) {
 
 }  // namespace
 
-BinaryBvh make_binary_bvh(const TriangleMesh& mesh, const BvhBuildOptions& options) {
+BinaryBvh make_binary_bvh(const TriangleMesh& mesh) {
     BinaryBvh bvh;
     std::vector<PrimRef> refs = make_prim_refs(mesh);
     if (refs.empty()) return bvh;
     const auto count = static_cast<std::uint32_t>(refs.size());
-    // Room for the spatial splits' extra references, the budget; node slots
-    // (2 per reference) must stay indexable by 32 bits.
-    std::uint64_t capacity = count;
-    if (options.spatial_splits && options.spatial_split_budget > 0.0f) {
-        const auto extra = static_cast<std::uint64_t>(static_cast<double>(count) * options.spatial_split_budget);
-        capacity = std::min<std::uint64_t>(count + extra, std::numeric_limits<std::uint32_t>::max() / 2);
-        capacity = std::max<std::uint64_t>(capacity, count);
-    }
-    refs.resize(capacity);
 
-    bvh.nodes.resize(2 * capacity - 1);
-    Builder builder{refs, bvh.nodes, mesh};
-    RefRange root = builder.measure(0, count);
-    root.capacity_end = static_cast<std::uint32_t>(capacity);
-    if (capacity > count) {
-        builder.spatial_splits = true;
-        builder.min_spatial_overlap = options.spatial_split_overlap * root.bounds.half_area();
-    }
-    builder.build(0, root, 1, 0);
+    bvh.nodes.resize(2 * static_cast<std::size_t>(count) - 1);
+    Builder builder{refs, bvh.nodes};
+    builder.build(0, builder.measure(0, count), 1, 0);
 
-    bvh.triangle_order.resize(capacity);
-    for (std::size_t k = 0; k < capacity; ++k) bvh.triangle_order[k] = refs[k].triangle;
+    bvh.triangle_order.resize(count);
+    for (std::uint32_t k = 0; k < count; ++k) bvh.triangle_order[k] = refs[k].triangle;
     return bvh;
 }
 

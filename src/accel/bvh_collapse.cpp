@@ -123,9 +123,9 @@ struct Collapser {
 
 }  // namespace
 
-Bvh make_bvh(const TriangleMesh& mesh, const BvhBuildOptions& options) {
+Bvh make_bvh(const TriangleMesh& mesh) {
     Bvh bvh;
-    const BinaryBvh binary = make_binary_bvh(mesh, options);
+    const BinaryBvh binary = make_binary_bvh(mesh);
     if (binary.nodes.empty()) return bvh;
 
     bvh.nodes.reserve(binary.triangle_order.size() / 16 + 1);  // about one node per seven leaves of three or four

@@ -62,22 +62,6 @@ TEST_P(SharedModel, BvhEqualsBruteForce) {
     EXPECT_EQ(testing::bvh_triangles(bvh).size(), loaded.mesh.triangles.size());  // no degenerate triangles in these
 }
 
-// Spatial splits forced at every overlapping node: a scanned mesh's
-// triangles cut into several leaves still hit exactly as brute force.
-TEST_P(SharedModel, BvhWithSpatialSplitsEqualsBruteForce) {
-    const std::filesystem::path path = kModels / GetParam();
-    if (!std::filesystem::exists(path)) GTEST_SKIP() << "shared/ not found at " << kModels;
-    Diagnostics diag;
-    const LoadedMesh loaded = load_obj(path, diag);
-    const int ray_count = loaded.mesh.triangles.size() > 10000 ? 1500 : 4000;
-    const Comparison c = compare_with_brute(loaded.mesh, rays_from_outside(loaded.mesh, ray_count, 32),
-                                            testing::aggressive_spatial_splits());
-    EXPECT_EQ(c.mismatches, 0) << c.first_mismatch;
-    EXPECT_GT(c.hits, ray_count / 10);
-    const Bvh bvh = make_bvh(loaded.mesh, testing::aggressive_spatial_splits());
-    EXPECT_GT(testing::bvh_triangles(bvh).size(), loaded.mesh.triangles.size());  // splits happened
-}
-
 INSTANTIATE_TEST_SUITE_P(Models, SharedModel, ::testing::Values("stanford-bunny.obj", "suzanne.obj"),
                          [](const ::testing::TestParamInfo<std::string>& param_info) {
                              return param_info.param == "suzanne.obj" ? std::string("suzanne") : std::string("bunny");

@@ -16,7 +16,6 @@
 #include <vector>
 
 #include "accel/accel.h"
-#include "accel/accel_test_util.h"
 #include "render/camera.h"
 #include "scene/mesh_file.h"
 #include "scene/scene_file.h"
@@ -124,9 +123,6 @@ void expect_closed_mesh_holds_water(const std::string& file) {
         }
     }
     const Accel bvh = make_accel(mesh, AccelKind::Bvh);
-    // Spatial splits cut leaves' boxes through triangles: no ray may slip
-    // between two parts of one triangle either.
-    const Accel split_bvh = testing::make_bvh_accel(mesh, testing::aggressive_spatial_splits());
     const Accel brute = make_accel(mesh, AccelKind::Brute);
     const struct {
         const char* name;
@@ -134,8 +130,6 @@ void expect_closed_mesh_holds_water(const std::string& file) {
     } runs[] = {
         {"bvh, random directions", trace_all(bvh, random_rays)},
         {"bvh, aimed at vertices/edges", trace_all(bvh, aimed_rays)},
-        {"bvh with spatial splits, random directions", trace_all(split_bvh, random_rays)},
-        {"bvh with spatial splits, aimed", trace_all(split_bvh, aimed_rays)},
         // The brute-force loop on every 10th ray: it is slow, and bit-identical to the BVH anyway.
         {"brute, random directions (1/10)", trace_all(brute, random_rays, 10)},
         {"brute, aimed (1/10)", trace_all(brute, aimed_rays, 10)},
@@ -206,10 +200,6 @@ TEST(Watertight, RaysAimedAtSharedEdgesOfAQuadGridNeverPassThrough) {
     report("quad grid: bvh", e);
     EXPECT_EQ(e.misses, 0) << e.first_escape;
     EXPECT_EQ(e.bad_hits, 0);
-    const Escapes es = trace_all(testing::make_bvh_accel(mesh, testing::aggressive_spatial_splits()), rays);
-    report("quad grid: bvh with spatial splits", es);
-    EXPECT_EQ(es.misses, 0) << es.first_escape;
-    EXPECT_EQ(es.bad_hits, 0);
     const Escapes eb = trace_all(make_accel(mesh, AccelKind::Brute), rays, 16);
     report("quad grid: brute (1/16)", eb);
     EXPECT_EQ(eb.misses, 0) << eb.first_escape;

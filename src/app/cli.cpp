@@ -45,10 +45,6 @@ void add_render_options(CLI::App& command, CliOptions& o) {
             return parse_accel_kind(name) ? std::string{} : "unknown accelerator '" + name + "' (available: " + accel_list() + ")";
         })
         ->capture_default_str();
-    command.add_option("--build-quality", o.build_quality,
-                       "fast or high (spatial splits: a faster tree that takes longer to build; Embree: "
-                       "RTC_BUILD_QUALITY_HIGH); default " + std::string(build_quality_name(kDefaultBuildQuality)))
-        ->check(CLI::IsMember({"fast", "high"}));
     command.add_option("--integrator", o.integrator, "direct (point lights, spec §4) or path (path tracing; overrides the scene)")
         ->check(CLI::IsMember({"direct", "path"}));
     command.add_option("--max-depth", o.max_depth, "Most scattering events on a path, 0 to 1024 (path; overrides the scene)")

@@ -22,7 +22,6 @@ struct CliOptions {
     int threads = 0;                   // 0 = all hardware threads
     float exposure = 0;                // PNG only: radiance × 2^exposure
     std::string accel = "bvh";
-    std::string build_quality;         // "fast" or "high"; empty = kDefaultBuildQuality
     std::optional<std::string> integrator;  // "direct" or "path", overrides the scene
     std::optional<int> max_depth;           // overrides the scene; checked against kMaxDepth
     std::string light_tree = "auto";        // "auto", "on" or "off": how path chooses among emitters

@@ -49,7 +49,7 @@ int run_explain(const CliOptions& o) {
         print_warnings(diag, scene, settings, o);
         check_pixel(o, settings);
 
-        const Accel accel = make_accel(scene.geometry, *parse_accel_kind(o.accel), build_quality(o));
+        const Accel accel = make_accel(scene.geometry, *parse_accel_kind(o.accel));
         const RenderJob job = make_render_job(scene, accel, settings, o.threads, light_selection(o));
         SampleRecord record;
         RayCounters counters;

@@ -48,11 +48,6 @@ RenderSettings resolve_settings(const RenderSettings& scene_settings, const CliO
     return s;
 }
 
-BuildQuality build_quality(const CliOptions& options) {
-    if (options.build_quality.empty()) return kDefaultBuildQuality;
-    return parse_build_quality(options.build_quality).value_or(kDefaultBuildQuality);  // the command line checked it
-}
-
 LightSelection light_selection(const CliOptions& o) {
     return o.light_tree == "on" ? LightSelection::Tree : o.light_tree == "off" ? LightSelection::Power : LightSelection::Automatic;
 }

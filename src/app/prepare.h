@@ -7,7 +7,6 @@
 #include <new>
 #include <string>
 
-#include "accel/accel.h"
 #include "app/cli.h"
 #include "core/error.h"
 #include "render/lights.h"
@@ -37,9 +36,6 @@ RenderSettings resolve_settings(const RenderSettings& scene_settings, const CliO
 
 // The light choice --light-tree asks for.
 LightSelection light_selection(const CliOptions& options);
-
-// The build quality --build-quality asks for (kDefaultBuildQuality without it).
-BuildQuality build_quality(const CliOptions& options);
 
 // Prints the loader's warnings, and the one about the direct integrator
 // meeting version-2 content (spec §10), to stderr.

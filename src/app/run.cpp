@@ -50,7 +50,7 @@ int run_render(const CliOptions& o) {
         const AccelKind kind = *parse_accel_kind(o.accel);  // the command line checked the name
 
         const auto build_start = Clock::now();
-        const Accel accel = make_accel(scene.geometry, kind, build_quality(o));
+        const Accel accel = make_accel(scene.geometry, kind);
         stats.build_seconds = seconds_since(build_start);
 
         const RenderJob job = make_render_job(scene, accel, settings, o.threads, light_selection(o));
