@@ -6,7 +6,31 @@
 #include <cmath>
 #include <cstdio>
 
+#ifdef SOMBRA_HAVE_EMBREE
+#include "accel/embree_backend.h"
+#endif
+
 namespace sombra::bench {
+
+Accel make_compared_accel(const Scene& scene, AccelKind kind, EmbreeQuality embree_quality) {
+#ifdef SOMBRA_HAVE_EMBREE
+    if (kind == AccelKind::Embree && embree_quality == EmbreeQuality::High) {
+        Accel accel;
+        accel.kind = kind;
+        accel.mesh = &scene.geometry;
+        accel.cutouts = make_cutouts(scene.geometry, scene.materials, scene.textures);
+        accel.embree = make_embree_scene(scene.geometry, accel.cutouts, true);
+        return accel;
+    }
+#endif
+    return make_accel(scene, kind);
+}
+
+std::string accel_label(AccelKind kind, EmbreeQuality embree_quality) {
+    std::string label(accel_name(kind));
+    if (kind != AccelKind::Bvh && kind != AccelKind::Brute && embree_quality == EmbreeQuality::High) label += " high";
+    return label;
+}
 
 double median(std::vector<double> values) {
     if (values.empty()) return 0;

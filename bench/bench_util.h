@@ -43,6 +43,16 @@ std::string to_markdown(const Table& table);
 // The backends the benchmarks compare: bvh first, then embree when built in.
 std::vector<AccelKind> compared_accels();
 
+// How Embree builds in the benchmarks (--embree-quality): at its default
+// RTC_BUILD_QUALITY_MEDIUM, or at HIGH (its spatial-split builder), the
+// yardstick issue 10's render target names.
+enum class EmbreeQuality { Medium, High };
+
+// What make_accel(scene, kind) builds, but Embree at `embree_quality`.
+Accel make_compared_accel(const Scene& scene, AccelKind kind, EmbreeQuality embree_quality);
+// accel_name(kind), with " high" for Embree at High.
+std::string accel_label(AccelKind kind, EmbreeQuality embree_quality);
+
 // Pixel-by-pixel agreement of two films of the same size. Two pixels agree
 // when every channel does to 1e-3 relative (below what an 8-bit PNG shows,
 // above the rounding of a slightly different t or barycentric).

@@ -4,6 +4,7 @@
 // all three and writes docs/performance.md.
 #include <CLI/CLI.hpp>
 #include <iostream>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -12,6 +13,18 @@
 #include "load_bench.h"
 #include "path_bench.h"
 #include "scene_bench.h"
+#include "tree_bench.h"
+
+namespace {
+
+void add_embree_quality_option(CLI::App& command, sombra::bench::EmbreeQuality& quality) {
+    using sombra::bench::EmbreeQuality;
+    const std::map<std::string, EmbreeQuality> names{{"medium", EmbreeQuality::Medium}, {"high", EmbreeQuality::High}};
+    command.add_option("--embree-quality", quality, "Embree's build quality: medium (its default) or high (spatial splits)")
+        ->transform(CLI::CheckedTransformer(names));
+}
+
+}  // namespace
 
 int main(int argc, char** argv) {
     using namespace sombra::bench;
@@ -28,6 +41,7 @@ int main(int argc, char** argv) {
         ->capture_default_str();
     scenes->add_option("--width", scene_options.width, "Image width (overrides the scenes)");
     scenes->add_option("--height", scene_options.height, "Image height (overrides the scenes)");
+    add_embree_quality_option(*scenes, scene_options.embree_quality);
 
     int load_reps = 5;
     std::string obj_file;
@@ -63,6 +77,13 @@ int main(int argc, char** argv) {
     path->add_option("--max-depth", path_options.max_depth, "Most scattering events on a path")
         ->check(CLI::Range(0, 1024))
         ->capture_default_str();
+    add_embree_quality_option(*path, path_options.embree_quality);
+
+    int tree_reps = 5;
+    std::vector<std::string> tree_files;
+    CLI::App* tree = app.add_subcommand("tree", "The BVH's tree on scenes: SAH cost, size, build time");
+    tree->add_option("scene", tree_files, "Scene files (.json)")->required()->check(CLI::ExistingFile);
+    tree->add_option("--reps", tree_reps, "Timed builds (median reported)")->check(CLI::Range(1, 1000))->capture_default_str();
 
     PathErrorOptions error_options;
     std::string error_file;
@@ -100,6 +121,7 @@ int main(int argc, char** argv) {
         }
         if (*growth) run_growth_bench(model_files, growth_options, std::cout);
         if (*path) run_path_bench(path_files, path_options, std::cout);
+        if (*tree) run_tree_bench(tree_files, tree_reps, std::cout);
         if (*path_error) run_path_error_bench(error_file, error_options, std::cout);
     } catch (const sombra::Error& e) {
         std::cerr << "sombra-bench: error: " << e.what() << '\n';

@@ -19,10 +19,10 @@ struct Round {
     RenderOutput output;
 };
 
-Round build_and_render(const Scene& scene, const RenderSettings& settings, AccelKind kind) {
+Round build_and_render(const Scene& scene, const RenderSettings& settings, AccelKind kind, EmbreeQuality embree_quality) {
     Round round;
     const auto build_start = Clock::now();
-    const Accel accel = make_accel(scene, kind);
+    const Accel accel = make_compared_accel(scene, kind, embree_quality);
     round.build_seconds = seconds_since(build_start);
     round.accel_bytes = accel_memory_bytes(accel);
 
@@ -52,7 +52,8 @@ ImageAgreement direct_bvh_against_brute(const Scene& scene, const RenderSettings
 
 }  // namespace
 
-SceneMeasurement measure_scene(const Scene& scene, const RenderSettings& settings, int reps, const std::string& name) {
+SceneMeasurement measure_scene(const Scene& scene, const RenderSettings& settings, int reps, const std::string& name,
+                               EmbreeQuality embree_quality) {
     const std::vector<AccelKind> kinds = compared_accels();
     SceneMeasurement m;
     m.triangles = scene.geometry.triangle_count();
@@ -60,7 +61,7 @@ SceneMeasurement measure_scene(const Scene& scene, const RenderSettings& setting
     // The check, which also warms caches and thread pools for the rounds.
     std::vector<Film> films;
     for (const AccelKind kind : kinds) {
-        Round round = build_and_render(scene, settings, kind);
+        Round round = build_and_render(scene, settings, kind, embree_quality);
         BackendTiming timing;
         timing.kind = kind;
         timing.rays = round.output.counters.camera_rays + round.output.counters.shadow_rays;
@@ -74,7 +75,7 @@ SceneMeasurement measure_scene(const Scene& scene, const RenderSettings& setting
         const ImageAgreement a = compare_films(films[0], films[k]);
         if (a.fraction() < m.agreement.fraction()) m.agreement = a;
         if (a.fraction() < kMinEqualFraction) {
-            throw Error(name, std::string(accel_name(kinds[k])) + " and " + std::string(accel_name(kinds[0])) +
+            throw Error(name, accel_label(kinds[k], embree_quality) + " and " + std::string(accel_name(kinds[0])) +
                                   " images differ in " + thousands(a.pixels - a.equal) + " of " +
                                   thousands(a.pixels) + " pixels (more than 0.1 %): not timing a wrong result");
         }
@@ -92,7 +93,7 @@ SceneMeasurement measure_scene(const Scene& scene, const RenderSettings& setting
     for (int rep = 0; rep < reps; ++rep) {
         for (std::size_t i = 0; i < kinds.size(); ++i) {
             const std::size_t k = rep % 2 == 0 ? i : kinds.size() - 1 - i;
-            const Round round = build_and_render(scene, settings, kinds[k]);
+            const Round round = build_and_render(scene, settings, kinds[k], embree_quality);
             builds[k].push_back(round.build_seconds);
             renders[k].push_back(round.render_seconds);
         }

@@ -40,6 +40,7 @@ struct SceneMeasurement {
 // Error(name, ...) when the backends' images agree in fewer than
 // kMinEqualFraction of the pixels, or the BVH and the brute-force loop
 // disagree on a sampled pixel centre: no numbers for a wrong result.
-SceneMeasurement measure_scene(const Scene& scene, const RenderSettings& settings, int reps, const std::string& name);
+SceneMeasurement measure_scene(const Scene& scene, const RenderSettings& settings, int reps, const std::string& name,
+                               EmbreeQuality embree_quality = EmbreeQuality::Medium);
 
 }  // namespace sombra::bench

@@ -140,7 +140,7 @@ void run_path_bench(const std::vector<std::string>& scene_files, const PathBench
         std::vector<Accel> accels;
         std::vector<RenderJob> jobs;
         accels.reserve(kinds.size());
-        for (const AccelKind kind : kinds) accels.push_back(make_accel(scene, kind));
+        for (const AccelKind kind : kinds) accels.push_back(make_compared_accel(scene, kind, o.embree_quality));
         for (const Accel& accel : accels) jobs.push_back(make_render_job(scene, accel, settings));
 
         // The checks, which also warm caches and thread pools for the rounds.

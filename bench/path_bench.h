@@ -9,6 +9,8 @@
 #include <string>
 #include <vector>
 
+#include "bench_util.h"
+
 namespace sombra::bench {
 
 struct PathBenchOptions {
@@ -17,6 +19,7 @@ struct PathBenchOptions {
     int height = 192;
     int spp = 16;
     int max_depth = 8;
+    EmbreeQuality embree_quality = EmbreeQuality::Medium;
 };
 
 // Renders each scene with the path integrator (integrator = path set here,

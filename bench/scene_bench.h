@@ -6,11 +6,14 @@
 #include <string>
 #include <vector>
 
+#include "bench_util.h"
+
 namespace sombra::bench {
 
 struct SceneBenchOptions {
     int reps = 5;
     std::optional<int> width, height;  // override the scenes' own image size
+    EmbreeQuality embree_quality = EmbreeQuality::Medium;
 };
 
 // Measures each scene file (measure.h) and writes one Markdown table to

@@ -107,7 +107,8 @@ void drop_cut_out_hits(const RTCFilterFunctionNArguments* args) {
 
 }  // namespace
 
-std::shared_ptr<const EmbreeScene> make_embree_scene(const TriangleMesh& mesh, const Cutouts& cutouts) {
+std::shared_ptr<const EmbreeScene> make_embree_scene(const TriangleMesh& mesh, const Cutouts& cutouts,
+                                                     bool high_quality) {
     auto s = std::make_shared<EmbreeScene>();
     s->device = rtcNewDevice(nullptr);
     if (s->device == nullptr) {
@@ -146,6 +147,7 @@ std::shared_ptr<const EmbreeScene> make_embree_scene(const TriangleMesh& mesh, c
         }
         const Index3* indices = all_kept ? mesh.triangles.data() : s->kept_triangles.data();
         RTCGeometry geometry = rtcNewGeometry(s->device, RTC_GEOMETRY_TYPE_TRIANGLE);
+        if (high_quality) rtcSetGeometryBuildQuality(geometry, RTC_BUILD_QUALITY_HIGH);
         rtcSetSharedGeometryBuffer(geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, s->vertices.data(), 0,
                                    3 * sizeof(float), vertex_count);
         rtcSetSharedGeometryBuffer(geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, indices, 0, sizeof(Index3),
@@ -161,7 +163,9 @@ std::shared_ptr<const EmbreeScene> make_embree_scene(const TriangleMesh& mesh, c
         rtcReleaseGeometry(geometry);           // the scene holds it now
         throw_if_failed(*s, "setting up the triangles");
     }
-    // Default scene flags and build quality: Embree as most users run it.
+    // Default scene flags and, unless asked for HIGH (Embree's spatial-split
+    // builder), the default build quality: Embree as most users run it.
+    if (high_quality) rtcSetSceneBuildQuality(s->scene, RTC_BUILD_QUALITY_HIGH);
     rtcCommitScene(s->scene);
     throw_if_failed(*s, "building the BVH");
     return s;

@@ -5,7 +5,8 @@
 //
 // Embree is used as it comes: default scene flags (RTC_SCENE_FLAG_NONE, so
 // not the watertight "robust" mode) and the default build quality
-// (RTC_BUILD_QUALITY_MEDIUM), one triangle geometry over the whole mesh.
+// (RTC_BUILD_QUALITY_MEDIUM; RTC_BUILD_QUALITY_HIGH, its spatial-split
+// builder, on request), one triangle geometry over the whole mesh.
 // Hits agree with the BVH's to float rounding, not bit for bit: Embree's
 // Möller–Trumbore variant rounds differently, is not watertight at edges, and
 // does not send ties at equal t to the lower triangle index.
@@ -31,10 +32,12 @@ struct EmbreeScene;
 // Builds Embree's BVH over the triangles of `mesh` that sombra can hit (the
 // same ones make_bvh keeps: in-range indices, finite corners, non-zero area).
 // The mesh must outlive the result. Throws Error("embree", ...) when Embree
-// fails (unsupported CPU, out of memory).
-// With active `cutouts` (over `mesh`, outliving the result), Embree's filter
-// functions drop the hits where the surface is cut out.
-std::shared_ptr<const EmbreeScene> make_embree_scene(const TriangleMesh& mesh, const Cutouts& cutouts = {});
+// fails (unsupported CPU, out of memory). With active `cutouts` (over
+// `mesh`, outliving the result), Embree's filter functions drop the hits
+// where the surface is cut out. `high_quality` builds with
+// RTC_BUILD_QUALITY_HIGH instead of the default MEDIUM.
+std::shared_ptr<const EmbreeScene> make_embree_scene(const TriangleMesh& mesh, const Cutouts& cutouts = {},
+                                                     bool high_quality = false);
 
 // Closest hit with 0 < t < ray.tmax; (b1, b2) are Embree's (u, v), which are
 // the weights of the triangle's second and third corner as in sombra, and

@@ -13,6 +13,7 @@
 
 #include "accel/accel.h"
 #include "accel/accel_test_util.h"
+#include "accel/embree_backend.h"
 #include "render/render.h"
 #include "scene/mesh_file.h"
 #include "scene/scene_file.h"
@@ -148,9 +149,14 @@ bool same_point(const TriangleMesh& mesh, const Ray& ray, const Hit& a, const Hi
     return length(point(a) - point(b)) <= 1e-4f * a.t * length(ray.dir) + 1e-5f * max_component(abs(ray.origin));
 }
 
-Agreement compare_with_bvh(const TriangleMesh& mesh, const std::vector<Ray>& rays) {
+// Embree built at its default quality, or with `high_quality` at
+// RTC_BUILD_QUALITY_HIGH (spatial splits: the benchmarks' other yardstick).
+Agreement compare_with_bvh(const TriangleMesh& mesh, const std::vector<Ray>& rays, bool high_quality = false) {
     const Accel bvh = make_accel(mesh, AccelKind::Bvh);
-    const Accel embree = make_accel(mesh, AccelKind::Embree);
+    Accel embree;
+    embree.kind = AccelKind::Embree;
+    embree.mesh = &mesh;
+    embree.embree = make_embree_scene(mesh, {}, high_quality);
     constexpr float kEdge = 1e-4f;  // a weight this small is within rounding of an edge
     Agreement a;
     for (const Ray& ray : rays) {
@@ -223,6 +229,20 @@ TEST_P(EmbreeOnModel, HitsAgreeWithTheBvh) {
     EXPECT_EQ(a.mismatches, 0) << a.first_mismatch;
     EXPECT_GT(a.hits, kRays / 10);
     EXPECT_LE(a.near_edge + a.ties, kRays / 500);  // rare: at most 0.2 % of rays
+}
+
+TEST_P(EmbreeOnModel, HighQualityHitsAgreeWithTheBvh) {
+    const std::filesystem::path path = kShared / "models" / GetParam();
+    if (!std::filesystem::exists(path)) GTEST_SKIP() << "shared/ not found at " << kShared;
+    Diagnostics diag;
+    const LoadedMesh loaded = load_mesh_file(path, diag);
+    constexpr int kRays = 20000;
+    const Agreement a = compare_with_bvh(loaded.mesh, model_rays(loaded.mesh, kRays, 18), true);
+    std::printf("[ embree HQ  ] %-20s %d rays, %d hits, %d ties, %d near-edge differences, %d mismatches\n",
+                GetParam().c_str(), a.rays, a.hits, a.ties, a.near_edge, a.mismatches);
+    EXPECT_EQ(a.mismatches, 0) << a.first_mismatch;
+    EXPECT_GT(a.hits, kRays / 10);
+    EXPECT_LE(a.near_edge + a.ties, kRays / 500);
 }
 
 INSTANTIATE_TEST_SUITE_P(Models, EmbreeOnModel,
