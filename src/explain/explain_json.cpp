@@ -88,6 +88,19 @@ private:
 
     static Json f_terms(Vec3 diffuse, Vec3 lobe, Vec3 f) { return {{"diffuse", vec(diffuse)}, {"lobe", vec(lobe)}, {"total", vec(f)}}; }
 
+    // Cut-outs a ray went through, nearest first.
+    Json holes(const std::vector<HoleRecord>& listed) const {
+        Json list = Json::array();
+        for (const HoleRecord& h : listed) {
+            Json hole = where(h.triangle);
+            hole["t"] = number(h.t);
+            hole["alpha"] = number(h.alpha);
+            hole["cutoff"] = number(h.cutoff);
+            list.push_back(hole);
+        }
+        return list;
+    }
+
     Json blocker(const BlockerRecord& b) const {
         Json j = where(b.triangle);
         j["distance"] = number(b.distance);
@@ -110,6 +123,10 @@ private:
             j["f_r"] = f_terms(l.f_diffuse, l.f_lobe, l.f);
         }
         if (l.outcome == LightOutcome::Blocked) j["blocker"] = blocker(l.blocker);
+        if (l.outcome == LightOutcome::Visible) {
+            j["holes"] = holes(l.holes);
+            j["holes_crossed"] = l.holes_crossed;
+        }
         j["contribution"] = vec(l.contribution);
         return j;
     }
@@ -132,6 +149,10 @@ private:
         if (!l.environment) j["cos_light"] = number(l.cos_light);
         j["f_r"] = f_terms(l.f_diffuse, l.f_lobe, l.f);
         if (l.outcome == LightOutcome::Blocked) j["blocker"] = blocker(l.blocker);
+        if (l.outcome == LightOutcome::Visible) {
+            j["holes"] = holes(l.holes);
+            j["holes_crossed"] = l.holes_crossed;
+        }
         j["contribution"] = vec(l.contribution);
         return j;
     }
@@ -157,15 +178,7 @@ private:
                   {"ray", {{"origin", vec(v.ray_origin)}, {"direction", vec(v.ray_dir)}}},
                   {"throughput", vec(v.throughput)}};
         j["hit"] = v.hit ? hit(v.surface) : Json(nullptr);
-        Json holes = Json::array();
-        for (const HoleRecord& h : v.holes) {
-            Json hole = where(h.triangle);
-            hole["t"] = number(h.t);
-            hole["alpha"] = number(h.alpha);
-            hole["cutoff"] = number(h.cutoff);
-            holes.push_back(hole);
-        }
-        j["holes"] = holes;
+        j["holes"] = holes(v.holes);
         j["holes_crossed"] = v.holes_crossed;
         j["emission"] = emission(v.emission);
         if (!v.hit) return j;

@@ -121,7 +121,7 @@ TEST(ExplainRecord, ListsTheCutOutsARayWentThrough) {
     const Accel accel = make_accel(scene, AccelKind::Bvh);
     const Accel solid = make_accel(scene.geometry, AccelKind::Bvh);  // the same surfaces without cut-outs
     const RenderJob job = make_render_job(scene, accel, settings, 1);
-    int through = 0;
+    int through = 0, lit_through = 0;
     for (int j = 0; j < settings.height; ++j)
         for (int i = 0; i < settings.width; ++i) {
             SampleRecord record;
@@ -130,6 +130,15 @@ TEST(ExplainRecord, ListsTheCutOutsARayWentThrough) {
             ASSERT_FALSE(record.vertices.empty());
             const VertexRecord& v = record.vertices[0];
             ASSERT_EQ(v.holes.size(), v.holes_crossed);
+            // Shadow rays that reach the lamp through a hole list it too, nearer than the lamp.
+            for (const PointLightRecord& l : v.point_lights) {
+                if (l.outcome != LightOutcome::Visible || l.holes_crossed == 0) continue;
+                ++lit_through;
+                EXPECT_EQ(scene.materials[scene.geometry.material_ids[l.holes[0].triangle]].name, "screen");
+                EXPECT_LT(l.holes[0].alpha, l.holes[0].cutoff);
+                EXPECT_GT(l.holes[0].t, 0.0f);
+                EXPECT_LT(l.holes[0].t, 1.0f) << "the shadow ray runs from x to just before the light";
+            }
             if (v.holes_crossed == 0) continue;
             ++through;
             const HoleRecord& hole = v.holes[0];
@@ -142,6 +151,7 @@ TEST(ExplainRecord, ListsTheCutOutsARayWentThrough) {
             EXPECT_EQ(first.t, hole.t);
         }
     EXPECT_GT(through, 50) << "the screen's holes cover a good part of the picture";
+    EXPECT_GT(lit_through, 20) << "and the lamp lights the wall through them";
 }
 
 // A ground quad (object 0) under a small blocker quad (object 1), lit by two

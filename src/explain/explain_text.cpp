@@ -77,7 +77,7 @@ private:
         } else {
             out_ << "\nHit\n";
         }
-        holes(v);
+        holes(v.holes, v.holes_crossed, "  through  ", "           ");
         if (!v.hit) {
             out_ << "  nothing: the ray leaves the scene and sees the "
                  << (c_.scene.environment ? "environment map" : "background") << "\n";
@@ -89,8 +89,12 @@ private:
         out_ << "  t        " << readable(h.t) << " (distance " << readable(h.distance) << ")\n";
         out_ << "  x        " << readable(h.position) << "\n";
         out_ << "  n_g      " << readable(h.n_g) << "  (geometric normal, turned to face the ray)\n";
+        const MaterialTextures& maps = c_.scene.materials[h.material].textures;
+        const bool mapped = h.has_uv && (maps.normal_map.is_set() || maps.bump_map.is_set());
         out_ << "  n_s      " << readable(h.n_s)
-             << (h.n_s == h.n_g ? "  (shading normal: the same, no vertex normals)" : "  (shading normal: blended vertex normals)")
+             << (mapped              ? "  (shading normal: after the material's normal or bump map)"
+                 : h.n_s == h.n_g ? "  (shading normal: the same, no vertex normals)"
+                                  : "  (shading normal: blended vertex normals)")
              << "\n";
         out_ << "  ω_o      " << readable(-v.ray_dir) << "  (towards the viewer)\n";
         out_ << "  material " << material_text(h, c_.scene.materials[h.material]) << "\n";
@@ -107,15 +111,16 @@ private:
         if (r_.path) bounce(v);
     }
 
-    // The cut-outs the ray went through (spec §12): surfaces that are not there.
-    void holes(const VertexRecord& v) {
-        if (v.holes_crossed == 0) return;
-        out_ << "  through  " << v.holes_crossed << (v.holes_crossed == 1 ? " cut-out" : " cut-outs")
-             << " first (alpha below the cutoff: no surface there)\n";
-        for (const HoleRecord& h : v.holes)
-            out_ << "           " << where(h.triangle) << " at t " << readable(h.t) << ": alpha " << readable(h.alpha)
-                 << " < " << readable(h.cutoff) << "\n";
-        if (v.holes_crossed > v.holes.size()) out_ << "           and " << v.holes_crossed - v.holes.size() << " more\n";
+    // The cut-outs a ray went through (spec §12): surfaces that are not
+    // there. `lead` starts the first line, `indent` the others.
+    void holes(const std::vector<HoleRecord>& listed, std::size_t crossed, const char* lead, const char* indent) {
+        if (crossed == 0) return;
+        out_ << lead << crossed << (crossed == 1 ? " cut-out" : " cut-outs")
+             << " (alpha below the cutoff: no surface there)\n";
+        for (const HoleRecord& h : listed)
+            out_ << indent << where(h.triangle) << " at t " << readable(h.t) << ": alpha " << readable(h.alpha) << " < "
+                 << readable(h.cutoff) << "\n";
+        if (crossed > listed.size()) out_ << indent << "and " << crossed - listed.size() << " more\n";
     }
 
     void emission(const EmissionRecord& e, const char* what) {
@@ -156,6 +161,7 @@ private:
             return;
         }
         out_ << "    visible\n";
+        holes(l.holes, l.holes_crossed, "    the shadow ray went through ", "      ");
         out_ << "    I/|c−x|²   = " << readable(l.incident) << "\n";
         out_ << "    f_r        = " << readable(l.f) << " = diffuse " << readable(l.f_diffuse) << " + lobe "
              << readable(l.f_lobe) << "\n";
@@ -189,6 +195,7 @@ private:
             out_ << "    f_r = 0 in this direction: no shadow ray, no contribution\n";
             return;
         }
+        holes(l.holes, l.holes_crossed, "    the shadow ray went through ", "      ");
         out_ << "    f_r = " << readable(l.f) << " = diffuse " << readable(l.f_diffuse) << " + lobe " << readable(l.f_lobe)
              << ", |n_s·ω_i| = " << readable(l.cos_s) << "\n";
         out_ << "    MIS weight w = " << readable(l.mis_weight) << " (power heuristic)\n";

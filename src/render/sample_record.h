@@ -49,6 +49,17 @@ enum class LightOutcome {
 };
 
 // One point light's term at a vertex: L += β · I/|c−x|² · f_r · |n_s·ω_i|.
+// Where a ray crossed a triangle whose surface is cut out at that point
+// (spec §12): the ray went on as if nothing were there.
+struct HoleRecord {
+    std::uint32_t triangle = 0;
+    float t = 0;       // along the ray, as the hit's t
+    float alpha = 0;   // the surface's alpha there, below...
+    float cutoff = 0;  // ...its material's cutoff
+};
+// The most holes one ray's record lists (nearest first); more are counted.
+inline constexpr std::size_t kMaxHolesListed = 8;
+
 struct PointLightRecord {
     std::uint32_t light = 0;  // index into Scene::lights
     LightOutcome outcome = LightOutcome::Visible;
@@ -60,6 +71,8 @@ struct PointLightRecord {
     Vec3 f_diffuse, f_lobe;   // f_r split into its diffuse term and its lobe (specular) term
     Vec3 f;                   // f_r as the integrator evaluated it
     BlockerRecord blocker;    // when Blocked
+    std::vector<HoleRecord> holes;  // when Visible: the cut-outs the shadow ray went through
+    std::size_t holes_crossed = 0;  // how many in all (holes lists at most kMaxHolesListed)
     Vec3 contribution;        // what was added to the sample's value (0 unless Visible)
 };
 
@@ -81,6 +94,8 @@ struct SampledLightRecord {
     Vec3 f_diffuse, f_lobe, f;       // f_r split and whole
     LightOutcome outcome = LightOutcome::Visible;  // Behind (f_r = 0, no shadow ray), Blocked, or Visible
     BlockerRecord blocker;
+    std::vector<HoleRecord> holes;   // when Visible: the cut-outs the shadow ray went through
+    std::size_t holes_crossed = 0;   // how many in all
     Vec3 contribution;               // β · f·|cos| · L_e · w / pdf
 };
 
@@ -112,17 +127,6 @@ struct BounceRecord {
 };
 
 // One vertex of the path: a surface hit (or the ray's escape when !hit).
-// Where a ray crossed a triangle whose surface is cut out at that point
-// (spec §12): the ray went on as if nothing were there.
-struct HoleRecord {
-    std::uint32_t triangle = 0;
-    float t = 0;       // along the ray, as the hit's t
-    float alpha = 0;   // the surface's alpha there, below...
-    float cutoff = 0;  // ...its material's cutoff
-};
-// The most holes one ray's record lists (nearest first); more are counted.
-inline constexpr std::size_t kMaxHolesListed = 8;
-
 struct VertexRecord {
     int depth = 0;                 // scattering events before this vertex
     Vec3 ray_origin, ray_dir;      // the ray that arrived here (direction unit length)

@@ -25,11 +25,13 @@ BlockerRecord SampleRecorder::find_blocker(const Ray& shadow) const {
     return blocker;
 }
 
-void SampleRecorder::find_holes(const Ray& ray, float t_end, VertexRecord& v) const {
+void SampleRecorder::find_holes(const Ray& ray, float t_end, std::vector<HoleRecord>& holes,
+                                std::size_t& crossed) const {
+    holes.clear();
+    crossed = 0;
     const Cutouts& cutouts = accel_.cutouts;
     if (!cutouts.active()) return;
     const TriangleMesh& mesh = *cutouts.mesh;
-    std::vector<HoleRecord> holes;
     for (std::size_t i = 0; i < mesh.triangles.size(); ++i) {
         const auto triangle = static_cast<std::uint32_t>(i);
         const Material& m = (*cutouts.materials)[mesh.material_ids[i]];
@@ -40,9 +42,8 @@ void SampleRecorder::find_holes(const Ray& ray, float t_end, VertexRecord& v) co
         holes.push_back({triangle, t, surface_alpha(cutouts, m, triangle, b1, b2), m.textures.alpha_cutoff});
     }
     std::sort(holes.begin(), holes.end(), [](const HoleRecord& a, const HoleRecord& b) { return a.t < b.t; });
-    v.holes_crossed = holes.size();
+    crossed = holes.size();
     if (holes.size() > kMaxHolesListed) holes.resize(kMaxHolesListed);
-    v.holes = std::move(holes);
 }
 
 void SampleRecorder::escaped(const Ray& ray, Vec3 beta, Vec3 le, float w, float bsdf_pdf, float light_pdf) {
@@ -51,7 +52,7 @@ void SampleRecorder::escaped(const Ray& ray, Vec3 beta, Vec3 le, float w, float 
     v.ray_origin = ray.origin;
     v.ray_dir = normalize(ray.dir);
     v.hit = false;
-    find_holes(ray, ray.tmax, v);
+    find_holes(ray, ray.tmax, v.holes, v.holes_crossed);
     v.throughput = beta;
     v.emission = EmissionRecord{max_component(le) > 0.0f, le, w, bsdf_pdf, light_pdf, beta * le * w};
     record_.vertices.push_back(v);
@@ -78,7 +79,7 @@ void SampleRecorder::surface(const Ray& ray, const Hit& hit, const SurfaceIntera
     v.surface.has_uv = si.has_uv;
     v.surface.uv_footprint = si.uv_footprint;
     v.surface.shaded = material;
-    find_holes(ray, hit.t, v);
+    find_holes(ray, hit.t, v.holes, v.holes_crossed);
     v.throughput = beta;
     record_.vertices.push_back(v);
 }
@@ -106,6 +107,7 @@ void SampleRecorder::point_light(std::uint32_t light, LightOutcome outcome, cons
         r.f = eval_bsdf(view.material, view.bsdf_point, view.wo, wi);
     }
     if (outcome == LightOutcome::Blocked && shadow) r.blocker = find_blocker(*shadow);
+    if (outcome == LightOutcome::Visible && shadow) find_holes(*shadow, shadow->tmax, r.holes, r.holes_crossed);
     r.contribution = contribution;
     vertex().point_lights.push_back(r);
 }
@@ -141,6 +143,7 @@ void SampleRecorder::sampled_light(const LightSample* ls, const ShadingView& vie
                     : !shadow && dot(view.si.n_g, ls->wi) <= 0.0f ? LightOutcome::Behind
                                                                      : LightOutcome::Visible;
         if (blocked && shadow) r.blocker = find_blocker(*shadow);
+        if (!blocked && shadow) find_holes(*shadow, shadow->tmax, r.holes, r.holes_crossed);
     }
     r.contribution = vertex().throughput * contribution;
     vertex().sampled_light = r;

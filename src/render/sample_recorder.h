@@ -77,9 +77,10 @@ public:
 private:
     VertexRecord& vertex();  // the current vertex (one is made if none exists yet)
     BlockerRecord find_blocker(const Ray& shadow) const;
-    // The cut-out crossings of `ray` before t_end, into v.holes (a pass over
+    // The cut-out crossings of `ray` before t_end, nearest first, at most
+    // kMaxHolesListed into `holes` and all counted in `crossed` (a pass over
     // every triangle: the integrator's queries skip holes without a trace).
-    void find_holes(const Ray& ray, float t_end, VertexRecord& v) const;
+    void find_holes(const Ray& ray, float t_end, std::vector<HoleRecord>& holes, std::size_t& crossed) const;
 
     const Scene& scene_;
     const Accel& accel_;
