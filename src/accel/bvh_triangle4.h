@@ -104,9 +104,7 @@ inline void intersect_block(const TriangleBlock& b, const RayLanes& r, float tma
 // computes them.
 inline void finish_barycentrics(const BlockHits& h, int lane, float& b1, float& b2) {
     float u = h.su[lane] * h.inv_det[lane], v = h.sv[lane] * h.inv_det[lane];
-    u = u > 0.0f ? (u < 1.0f ? u : 1.0f) : 0.0f;
-    v = v > 0.0f ? v : 0.0f;
-    if (u + v > 1.0f) v = 1.0f - u;
+    clamp_barycentrics(u, v);
     b1 = u;
     b2 = v;
 }

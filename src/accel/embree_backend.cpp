@@ -4,7 +4,6 @@
 
 #include <embree3/rtcore.h>
 
-#include <algorithm>
 #include <atomic>
 #include <cmath>
 #include <cstdint>
@@ -90,18 +89,21 @@ RTCRay make_rtc_ray(const Ray& ray) {
     return r;
 }
 
+// The mesh's index of Embree's primitive `prim`.
+std::uint32_t mesh_triangle(const EmbreeScene& s, std::uint32_t prim) {
+    return s.mesh_index_of.empty() ? prim : s.mesh_index_of[prim];
+}
+
 // Embree's hit filter under cut-outs: a candidate hit on a cut-out part of a
 // surface is marked invalid, and Embree's traversal goes on past it.
 void drop_cut_out_hits(const RTCFilterFunctionNArguments* args) {
     const auto& s = *static_cast<const EmbreeScene*>(args->geometryUserPtr);
     for (unsigned i = 0; i < args->N; ++i) {
         if (args->valid[i] == 0) continue;
-        const std::uint32_t prim = RTCHitN_primID(args->hit, args->N, i);
-        const std::uint32_t triangle = s.mesh_index_of.empty() ? prim : s.mesh_index_of[prim];
-        // Clamped as intersect_embree clamps a hit's (u, v).
-        const float u = std::clamp(RTCHitN_u(args->hit, args->N, i), 0.0f, 1.0f);
-        const float v = std::clamp(RTCHitN_v(args->hit, args->N, i), 0.0f, 1.0f - u);
-        if (!surface_exists(s.cutouts, triangle, u, v)) args->valid[i] = 0;
+        float u = RTCHitN_u(args->hit, args->N, i), v = RTCHitN_v(args->hit, args->N, i);
+        clamp_barycentrics(u, v);  // as intersect_embree reports the hit
+        if (!surface_exists(s.cutouts, mesh_triangle(s, RTCHitN_primID(args->hit, args->N, i)), u, v))
+            args->valid[i] = 0;
     }
 }
 
@@ -185,13 +187,12 @@ bool intersect_embree(const EmbreeScene& s, const Ray& ray, Hit& hit) {
     // Embree's u, v are the weights of corners 1 and 2, as sombra's b1, b2.
     // Its division can leave them a rounding step outside the triangle;
     // clamp as intersect_triangle does, so b0 = 1 − b1 − b2 ≥ 0.
-    float u = rh.hit.u > 0.0f ? (rh.hit.u < 1.0f ? rh.hit.u : 1.0f) : 0.0f;
-    float v = rh.hit.v > 0.0f ? rh.hit.v : 0.0f;
-    if (u + v > 1.0f) v = 1.0f - u;
+    float u = rh.hit.u, v = rh.hit.v;
+    clamp_barycentrics(u, v);
     hit.t = rh.ray.tfar;
     hit.b1 = u;
     hit.b2 = v;
-    hit.triangle = s.mesh_index_of.empty() ? rh.hit.primID : s.mesh_index_of[rh.hit.primID];
+    hit.triangle = mesh_triangle(s, rh.hit.primID);
     return true;
 }
 

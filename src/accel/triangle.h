@@ -100,6 +100,15 @@ inline bool edge_inside(Vec3 o, Vec3 d, Vec3 a, Vec3 b, bool flip) {
 
 }  // namespace detail
 
+// Clamps a hit's weights (u, v) of p1 and p2 so that u, v ≥ 0 and u + v ≤ 1
+// (then u + v rounds to at most 1): what every backend does to a hit found
+// within rounding of an edge. A NaN weight becomes 0.
+inline void clamp_barycentrics(float& u, float& v) {
+    u = u > 0.0f ? (u < 1.0f ? u : 1.0f) : 0.0f;
+    v = v > 0.0f ? v : 0.0f;
+    if (u + v > 1.0f) v = 1.0f - u;
+}
+
 // Intersects o + t·d with `tri`. On a hit with 0 < t < tmax, writes t and the
 // barycentric weights (b1, b2) of p1 and p2 (p0's is 1 − b1 − b2) and returns
 // true; otherwise returns false and leaves t, b1, b2 untouched. Both faces
@@ -153,9 +162,7 @@ inline bool intersect_triangle(Vec3 o, Vec3 d, const PreparedTriangle& tri, floa
     // tt passed, so inv_det is finite and non-zero and u, v are not NaN. The
     // clamps act only on hits within rounding of an edge (or on overflow).
     float u = su * inv_det, v = sv * inv_det;
-    u = u > 0.0f ? (u < 1.0f ? u : 1.0f) : 0.0f;
-    v = v > 0.0f ? v : 0.0f;
-    if (u + v > 1.0f) v = 1.0f - u;  // then u + v rounds to at most 1
+    clamp_barycentrics(u, v);
     t = tt;
     b1 = u;
     b2 = v;

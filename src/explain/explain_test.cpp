@@ -144,7 +144,9 @@ TEST(ExplainRecord, ListsTheCutOutsARayWentThrough) {
             const HoleRecord& hole = v.holes[0];
             EXPECT_EQ(scene.materials[scene.geometry.material_ids[hole.triangle]].name, "screen");
             EXPECT_LT(hole.alpha, hole.cutoff);
-            if (v.hit) EXPECT_LT(hole.t, v.surface.t);
+            if (v.hit) {
+                EXPECT_LT(hole.t, v.surface.t);
+            }
             Hit first;
             ASSERT_TRUE(intersect(solid, Ray{record.origin, record.direction}, first));
             EXPECT_EQ(first.triangle, hole.triangle);

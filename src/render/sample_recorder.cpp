@@ -38,8 +38,8 @@ void SampleRecorder::find_holes(const Ray& ray, float t_end, std::vector<HoleRec
         if (!m.textures.alpha_test) continue;
         float t, b1, b2;
         if (!intersect_triangle(ray.origin, ray.dir, prepare_triangle(mesh, mesh.triangles[i]), t_end, t, b1, b2)) continue;
-        if (surface_exists(cutouts, triangle, b1, b2)) continue;
-        holes.push_back({triangle, t, surface_alpha(cutouts, m, triangle, b1, b2), m.textures.alpha_cutoff});
+        const float alpha = surface_alpha(cutouts, m, triangle, b1, b2);
+        if (cut_out_at(m, alpha)) holes.push_back({triangle, t, alpha, m.textures.alpha_cutoff});
     }
     std::sort(holes.begin(), holes.end(), [](const HoleRecord& a, const HoleRecord& b) { return a.t < b.t; });
     crossed = holes.size();

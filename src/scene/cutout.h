@@ -36,12 +36,16 @@ Cutouts make_cutouts(const TriangleMesh& mesh, const std::vector<Material>& mate
 // times the vertex colours' alpha (glTF COLOR_0) where the triangle has them.
 float surface_alpha(const Cutouts& cutouts, const Material& m, std::uint32_t triangle, float b1, float b2);
 
+// True when `alpha`, a surface's alpha of material `m` (alpha_test set) at
+// some point, removes the surface there.
+inline bool cut_out_at(const Material& m, float alpha) { return alpha < m.textures.alpha_cutoff; }
+
 // False where the surface of `triangle` is cut out at (b1, b2).
 inline bool surface_exists(const Cutouts& cutouts, std::uint32_t triangle, float b1, float b2) {
     const std::uint32_t id = cutouts.mesh->material_ids[triangle];
     if (id >= cutouts.materials->size()) return true;
     const Material& m = (*cutouts.materials)[id];
-    return !m.textures.alpha_test || !(surface_alpha(cutouts, m, triangle, b1, b2) < m.textures.alpha_cutoff);
+    return !m.textures.alpha_test || !cut_out_at(m, surface_alpha(cutouts, m, triangle, b1, b2));
 }
 
 }  // namespace sombra
