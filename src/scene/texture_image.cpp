@@ -118,6 +118,8 @@ Texture decode_stb(std::span<const unsigned char> bytes, Format format, const ch
                    TextureEncoding encoding, const std::string& where) {
     if (format == Format::Jpeg)
         if (const std::string problem = jpeg_huffman_problem(bytes); !problem.empty()) throw Error(where, problem);
+    std::optional<std::vector<unsigned char>> mended;
+    if (format == Format::Png && (mended = png_without_leading_empty_idat(bytes))) bytes = *mended;
     MemorySource source{bytes};
     int width = 0, height = 0, channels = 0;
     if (!stbi_info_from_callbacks(&kCallbacks, &source, &width, &height, &channels))

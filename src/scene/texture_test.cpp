@@ -10,6 +10,7 @@
 
 #include "core/error.h"
 #include "scene/image_test_files.h"
+#include "scene/texture_image.h"
 #include "scene/polygon_test_files.h"
 
 namespace sombra {
@@ -176,6 +177,36 @@ TEST(Texture, DecodeFromMemoryNamesTheSource) {
     } catch (const Error& e) {
         EXPECT_EQ(e.where(), "m.glb: /images/1");
     }
+}
+
+// A zero-length IDAT chunk is legal; before the image's data it would make
+// stb_image memcpy to a null buffer (fuzz_texture), so the decoder drops it.
+TEST(Texture, EmptyIdatChunksBeforeTheDataAreDroppedAndTheImageReadsTheSame) {
+    TempFolder tmp;
+    std::vector<std::uint16_t> noise(5 * 3 * 3);
+    for (std::size_t i = 0; i < noise.size(); ++i) noise[i] = static_cast<std::uint16_t>((i * 97 + 13) % 256);
+    write_png_file(tmp.path / "plain.png", 5, 3, 3, 8, noise);
+    const std::vector<unsigned char> plain = testing::read_file_bytes(tmp.path / "plain.png");
+    EXPECT_FALSE(png_without_leading_empty_idat(plain).has_value());
+
+    // length 0, "IDAT", the CRC-32 of "IDAT"
+    const std::vector<unsigned char> empty_idat{0, 0, 0, 0, 'I', 'D', 'A', 'T', 0x35, 0xaf, 0x06, 0x1e};
+    const std::string text(plain.begin(), plain.end());
+    const std::size_t first_idat = text.find("IDAT") - 4, iend = text.find("IEND") - 4;
+    std::vector<unsigned char> padded(plain.begin(), plain.begin() + first_idat);
+    for (int i = 0; i < 2; ++i) padded.insert(padded.end(), empty_idat.begin(), empty_idat.end());
+    padded.insert(padded.end(), plain.begin() + first_idat, plain.begin() + iend);
+    padded.insert(padded.end(), empty_idat.begin(), empty_idat.end());  // after the data: stb copes
+    padded.insert(padded.end(), plain.begin() + iend, plain.end());
+
+    const std::optional<std::vector<unsigned char>> mended = png_without_leading_empty_idat(padded);
+    ASSERT_TRUE(mended.has_value());
+    std::vector<unsigned char> expected(plain.begin(), plain.begin() + iend);
+    expected.insert(expected.end(), empty_idat.begin(), empty_idat.end());
+    expected.insert(expected.end(), plain.begin() + iend, plain.end());
+    EXPECT_EQ(*mended, expected);
+    EXPECT_EQ(decode_texture(padded, TextureEncoding::Data, "padded").texels,
+              decode_texture(plain, TextureEncoding::Data, "plain").texels);
 }
 
 // The message `read_texture_file` gives for the file, which must fail.
