@@ -83,6 +83,24 @@ struct BoxRows {
     }
 };
 
+// Box::half_area of three boxes at once (lanes 0–2; lane 3 unused), with
+// the same float operations in the same order, so the tree does not change.
+// The boxes must not be empty.
+inline __m128 half_areas(const BoxRows (&boxes)[3]) {
+    __m128 ex = _mm_sub_ps(boxes[0].hi, boxes[0].lo), ey = _mm_sub_ps(boxes[1].hi, boxes[1].lo);
+    __m128 ez = _mm_sub_ps(boxes[2].hi, boxes[2].lo), unused = _mm_setzero_ps();
+    _MM_TRANSPOSE4_PS(ex, ey, ez, unused);  // now lane a of ex is box a's x extent, and so on
+    return _mm_add_ps(_mm_add_ps(_mm_mul_ps(ex, ey), _mm_mul_ps(ey, ez)), _mm_mul_ps(ez, ex));
+}
+
+// half_area · blocks_of(count) per lane; infinite where count is 0 (the box
+// is then empty and the product meaningless).
+inline __m128 sah_term(__m128 half_area, __m128i count, __m128i three, __m128 inf) {
+    const __m128 blocks = _mm_cvtepi32_ps(_mm_srli_epi32(_mm_add_epi32(count, three), 2));
+    const __m128 empty = _mm_castsi128_ps(_mm_cmpeq_epi32(count, _mm_setzero_si128()));
+    return _mm_blendv_ps(_mm_mul_ps(half_area, blocks), inf, empty);
+}
+
 // A node's references, refs[begin, end), with their bounds and the bounds of
 // their (doubled) centroids.
 struct RefRange {
@@ -182,18 +200,20 @@ struct Builder {
     }
 
     // Bins the centroids along each axis and sweeps the bins once from each
-    // side: the cheapest of the bins − 1 planes per axis in O(bins).
+    // side: the cheapest of the bins − 1 planes per axis in O(bins), the
+    // three axes side by side in SSE lanes.
     Split find_sah_split(const RefRange& range) const {
         // Plain data, set up only for the nbins bins used: small nodes are
-        // many, and 48 bins' constructors would cost them more than the binning.
+        // many, and 96 boxes' constructors would cost them more than the binning.
         struct Bin {
             __m128 lo, hi;
-            std::uint32_t count;
         };
         const int nbins = bin_count(range.count());
         Bin bins[3][kBins];
-        for (auto& axis : bins) {
-            for (int b = 0; b < nbins; ++b) axis[b] = {_mm_set1_ps(kInf), _mm_set1_ps(-kInf), 0};
+        alignas(16) std::int32_t counts[kBins][4];  // per bin, the count along axes x, y, z (lane 3 unused)
+        for (int b = 0; b < nbins; ++b) {
+            for (auto& axis : bins) axis[b] = {_mm_set1_ps(kInf), _mm_set1_ps(-kInf)};
+            _mm_store_si128(reinterpret_cast<__m128i*>(counts[b]), _mm_setzero_si128());
         }
         const Vec3 cmin = range.centroids.bmin;
         const Vec3 extent = range.centroids.bmax - cmin;
@@ -207,37 +227,51 @@ struct Builder {
         for (std::uint32_t i = range.begin; i < range.end; ++i) {
             const __m128 lo = refs[i].lo(), hi = refs[i].hi();
             const __m128 f = _mm_mul_ps(_mm_sub_ps(_mm_add_ps(lo, hi), cmin4), scale4);
-            alignas(16) std::int32_t bin[4];
-            _mm_store_si128(reinterpret_cast<__m128i*>(bin),
-                            _mm_cvttps_epi32(_mm_min_ps(_mm_max_ps(f, _mm_setzero_ps()), top)));
-            for (int a = 0; a < 3; ++a) {
-                Bin& b = bins[a][bin[a]];
-                b.lo = _mm_min_ps(b.lo, lo);
-                b.hi = _mm_max_ps(b.hi, hi);
-                ++b.count;
-            }
+            const __m128i bin = _mm_cvttps_epi32(_mm_min_ps(_mm_max_ps(f, _mm_setzero_ps()), top));
+            const int bx = _mm_cvtsi128_si32(bin), by = _mm_extract_epi32(bin, 1), bz = _mm_extract_epi32(bin, 2);
+            bins[0][bx].lo = _mm_min_ps(bins[0][bx].lo, lo);
+            bins[0][bx].hi = _mm_max_ps(bins[0][bx].hi, hi);
+            bins[1][by].lo = _mm_min_ps(bins[1][by].lo, lo);
+            bins[1][by].hi = _mm_max_ps(bins[1][by].hi, hi);
+            bins[2][bz].lo = _mm_min_ps(bins[2][bz].lo, lo);
+            bins[2][bz].hi = _mm_max_ps(bins[2][bz].hi, hi);
+            ++counts[bx][0];
+            ++counts[by][1];
+            ++counts[bz][2];
         }
+        // Sweep from the right: right_cost[b], per axis lane, is half_area ·
+        // blocks of bins [b, nbins), infinite while those bins are empty.
+        const __m128 inf4 = _mm_set1_ps(kInf);
+        const __m128i three = _mm_set1_epi32(3);
+        __m128 right_cost[kBins];
+        BoxRows right[3];
+        __m128i right_count = _mm_setzero_si128();
+        for (int b = nbins - 1; b > 0; --b) {
+            for (int a = 0; a < 3; ++a) right[a].grow(bins[a][b].lo, bins[a][b].hi);
+            right_count = _mm_add_epi32(right_count, _mm_load_si128(reinterpret_cast<const __m128i*>(counts[b])));
+            right_cost[b] = sah_term(half_areas(right), right_count, three, inf4);
+        }
+        // Sweep from the left, keeping each axis's cheapest plane (the
+        // lowest bin among equal costs, as a scalar sweep with `<` would).
+        BoxRows left[3];
+        __m128i left_count = _mm_setzero_si128();
+        __m128 best_cost = inf4;
+        __m128i best_bin = _mm_setzero_si128();
+        for (int b = 1; b < nbins; ++b) {
+            for (int a = 0; a < 3; ++a) left[a].grow(bins[a][b - 1].lo, bins[a][b - 1].hi);
+            left_count = _mm_add_epi32(left_count, _mm_load_si128(reinterpret_cast<const __m128i*>(counts[b - 1])));
+            const __m128 cost = _mm_add_ps(sah_term(half_areas(left), left_count, three, inf4), right_cost[b]);
+            const __m128 better = _mm_cmplt_ps(cost, best_cost);
+            best_cost = _mm_blendv_ps(best_cost, cost, better);
+            best_bin = _mm_blendv_epi8(best_bin, _mm_set1_epi32(b), _mm_castps_si128(better));
+        }
+        alignas(16) float axis_cost[4];
+        alignas(16) std::int32_t axis_bin[4];
+        _mm_store_ps(axis_cost, best_cost);
+        _mm_store_si128(reinterpret_cast<__m128i*>(axis_bin), best_bin);
         Split best;
         for (int a = 0; a < 3; ++a) {
-            if (!(extent[a] > 0.0f)) continue;
-            // right_cost[b]: half_area · blocks of bins [b, nbins).
-            float right_cost[kBins];
-            BoxRows right;
-            std::uint32_t right_count = 0;
-            for (int b = nbins - 1; b > 0; --b) {
-                right.grow(bins[a][b].lo, bins[a][b].hi);
-                right_count += bins[a][b].count;
-                right_cost[b] = right_count > 0 ? right.box().half_area() * blocks_of(right_count) : kInf;
-            }
-            BoxRows left;
-            std::uint32_t left_count = 0;
-            for (int b = 1; b < nbins; ++b) {
-                left.grow(bins[a][b - 1].lo, bins[a][b - 1].hi);
-                left_count += bins[a][b - 1].count;
-                if (left_count == 0) continue;
-                const float cost = left.box().half_area() * blocks_of(left_count) + right_cost[b];
-                if (cost < best.cost) best = Split{a, b, cost, {}, {}};
-            }
+            if (extent[a] > 0.0f && axis_cost[a] < best.cost) best = Split{a, axis_bin[a], axis_cost[a], {}, {}};
         }
         if (best.axis >= 0) {
             BoxRows l, r;
@@ -255,10 +289,9 @@ struct Builder {
         const int nbins = bin_count(range.count());
         const float scale = static_cast<float>(nbins) / (range.centroids.bmax[axis] - cmin);
         auto goes_left = [&](const PrimRef& r) { return bin_of(r.centroid2()[axis], cmin, scale, nbins) < best.bin; };
-        left = RefRange{range.begin, range.begin, best.left_bounds, {}};
-        right = RefRange{range.end, range.end, best.right_bounds, {}};
-        std::uint32_t& i = left.end;
-        std::uint32_t& j = right.begin;
+        // i and j are locals, not references into left and right, so that
+        // the compiler keeps them in registers across the stores to refs.
+        std::uint32_t i = range.begin, j = range.end;
         BoxRows left_centroids, right_centroids;
         auto centroid = [](const PrimRef& r) { return _mm_add_ps(r.lo(), r.hi()); };
         for (;;) {
@@ -269,8 +302,8 @@ struct Builder {
             left_centroids.grow(centroid(refs[i++]));
             right_centroids.grow(centroid(refs[--j]));
         }
-        left.centroids = left_centroids.box();
-        right.centroids = right_centroids.box();
+        left = RefRange{range.begin, i, best.left_bounds, left_centroids.box()};
+        right = RefRange{j, range.end, best.right_bounds, right_centroids.box()};
     }
 
     // Splits at the middle reference after ordering by centroid along the

@@ -13,6 +13,7 @@
 
 #include "accel/accel.h"
 #include "accel/accel_test_util.h"
+#include "accel/bvh_binary.h"
 
 namespace sombra {
 namespace {
@@ -132,6 +133,70 @@ TEST(BvhStructure, SahProducesSmallLeaves) {
     EXPECT_GT(mean_leaf, 1.0);
     EXPECT_LT(mean_leaf, 6.0);
     EXPECT_LT(facts.depth, 30);
+}
+
+// The build's split rule written out once more as a plain scalar loop: 32
+// bins of doubled centroids per axis, every plane between bins costed as
+// half_area · blocks of four on each side, the cheapest taken (the first
+// axis, then the lowest plane, among equal costs). The root's left child
+// must be exactly the union of the bins left of that plane, which pins the
+// build's SSE binning and its sweep of the three axes side by side.
+TEST(BvhStructure, RootSplitIsTheCheapestBinnedPlane) {
+    for (const std::uint32_t seed : {7u, 8u, 9u}) {
+        const TriangleMesh mesh = random_soup(3000, seed, 0.05f);
+        struct Bounds {
+            Vec3 lo{std::numeric_limits<float>::infinity()}, hi{-std::numeric_limits<float>::infinity()};
+            int count = 0;
+            void grow(Vec3 l, Vec3 h) { lo = min(lo, l); hi = max(hi, h); }
+            float half_area() const {
+                const Vec3 e = hi - lo;
+                return e.x * e.y + e.y * e.z + e.z * e.x;
+            }
+        };
+        std::vector<Vec3> lo, hi;
+        Bounds centroids;
+        for (const Index3& t : mesh.triangles) {
+            const Vec3 p0 = mesh.positions[t[0]], p1 = mesh.positions[t[1]], p2 = mesh.positions[t[2]];
+            lo.push_back(min(p0, min(p1, p2)));
+            hi.push_back(max(p0, max(p1, p2)));
+            centroids.grow(lo.back() + hi.back(), lo.back() + hi.back());
+        }
+        constexpr int kBins = 32;
+        float best_cost = std::numeric_limits<float>::infinity();
+        Bounds best_left;
+        for (int a = 0; a < 3; ++a) {
+            const float extent = centroids.hi[a] - centroids.lo[a];
+            ASSERT_GT(extent, 0.0f);
+            const float scale = static_cast<float>(kBins) / extent;
+            Bounds bins[kBins];
+            for (std::size_t k = 0; k < lo.size(); ++k) {
+                const float f = ((lo[k] + hi[k])[a] - centroids.lo[a]) * scale;
+                const int bin = f > 0.0f ? std::min(static_cast<int>(f), kBins - 1) : 0;
+                bins[bin].grow(lo[k], hi[k]);
+                ++bins[bin].count;
+            }
+            for (int plane = 1; plane < kBins; ++plane) {
+                Bounds left, right;
+                for (int b = 0; b < kBins; ++b) {
+                    Bounds& side = b < plane ? left : right;
+                    side.grow(bins[b].lo, bins[b].hi);
+                    side.count += bins[b].count;
+                }
+                if (left.count == 0 || right.count == 0) continue;
+                const float cost = left.half_area() * static_cast<float>((left.count + 3) / 4) +
+                                   right.half_area() * static_cast<float>((right.count + 3) / 4);
+                if (cost < best_cost) {
+                    best_cost = cost;
+                    best_left = left;
+                }
+            }
+        }
+        const BinaryBvh binary = make_binary_bvh(mesh);
+        ASSERT_EQ(binary.nodes[0].count, 0u);
+        const BvhNode& left_child = binary.nodes[binary.nodes[0].left_or_first];
+        EXPECT_EQ(left_child.bmin, best_left.lo) << "seed " << seed;
+        EXPECT_EQ(left_child.bmax, best_left.hi) << "seed " << seed;
+    }
 }
 
 // Parallel triangles in the planes x = 3^k · 1e-37, k = 0 … 155: every SAH
