@@ -119,13 +119,6 @@ struct Split {
 // The blocks of four that `count` triangles fill, as a cost factor.
 float blocks_of(std::uint32_t count) { return static_cast<float>((count + 3) / 4); }
 
-// The bin of centroid coordinate c; NaN and overflow land in the end bins.
-int bin_of(float c, float cmin, float scale, int bins) {
-    const float f = (c - cmin) * scale;
-    if (!(f > 0.0f)) return 0;
-    return f < static_cast<float>(bins - 1) ? static_cast<int>(f) : bins - 1;
-}
-
 // Small nodes get fewer bins: about one per reference is resolution enough.
 int bin_count(std::uint32_t refs) { return refs < kBins ? static_cast<int>(refs) : kBins; }
 
@@ -219,8 +212,9 @@ struct Builder {
         const Vec3 extent = range.centroids.bmax - cmin;
         Vec3 scale;
         for (int a = 0; a < 3; ++a) scale[a] = extent[a] > 0.0f ? static_cast<float>(nbins) / extent[a] : 0.0f;
-        // bin_of for the three axes at once, with the same float operations:
-        // max(f, 0) sends NaN and f ≤ 0 to bin 0, min(·, nbins − 1) caps it.
+        // A doubled centroid c's bin along each axis, (c − cmin) · scale
+        // truncated: max(f, 0) sends NaN and f ≤ 0 to bin 0, min(·, nbins − 1)
+        // caps it. partition() bins with the same float operations.
         const __m128 cmin4 = _mm_setr_ps(cmin.x, cmin.y, cmin.z, 0.0f);
         const __m128 scale4 = _mm_setr_ps(scale.x, scale.y, scale.z, 0.0f);
         const __m128 top = _mm_set1_ps(static_cast<float>(nbins - 1));
@@ -283,24 +277,72 @@ struct Builder {
     }
     // Partitions in place by the split's plane, gathering each side's
     // centroid bounds on the way; each side's bounds are its bins' union.
+    // Block partitioning (Edelkamp and Weiß, "BlockQuicksort", 2016): which
+    // side a reference goes to is a coin toss to the branch predictor, so
+    // blocks of kBlock references from each end are classified without
+    // branches and their misplaced references then swapped in pairs. The k-th
+    // misplaced one from the left meets the k-th from the right, as in Hoare's
+    // loop, which finishes the middle: the order is the same as Hoare's alone.
     void partition(const RefRange& range, const Split& best, RefRange& left, RefRange& right) {
         const int axis = best.axis;
         const float cmin = range.centroids.bmin[axis];
         const int nbins = bin_count(range.count());
         const float scale = static_cast<float>(nbins) / (range.centroids.bmax[axis] - cmin);
-        auto goes_left = [&](const PrimRef& r) { return bin_of(r.centroid2()[axis], cmin, scale, nbins) < best.bin; };
-        // i and j are locals, not references into left and right, so that
-        // the compiler keeps them in registers across the stores to refs.
-        std::uint32_t i = range.begin, j = range.end;
+        const __m128 cmin4 = _mm_set1_ps(cmin), scale4 = _mm_set1_ps(scale);
+        const __m128 top = _mm_set1_ps(static_cast<float>(nbins - 1));
+        const __m128 inf4 = _mm_set1_ps(kInf), minus_inf4 = _mm_set1_ps(-kInf);
+        const __m128i split_bin = _mm_set1_epi32(best.bin);
+        const __m128i axis_lane = _mm_set1_epi32(axis);
         BoxRows left_centroids, right_centroids;
-        auto centroid = [](const PrimRef& r) { return _mm_add_ps(r.lo(), r.hi()); };
+        // Whether r goes left (its bin by the binning's arithmetic, below the
+        // split's); its doubled centroid grows that side's bounds, without a
+        // branch (a reference classified twice grows them the same).
+        auto goes_left = [&](const PrimRef& r) {
+            const __m128 c = _mm_add_ps(r.lo(), r.hi());
+            const __m128 f = _mm_mul_ps(_mm_sub_ps(c, cmin4), scale4);
+            const __m128i bin = _mm_cvttps_epi32(_mm_min_ps(_mm_max_ps(f, _mm_setzero_ps()), top));
+            const __m128 is_left = _mm_permutevar_ps(_mm_castsi128_ps(_mm_cmplt_epi32(bin, split_bin)), axis_lane);
+            left_centroids.grow(_mm_blendv_ps(inf4, c, is_left), _mm_blendv_ps(minus_inf4, c, is_left));
+            right_centroids.grow(_mm_blendv_ps(c, inf4, is_left), _mm_blendv_ps(c, minus_inf4, is_left));
+            return (_mm_movemask_ps(is_left) & 1) != 0;
+        };
+        // [begin, i) goes left, [j, end) right. Block offsets of misplaced
+        // references: from i upwards on the left, from j − 1 downwards on the right.
+        std::uint32_t i = range.begin, j = range.end;
+        constexpr std::uint32_t kBlock = 64;
+        std::uint8_t misplaced_left[kBlock], misplaced_right[kBlock];
+        std::uint32_t left_count = 0, left_next = 0, right_count = 0, right_next = 0;
+        while (j - i >= 2 * kBlock) {
+            if (left_next == left_count) {
+                left_count = left_next = 0;
+                for (std::uint32_t k = 0; k < kBlock; ++k) {
+                    misplaced_left[left_count] = static_cast<std::uint8_t>(k);
+                    left_count += !goes_left(refs[i + k]);
+                }
+            }
+            if (right_next == right_count) {
+                right_count = right_next = 0;
+                for (std::uint32_t k = 0; k < kBlock; ++k) {
+                    misplaced_right[right_count] = static_cast<std::uint8_t>(k);
+                    right_count += goes_left(refs[j - 1 - k]);
+                }
+            }
+            const std::uint32_t pairs = std::min(left_count - left_next, right_count - right_next);
+            for (std::uint32_t k = 0; k < pairs; ++k)
+                std::swap(refs[i + misplaced_left[left_next + k]], refs[j - 1 - misplaced_right[right_next + k]]);
+            left_next += pairs;
+            right_next += pairs;
+            if (left_next == left_count) i += kBlock;
+            if (right_next == right_count) j -= kBlock;
+        }
+        // A block left with misplaced references resumes at the first of them.
+        if (left_next < left_count) i += misplaced_left[left_next];
+        if (right_next < right_count) j -= misplaced_right[right_next];
         for (;;) {
-            while (i < j && goes_left(refs[i])) left_centroids.grow(centroid(refs[i++]));
-            while (i < j && !goes_left(refs[j - 1])) right_centroids.grow(centroid(refs[--j]));
+            while (i < j && goes_left(refs[i])) ++i;
+            while (i < j && !goes_left(refs[j - 1])) --j;
             if (i >= j) break;
-            std::swap(refs[i], refs[j - 1]);  // now refs[i] goes left and refs[j - 1] right
-            left_centroids.grow(centroid(refs[i++]));
-            right_centroids.grow(centroid(refs[--j]));
+            std::swap(refs[i++], refs[--j]);  // refs[i] went right and refs[j - 1] left
         }
         left = RefRange{range.begin, i, best.left_bounds, left_centroids.box()};
         right = RefRange{j, range.end, best.right_bounds, right_centroids.box()};
