@@ -142,8 +142,10 @@ TEST(BvhStructure, SahProducesSmallLeaves) {
 // must be exactly the union of the bins left of that plane, which pins the
 // build's SSE binning and its sweep of the three axes side by side.
 TEST(BvhStructure, RootSplitIsTheCheapestBinnedPlane) {
-    for (const std::uint32_t seed : {7u, 8u, 9u}) {
-        const TriangleMesh mesh = random_soup(3000, seed, 0.05f);
+    // The last soup is large enough for the root's binning to run in
+    // parallel chunks (kParallelPassRefs).
+    for (const auto [seed, count] : {std::pair{7u, 3000}, std::pair{8u, 3000}, std::pair{9u, 3000}, std::pair{10u, 70000}}) {
+        const TriangleMesh mesh = random_soup(count, seed, 0.05f);
         struct Bounds {
             Vec3 lo{std::numeric_limits<float>::infinity()}, hi{-std::numeric_limits<float>::infinity()};
             int count = 0;
@@ -228,8 +230,10 @@ TEST(BvhStructure, DepthStaysWithinTheTraversalStack) {
     EXPECT_GE(c.hits, static_cast<int>(rays.size()) * 2 / 3);
 }
 
+// 150,000 triangles: the top levels bin and partition in parallel chunks,
+// the subtrees below build in parallel.
 TEST(BvhStructure, SameTreeForAnyThreadCount) {
-    const TriangleMesh mesh = random_soup(60000, 23, 0.02f);
+    const TriangleMesh mesh = random_soup(150000, 23, 0.02f);
     const Bvh parallel = make_bvh(mesh);
     Bvh serial;
     {
@@ -240,6 +244,12 @@ TEST(BvhStructure, SameTreeForAnyThreadCount) {
     EXPECT_EQ(std::memcmp(parallel.nodes.data(), serial.nodes.data(), parallel.nodes.size() * sizeof(BvhWideNode)), 0);
     ASSERT_EQ(parallel.blocks.size(), serial.blocks.size());
     EXPECT_EQ(std::memcmp(parallel.blocks.data(), serial.blocks.data(), parallel.blocks.size() * sizeof(TriangleBlock)), 0);
+    // The chunked passes put every reference on its side: each triangle
+    // inside its leaf's box, each once.
+    EXPECT_EQ(inspect(parallel, mesh).bad_bounds, 0);
+    std::vector<int> seen(mesh.triangles.size(), 0);
+    for (std::uint32_t t : testing::bvh_triangles(parallel)) ++seen[t];
+    EXPECT_EQ(std::count(seen.begin(), seen.end(), 1), static_cast<std::ptrdiff_t>(seen.size()));
 }
 
 // A closed mesh (a subdivided octahedron pushed onto a sphere): every ray
