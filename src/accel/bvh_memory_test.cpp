@@ -56,8 +56,8 @@ INSTANTIATE_TEST_SUITE_P(Models, BvhMemory,
                                                       0xd8e8fff98009143full},
                                            PinnedTree{"dragon.ply", 48416, 234718, 0x333235aff4295d8bull,
                                                       0xd65eccda1a163ab6ull}),
-                         [](const ::testing::TestParamInfo<PinnedTree>& info) {
-                             return std::string(info.param.model) == "dragon.ply" ? "dragon" : "bunny";
+                         [](const ::testing::TestParamInfo<PinnedTree>& param_info) {
+                             return std::string(param_info.param.model) == "dragon.ply" ? "dragon" : "bunny";
                          });
 
 // The slots a tree of at most 2,048 references (built on one thread) uses:
