@@ -17,7 +17,8 @@ namespace {
 struct GrowthPoint {
     std::string name;
     double load_seconds = 0;
-    std::uint64_t peak_rss = 0;
+    std::uint64_t load_peak_rss = 0;  // the process's peak while loading (0: not measurable here)
+    std::uint64_t peak_rss = 0;       // the process's peak so far, after the whole measurement
     SceneMeasurement m;
 };
 
@@ -25,11 +26,13 @@ std::string megabytes(double bytes) { return fixed(bytes * 1e-6, 1); }
 
 void write_csv(const std::string& path, const std::vector<GrowthPoint>& points) {
     std::ofstream csv(path);
-    csv << "mesh,triangles,load_seconds,accel,build_seconds,render_seconds,accel_bytes,rays\n";
+    csv << "mesh,triangles,load_seconds,accel,build_seconds,render_seconds,accel_bytes,rays,load_peak_rss_bytes,"
+           "peak_rss_bytes\n";
     for (const GrowthPoint& p : points) {
         for (const BackendTiming& b : p.m.backends) {
             csv << p.name << ',' << p.m.triangles << ',' << p.load_seconds << ',' << accel_name(b.kind) << ','
-                << b.build_seconds << ',' << b.render_seconds << ',' << b.accel_bytes << ',' << b.rays << '\n';
+                << b.build_seconds << ',' << b.render_seconds << ',' << b.accel_bytes << ',' << b.rays << ','
+                << p.load_peak_rss << ',' << b.peak_rss_bytes << '\n';
         }
     }
     if (!csv) throw Error(path, "could not write the CSV file");
@@ -50,9 +53,11 @@ void run_growth_bench(const std::vector<std::string>& model_files, const GrowthO
         p.name = std::filesystem::path(file).stem().string();
         std::cerr << "sombra-bench: " << p.name << ": loading\n";
         Diagnostics diag;
+        const bool peak_reset = reset_peak_rss();
         const auto load_start = Clock::now();
         const Scene scene = make_quicklook_scene(file, diag);
         p.load_seconds = seconds_since(load_start);
+        p.load_peak_rss = peak_reset ? peak_rss_since_reset_bytes() : 0;
         std::cerr << "sombra-bench: " << p.name << ": " << thousands(scene.geometry.triangle_count())
                   << " triangles; checking the images agree, then " << o.reps << " rounds\n";
         p.m = measure_scene(scene, settings, o.reps, file);
@@ -66,6 +71,8 @@ void run_growth_bench(const std::vector<std::string>& model_files, const GrowthO
     for (const char* what : {"build s", "render s", "MB", "bytes/tri"}) {
         for (const AccelKind kind : kinds) table.header.push_back(std::string(accel_name(kind)) + " " + what);
     }
+    table.header.push_back("load peak MB");
+    for (const AccelKind kind : kinds) table.header.push_back(std::string(accel_name(kind)) + " peak MB");
     table.header.push_back("peak RSS MB");
     table.right.assign(table.header.size(), true);
     table.right[0] = false;
@@ -77,6 +84,9 @@ void run_growth_bench(const std::vector<std::string>& model_files, const GrowthO
         for (const BackendTiming& b : p.m.backends) {
             row.push_back(p.m.triangles > 0 ? fixed(double(b.accel_bytes) / double(p.m.triangles), 1) : "–");
         }
+        auto peak = [](std::uint64_t bytes) { return bytes > 0 ? megabytes(double(bytes)) : std::string("–"); };
+        row.push_back(peak(p.load_peak_rss));
+        for (const BackendTiming& b : p.m.backends) row.push_back(peak(b.peak_rss_bytes));
         row.push_back(megabytes(double(p.peak_rss)));
         table.rows.push_back(std::move(row));
     }

@@ -18,8 +18,9 @@ struct GrowthOptions {
 // view framing the model, three point lights), measured as in measure.h.
 // Writes one Markdown table to `out`: triangles, load seconds, and per
 // backend build and render seconds, structure megabytes and bytes per
-// triangle, and the process's peak RSS so far. Throws Error on a bad file or
-// disagreeing images.
+// triangle, the process's peak RSS while loading and while each backend
+// built and rendered (mesh included), and its peak RSS so far. Throws Error
+// on a bad file or disagreeing images.
 void run_growth_bench(const std::vector<std::string>& model_files, const GrowthOptions& options, std::ostream& out);
 
 }  // namespace sombra::bench

@@ -61,9 +61,11 @@ SceneMeasurement measure_scene(const Scene& scene, const RenderSettings& setting
     // The check, which also warms caches and thread pools for the rounds.
     std::vector<Film> films;
     for (const AccelKind kind : kinds) {
+        const bool peak_reset = reset_peak_rss();
         Round round = build_and_render(scene, settings, kind, embree_quality);
         BackendTiming timing;
         timing.kind = kind;
+        timing.peak_rss_bytes = peak_reset ? peak_rss_since_reset_bytes() : 0;
         timing.rays = round.output.counters.camera_rays + round.output.counters.shadow_rays;
         timing.accel_bytes = round.accel_bytes;
         m.backends.push_back(timing);

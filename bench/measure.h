@@ -22,6 +22,10 @@ struct BackendTiming {
     double render_seconds = 0;  // median over the rounds
     std::uint64_t rays = 0;     // camera + shadow rays of one render
     std::size_t accel_bytes = 0;
+    // The process's peak resident memory while this backend built and
+    // rendered in the check (the scene's mesh included; 0 where the kernel
+    // cannot reset the peak, see reset_peak_rss).
+    std::uint64_t peak_rss_bytes = 0;
     double mrays_per_second() const { return render_seconds > 0 ? double(rays) / render_seconds * 1e-6 : 0; }
 };
 

@@ -2,13 +2,15 @@
 # Runs sombra-bench and rewrites the measured parts of docs/performance.md:
 # the machine, the date and the exact commands; the bvh-against-embree table
 # over ../shared/scenes; OBJ loading against tinyobjloader; and cost growth
-# from the dragon's resolutions up to a 13.9 M-triangle subdivision, with its
+# from the dragon's resolutions up to a 105 M-triangle subdivision, with its
 # plot (docs/performance-growth.png); and path tracing: bvh against embree
 # on three path-traced scenes, the error against a converged reference
 # (cached under build/bench; the first run renders it, about a minute), and
 # allocation counts against spp. Everything else in that file is prose and
-# stays as it is. Takes about 8 minutes on 2 cores; run it on a quiet machine
-# (the load average at the start is recorded).
+# stays as it is. Takes about 8 minutes on 2 cores, plus about 10 for the
+# 105 M-triangle mesh (its own process, SOMBRA_BENCH_GROWTH_BIG_REPS rounds,
+# default 1; it needs about 11 GB of memory and 2 GB of disk under build/);
+# run it on a quiet machine (the load average at the start is recorded).
 #
 #   tools/bench.sh            # all of it
 #   SOMBRA_BENCH_REPS=1 tools/bench.sh   # a quick run (fewer rounds)
@@ -21,6 +23,7 @@ root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 cd "$root"
 reps="${SOMBRA_BENCH_REPS:-5}"
 growth_reps="${SOMBRA_BENCH_GROWTH_REPS:-3}"
+growth_big_reps="${SOMBRA_BENCH_GROWTH_BIG_REPS:-1}"
 sections="${SOMBRA_BENCH_SECTIONS:-scenes load growth path}"
 want() { [[ " $sections " == *" $1 "* ]]; }
 build="${SOMBRA_BENCH_BUILD:-build/release}"  # relative to the repository root
@@ -41,13 +44,17 @@ commit="$(git rev-parse --short HEAD)"
 git diff --quiet HEAD -- src bench CMakeLists.txt || commit="$commit + uncommitted changes"
 if want growth; then
   [ -f build/bench-meshes/dragon-sub2.ply ] || "$python" tools/make-big-mesh.py --levels 2
+  [ -f build/bench-meshes/dragon-split11.ply ] || "$python" tools/make-big-mesh.py --split 11
 fi
 
 bench="$build/bench/sombra-bench"
 scenes_cmd="$bench scenes --reps $reps $shared/scenes/bunny.json $shared/scenes/dragon.json $shared/scenes/manylights.json $shared/scenes/cornell.json $shared/scenes/phong.json"
 load_cmd="$bench load --reps $reps $shared/models/dragon.obj"
 growth_cmd="$bench growth --reps $growth_reps --csv $out/growth.csv $shared/models/dragon-res2.obj $shared/models/dragon.ply build/bench-meshes/dragon-sub1.ply build/bench-meshes/dragon-sub2.ply"
-plot_cmd="$python tools/plot-growth.py $out/growth.csv docs/performance-growth.png"
+# The 105 M-triangle mesh in a process of its own, so that its peak memory
+# is its own, with fewer rounds (a build takes minutes).
+growth_big_cmd="$bench growth --reps $growth_big_reps --csv $out/growth-big.csv build/bench-meshes/dragon-split11.ply"
+plot_cmd="$python tools/plot-growth.py $out/growth.csv $out/growth-big.csv docs/performance-growth.png"
 
 # Path tracing: 256×256 at 32 spp, depth 8 (1–3 s a render here); the
 # error of the Cornell box against a 4096-spp reference at 128×128.
@@ -67,6 +74,8 @@ fi
 if want growth; then
   echo "bench.sh: $growth_cmd" >&2
   $growth_cmd >"$out/growth.md"
+  echo "bench.sh: $growth_big_cmd" >&2
+  $growth_big_cmd | tail -n +3 >>"$out/growth.md"  # its rows under the same header
   $plot_cmd
 fi
 if want path; then
@@ -112,6 +121,7 @@ embree="$(dpkg-query -W -f='${Version}' libembree-dev 2>/dev/null || echo 'not i
   echo "$scenes_cmd"
   echo "$load_cmd"
   echo "$growth_cmd"
+  echo "$growth_big_cmd"
   echo "$plot_cmd"
   echo "$path_cmd"
   echo "$path_error_cmd"

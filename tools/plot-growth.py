@@ -1,11 +1,13 @@
 #!/usr/bin/env python3
 """Plots the cost-growth CSV of `sombra-bench growth --csv` as a PNG.
 
-    python3 tools/plot-growth.py growth.csv docs/performance-growth.png
+    python3 tools/plot-growth.py growth.csv [more.csv ...] docs/performance-growth.png
 
 Three log-log panels against triangle count: build seconds, render seconds,
 structure megabytes, one line per backend, each with a dotted line of slope 1
-(linear growth) through its first point for comparison. Needs matplotlib
+(linear growth) through its first point for comparison. Several CSVs (runs
+of separate processes, e.g. the largest mesh on its own) are plotted as one
+series per backend. Needs matplotlib
 (Debian python3-matplotlib).
 """
 import csv
@@ -25,12 +27,13 @@ COLOURS = {"bvh": "#c0392b", "embree": "#2c3e50"}
 
 
 def main():
-    if len(sys.argv) != 3:
+    if len(sys.argv) < 3:
         sys.exit(__doc__.strip().split("\n\n")[1])
     series = {}
-    with open(sys.argv[1], newline="") as f:
-        for row in csv.DictReader(f):
-            series.setdefault(row["accel"], []).append(row)
+    for path in sys.argv[1:-1]:
+        with open(path, newline="") as f:
+            for row in csv.DictReader(f):
+                series.setdefault(row["accel"], []).append(row)
 
     fig, axes = plt.subplots(1, len(PANELS), figsize=(13, 4.2), dpi=110)
     for ax, (column, label, scale) in zip(axes, PANELS):
@@ -48,9 +51,9 @@ def main():
         ax.set_title(label)
         ax.grid(True, which="both", alpha=0.3)
     axes[0].legend(fontsize=8)
-    fig.suptitle("sombra: cost against triangle count (Stanford dragon and its midpoint subdivisions)")
+    fig.suptitle("sombra: cost against triangle count (Stanford dragon and its subdivisions, to 105 M triangles)")
     fig.tight_layout()
-    fig.savefig(sys.argv[2])
+    fig.savefig(sys.argv[-1])
 
 
 if __name__ == "__main__":

@@ -3,6 +3,9 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
+#include <new>
+#include <utility>
 #include <vector>
 
 #include "core/vec3.h"
@@ -18,10 +21,34 @@ struct BvhNode {
 };
 static_assert(sizeof(BvhNode) == 32);
 
+// std::allocator, except that resize() leaves new elements uninitialised
+// (BvhNode is an aggregate of floats and integers: an implicit-lifetime
+// type, so the memory holds nodes without a constructor call). Slots of the
+// binary tree that no node takes are never written, and their untouched
+// pages never become resident (bvh_build.cpp).
+template <class T>
+struct UninitialisedAllocator : std::allocator<T> {
+    template <class U>
+    struct rebind {
+        using other = UninitialisedAllocator<U>;
+    };
+    UninitialisedAllocator() = default;
+    template <class U>
+    UninitialisedAllocator(const UninitialisedAllocator<U>&) noexcept {}
+    template <class U>
+    void construct(U*) noexcept {}
+    template <class U, class... Args>
+    void construct(U* p, Args&&... args) {
+        ::new (static_cast<void*>(p)) U(std::forward<Args>(args)...);
+    }
+};
+using BinaryNodeArray = std::vector<BvhNode, UninitialisedAllocator<BvhNode>>;
+
 struct BinaryBvh {
     // nodes[0] is the root, children in adjacent pairs; sparse (slots no
-    // node refers to are unused); empty when no triangle can be hit.
-    std::vector<BvhNode> nodes;
+    // node refers to are unused and uninitialised: read only the slots that
+    // nodes refer to); empty when no triangle can be hit.
+    BinaryNodeArray nodes;
     std::vector<std::uint32_t> triangle_order;  // leaf entries, indices into TriangleMesh::triangles
 };
 

@@ -8,6 +8,13 @@
 // reserved for it in advance (a binary tree with n leaves or fewer has at most
 // 2n − 1 nodes), so the tree is the same for any number of threads. The
 // slots stay sparse: the collapse into the wide tree reads them as they are.
+//
+// Memory: the 2n − 1 slots are 64 bytes a triangle, but leaves of up to four
+// references leave about two thirds of them unused. Subtrees built on one
+// thread (kParallelRefs references or fewer, nearly all nodes) therefore
+// take their slots in depth-first order from the start of their reserved
+// range, and the slot array is left uninitialised: the unused tail of each
+// range is never written, so its pages are never touched and cost no memory.
 #include <algorithm>
 #include <cstdint>
 #include <vector>
@@ -38,7 +45,7 @@ constexpr float kIntersectionCost = 1.0f;
 
 struct Builder {
     std::vector<PrimRef>& refs;
-    std::vector<BvhNode>& slots;  // sparse: see the file comment
+    BinaryNodeArray& slots;  // sparse and uninitialised: see the file comment
 
     // The range's bounds and centroid bounds; a large range (the root) in
     // parallel chunks, merged in chunk order.
@@ -79,27 +86,46 @@ struct Builder {
     // Fills slots[node] for `range`. Its descendants, if any, go to slots
     // [free, free + 2·count − 2).
     void build(std::uint32_t node, const RefRange& range, std::uint32_t free, int depth) {
+        if (range.count() <= kParallelRefs) {
+            std::uint32_t next = free;
+            build_serial(node, range, next, depth);
+            return;
+        }
+        RefRange left, right;
+        if (!fill(node, range, depth, left, right, free)) return;
+        const std::uint32_t left_free = free + 2;
+        const std::uint32_t right_free = left_free + 2 * left.count() - 2;
+        tbb::parallel_invoke([&] { build(free, left, left_free, depth + 1); },
+                             [&] { build(free + 1, right, right_free, depth + 1); });
+    }
+
+    // build() on one thread: children take the next two slots from `next`,
+    // depth first, so the subtree's slots are a prefix of its range.
+    void build_serial(std::uint32_t node, const RefRange& range, std::uint32_t& next, int depth) {
+        RefRange left, right;
+        if (!fill(node, range, depth, left, right, next)) return;
+        const std::uint32_t children = next;
+        next += 2;
+        build_serial(children, left, next, depth + 1);
+        build_serial(children + 1, right, next, depth + 1);
+    }
+
+    // Writes slots[node]: a leaf (returns false), or an inner node whose
+    // children go to slots `children` and `children` + 1, with the halves
+    // of its references in `left` and `right`.
+    bool fill(std::uint32_t node, const RefRange& range, int depth, RefRange& left, RefRange& right,
+              std::uint32_t children) {
         BvhNode& out = slots[node];
         out.bmin = range.bounds.bmin;
         out.bmax = range.bounds.bmax;
-        RefRange left, right;
         if (!split(range, depth, left, right)) {
             out.left_or_first = range.begin;
             out.count = range.count();
-            return;
+            return false;
         }
-        out.left_or_first = free;
+        out.left_or_first = children;
         out.count = 0;
-        const std::uint32_t left_free = free + 2;
-        const std::uint32_t right_free = left_free + 2 * left.count() - 2;
-        auto build_left = [&] { build(free, left, left_free, depth + 1); };
-        auto build_right = [&] { build(free + 1, right, right_free, depth + 1); };
-        if (range.count() > kParallelRefs) {
-            tbb::parallel_invoke(build_left, build_right);
-        } else {
-            build_left();
-            build_right();
-        }
+        return true;
     }
 
     // Reorders the range's references into two non-empty halves, or returns

@@ -125,7 +125,7 @@ struct Collapser {
 
 Bvh make_bvh(const TriangleMesh& mesh) {
     Bvh bvh;
-    const BinaryBvh binary = make_binary_bvh(mesh);
+    BinaryBvh binary = make_binary_bvh(mesh);
     if (binary.nodes.empty()) return bvh;
 
     bvh.nodes.reserve(binary.triangle_order.size() / 16 + 1);  // about one node per seven leaves of three or four
@@ -134,6 +134,10 @@ Bvh make_bvh(const TriangleMesh& mesh) {
     leaves.reserve(binary.triangle_order.size() / 3 + 1);
     Collapser collapser{binary, bvh.nodes, leaves};
     collapser.collapse(0, 0);
+    // The binary nodes are done with (the leaves' list says where each
+    // leaf's triangles go): freed before the blocks, the largest array, are
+    // allocated, so that the two are never held at once.
+    BinaryNodeArray().swap(binary.nodes);
 
     bvh.blocks.resize(collapser.block_count);
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, leaves.size(), 1024),

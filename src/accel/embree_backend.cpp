@@ -122,6 +122,7 @@ std::shared_ptr<const EmbreeScene> make_embree_scene(const TriangleMesh& mesh, c
     // The triangles sombra can hit, by the same test as make_bvh.
     const std::size_t vertex_count = mesh.positions.size();
     std::vector<std::uint32_t> kept;
+    kept.reserve(mesh.triangles.size());  // no doubling: the list is 4 bytes a triangle
     bool all_kept = true;
     for (std::size_t i = 0; i < mesh.triangles.size(); ++i) {
         const Index3& t = mesh.triangles[i];
@@ -136,6 +137,9 @@ std::shared_ptr<const EmbreeScene> make_embree_scene(const TriangleMesh& mesh, c
         for (std::uint32_t i : kept) s->kept_triangles.push_back(mesh.triangles[i]);
         s->mesh_index_of = std::move(kept);
     }
+    // When every triangle is kept the list is not needed: freed before
+    // Embree's build, not held through it.
+    std::vector<std::uint32_t>().swap(kept);
     const std::size_t triangle_count = all_kept ? mesh.triangles.size() : s->kept_triangles.size();
 
     s->scene = rtcNewScene(s->device);

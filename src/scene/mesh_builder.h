@@ -8,7 +8,9 @@
 
 #include <array>
 #include <cstdint>
+#include <cstdio>
 #include <filesystem>
+#include <memory>
 #include <span>
 #include <string>
 #include <vector>
@@ -22,6 +24,19 @@ namespace sombra {
 // The file's bytes. Throws Error(path, "no such file"), Error(path, "is a
 // folder, not a mesh file"), or Error(path, ...) when it cannot be read.
 std::string read_mesh_file(const std::filesystem::path& path);
+
+// A mesh file opened after read_mesh_file's checks (with its errors), for a
+// loader that reads it piece by piece; `size_on_disk` as it was when opened
+// (0 when unknown).
+struct OpenMeshFile {
+    std::unique_ptr<std::FILE, int (*)(std::FILE*)> file;
+    std::uint64_t size_on_disk = 0;
+};
+OpenMeshFile open_mesh_file(const std::filesystem::path& path);
+
+// Appends the rest of `file` (named `where` in errors) to `bytes`, to its
+// end whatever its size on disk said.
+void read_rest_of_file(std::FILE* file, const std::string& where, std::string& bytes);
 
 // Corner numbers (0 … n-1 within one polygon) of one output triangle.
 using PolygonTriangle = std::array<std::uint32_t, 3>;

@@ -9,6 +9,8 @@
 #include <cstring>
 #include <memory>
 
+#include <sys/stat.h>
+
 #include "core/error.h"
 #include "scene/mesh_builder.h"
 
@@ -44,7 +46,7 @@ std::string reason(int err) {
 
 }  // namespace
 
-std::string read_mesh_file(const std::filesystem::path& path) {
+OpenMeshFile open_mesh_file(const std::filesystem::path& path) {
     namespace fs = std::filesystem;
     const std::string where = path.string();
     std::error_code ec;
@@ -55,16 +57,27 @@ std::string read_mesh_file(const std::filesystem::path& path) {
     // A FIFO or device could block forever or never end.
     if (status.type() != fs::file_type::regular) throw Error(where, "is not a regular file");
 
-    const std::unique_ptr<std::FILE, int (*)(std::FILE*)> file(std::fopen(path.c_str(), "rb"), &std::fclose);
-    if (!file) throw Error(where, "cannot open: " + reason(errno));
-    std::string bytes;
-    const std::uintmax_t size_on_disk = fs::file_size(path, ec);
-    if (!ec) bytes.reserve(static_cast<std::size_t>(size_on_disk));
+    OpenMeshFile opened{{std::fopen(path.c_str(), "rb"), &std::fclose}, 0};
+    if (!opened.file) throw Error(where, "cannot open: " + reason(errno));
+    struct stat info {};
+    if (fstat(fileno(opened.file.get()), &info) == 0 && info.st_size > 0)
+        opened.size_on_disk = static_cast<std::uint64_t>(info.st_size);
+    return opened;
+}
+
+void read_rest_of_file(std::FILE* file, const std::string& where, std::string& bytes) {
     char chunk[1 << 16];
     std::size_t got = 0;
     // Read to the end rather than trusting the size on disk, which may change underneath.
-    while ((got = std::fread(chunk, 1, sizeof chunk, file.get())) > 0) bytes.append(chunk, got);
-    if (std::ferror(file.get())) throw Error(where, "cannot read: " + reason(errno));
+    while ((got = std::fread(chunk, 1, sizeof chunk, file)) > 0) bytes.append(chunk, got);
+    if (std::ferror(file)) throw Error(where, "cannot read: " + reason(errno));
+}
+
+std::string read_mesh_file(const std::filesystem::path& path) {
+    const OpenMeshFile opened = open_mesh_file(path);
+    std::string bytes;
+    bytes.reserve(static_cast<std::size_t>(opened.size_on_disk));
+    read_rest_of_file(opened.file.get(), path.string(), bytes);
     return bytes;
 }
 

@@ -1,0 +1,87 @@
+// The build's memory savings change no tree: the wide trees of two shared
+// models are pinned by a hash of their bytes, taken before the savings
+// (commit 19eec48), and the binary tree's slots are checked to be used the
+// way the savings rely on (a prefix of each serial subtree's range).
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cstdint>
+#include <filesystem>
+#include <vector>
+
+#include "accel/accel_test_util.h"
+#include "accel/bvh.h"
+#include "accel/bvh_binary.h"
+#include "scene/mesh_file.h"
+
+namespace sombra {
+namespace {
+
+const std::filesystem::path kModels = std::filesystem::path(SOMBRA_SHARED_DIR) / "models";
+
+// FNV-1a over raw bytes: the arrays have no padding (their static_asserts
+// fix their sizes), so equal hashes mean equal trees.
+std::uint64_t fnv1a(const void* data, std::size_t bytes) {
+    std::uint64_t h = 1469598103934665603ull;
+    const auto* b = static_cast<const unsigned char*>(data);
+    for (std::size_t i = 0; i < bytes; ++i) h = (h ^ b[i]) * 1099511628211ull;
+    return h;
+}
+
+struct PinnedTree {
+    const char* model;
+    std::size_t nodes, blocks;
+    std::uint64_t nodes_hash, blocks_hash;
+};
+
+class BvhMemory : public ::testing::TestWithParam<PinnedTree> {};
+
+// The hashes depend on float arithmetic being the build's (-ffp-contract=off,
+// the same compiler): a different toolchain may legitimately change them.
+TEST_P(BvhMemory, SameTreeAsBeforeTheMemorySavings) {
+    const PinnedTree& pinned = GetParam();
+    const std::filesystem::path path = kModels / pinned.model;
+    if (!std::filesystem::exists(path)) GTEST_SKIP() << "shared/ not found at " << kModels;
+    Diagnostics diag;
+    const LoadedMesh loaded = load_mesh_file(path, diag);
+    const Bvh bvh = make_bvh(loaded.mesh);
+    ASSERT_EQ(bvh.nodes.size(), pinned.nodes);
+    ASSERT_EQ(bvh.blocks.size(), pinned.blocks);
+    EXPECT_EQ(fnv1a(bvh.nodes.data(), bvh.nodes.size() * sizeof(BvhWideNode)), pinned.nodes_hash);
+    EXPECT_EQ(fnv1a(bvh.blocks.data(), bvh.blocks.size() * sizeof(TriangleBlock)), pinned.blocks_hash);
+}
+
+INSTANTIATE_TEST_SUITE_P(Models, BvhMemory,
+                         ::testing::Values(PinnedTree{"stanford-bunny.obj", 4327, 18088, 0xae1081f2148a89d7ull,
+                                                      0xd8e8fff98009143full},
+                                           PinnedTree{"dragon.ply", 48416, 234718, 0x333235aff4295d8bull,
+                                                      0xd65eccda1a163ab6ull}),
+                         [](const ::testing::TestParamInfo<PinnedTree>& param_info) {
+                             return std::string(param_info.param.model) == "dragon.ply" ? "dragon" : "bunny";
+                         });
+
+// The slots a tree of at most 2,048 references (built on one thread) uses:
+// the root's, then a prefix of the rest with no gap, about a third of the
+// 2n − 1 reserved. The untouched tail is what the build saves.
+TEST(BvhMemory, SerialSubtreesUseAPrefixOfTheirSlots) {
+    const TriangleMesh mesh = testing::random_soup(2000, 7, 0.05f);
+    const BinaryBvh binary = make_binary_bvh(mesh);
+    ASSERT_FALSE(binary.nodes.empty());
+    std::vector<std::uint32_t> used, stack{0};
+    while (!stack.empty()) {
+        const std::uint32_t slot = stack.back();
+        stack.pop_back();
+        used.push_back(slot);
+        const BvhNode& n = binary.nodes[slot];
+        if (n.count == 0) {
+            stack.push_back(n.left_or_first);
+            stack.push_back(n.left_or_first + 1);
+        }
+    }
+    std::sort(used.begin(), used.end());
+    for (std::size_t i = 0; i < used.size(); ++i) ASSERT_EQ(used[i], i) << "slot " << i << " skipped";
+    EXPECT_LT(used.size(), binary.nodes.size() / 2);
+}
+
+}  // namespace
+}  // namespace sombra
