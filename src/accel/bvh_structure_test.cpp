@@ -144,7 +144,7 @@ TEST(BvhStructure, SahProducesSmallLeaves) {
 TEST(BvhStructure, RootSplitIsTheCheapestBinnedPlane) {
     // The last soup is large enough for the root's binning to run in
     // parallel chunks (kParallelPassRefs).
-    for (const auto [seed, count] : {std::pair{7u, 3000}, std::pair{8u, 3000}, std::pair{9u, 3000}, std::pair{10u, 70000}}) {
+    for (const auto& [seed, count] : {std::pair{7u, 3000}, std::pair{8u, 3000}, std::pair{9u, 3000}, std::pair{10u, 70000}}) {
         const TriangleMesh mesh = random_soup(count, seed, 0.05f);
         struct Bounds {
             Vec3 lo{std::numeric_limits<float>::infinity()}, hi{-std::numeric_limits<float>::infinity()};
