@@ -154,9 +154,11 @@ TEST_F(FuzzRegression, HarnessSceneMeshesLoad) {
 // fuzz_texture found it: a JPEG Huffman table whose 16 code counts add up
 // to more than 256 made Debian's stb_image write past its tables; then the
 // same behind 0xff fill bytes before the start-of-image marker, which stb
-// accepts and the first guard did not take for a JPEG.
+// accepts and the first guard did not take for a JPEG; then a table cut
+// short by the file's end, whose missing counts stb reads as zeros.
 TEST_F(FuzzRegression, JpegHuffmanCountsOverTheTableAreRefused) {
-    for (const char* name : {"jpeg-huffman-counts-over-256.jpg", "jpeg-huffman-overflow-after-fill-bytes.jpg"}) {
+    for (const char* name : {"jpeg-huffman-counts-over-256.jpg", "jpeg-huffman-overflow-after-fill-bytes.jpg",
+                             "jpeg-huffman-counts-cut-short-at-the-end.jpg"}) {
         SCOPED_TRACE(name);
         const fs::path path = fuzz::stage_input(fuzz::Target::Texture, read_bytes(kRegressions / "texture" / name), folder);
         try {
