@@ -170,21 +170,32 @@ def split_mesh_writer(positions, triangles, k):
     return vertex_count, m * k * k, write_positions, write_faces
 
 
+def write_ply(path, comment, vertex_count, face_count, write_body):
+    """Writes a binary little-endian PLY of float x y z vertices and
+    uchar-counted int index lists: the header, then write_body(file), into a
+    temporary file renamed over `path` at the end (never half a file)."""
+    header = (
+        "ply\nformat binary_little_endian 1.0\n"
+        f"comment {comment} by sombra tools/make-big-mesh.py\n"
+        f"element vertex {vertex_count}\nproperty float x\nproperty float y\nproperty float z\n"
+        f"element face {face_count}\nproperty list uchar int vertex_indices\nend_header\n")
+    tmp = path + ".tmp"
+    with open(tmp, "wb") as f:
+        f.write(header.encode("ascii"))
+        write_body(f)
+    os.replace(tmp, path)
+
+
 def write_split_ply(path, positions, triangles, k):
     vertex_count, triangle_count, write_positions, write_faces = split_mesh_writer(positions, triangles, k)
     if vertex_count >= 2**31:
         sys.exit(f"{path}: {vertex_count:,} vertices do not fit PLY's int indices")
-    header = (
-        "ply\nformat binary_little_endian 1.0\n"
-        f"comment every triangle cut into {k}x{k} by sombra tools/make-big-mesh.py\n"
-        f"element vertex {vertex_count}\nproperty float x\nproperty float y\nproperty float z\n"
-        f"element face {triangle_count}\nproperty list uchar int vertex_indices\nend_header\n")
-    tmp = path + ".tmp"
-    with open(tmp, "wb") as f:
-        f.write(header.encode("ascii"))
+
+    def write_body(f):
         write_positions(f)
         write_faces(f)
-    os.replace(tmp, path)
+
+    write_ply(path, f"every triangle cut into {k}x{k}", vertex_count, triangle_count, write_body)
     return vertex_count, triangle_count
 
 
@@ -193,17 +204,12 @@ def write_binary_ply(path, positions, triangles):
     records = np.empty(len(triangles), dtype=face_type)
     records["n"] = 3
     records["i"] = triangles
-    header = (
-        "ply\nformat binary_little_endian 1.0\n"
-        f"comment midpoint subdivision by sombra tools/make-big-mesh.py\n"
-        f"element vertex {len(positions)}\nproperty float x\nproperty float y\nproperty float z\n"
-        f"element face {len(triangles)}\nproperty list uchar int vertex_indices\nend_header\n")
-    tmp = path + ".tmp"
-    with open(tmp, "wb") as f:
-        f.write(header.encode("ascii"))
+
+    def write_body(f):
         f.write(positions.astype("<f4").tobytes())
         f.write(records.tobytes())
-    os.replace(tmp, path)
+
+    write_ply(path, "midpoint subdivision", len(positions), len(triangles), write_body)
 
 
 def main():
