@@ -93,7 +93,7 @@ bool intersect(const Accel& accel, const Ray& ray, Hit& hit) {
     // intersect_bvh and occluded_bvh check the ray themselves (is_traceable).
     if (accel.kind == AccelKind::Bvh)
         return accel.cutouts.active() ? intersect_bvh(accel.bvh, accel.cutouts, ray, hit)
-                                      : intersect_bvh(accel.bvh, *accel.mesh, ray, hit);
+                                      : intersect_bvh(accel.bvh, ray, hit);
     if (!is_traceable(ray)) return false;
 #ifdef SOMBRA_HAVE_EMBREE
     if (accel.kind == AccelKind::Embree) return accel.embree != nullptr && intersect_embree(*accel.embree, ray, hit);
@@ -105,7 +105,7 @@ bool occluded(const Accel& accel, const Ray& ray) {
     if (accel.mesh == nullptr) return false;
     if (accel.kind == AccelKind::Bvh)
         return accel.cutouts.active() ? occluded_bvh(accel.bvh, accel.cutouts, ray)
-                                      : occluded_bvh(accel.bvh, *accel.mesh, ray);
+                                      : occluded_bvh(accel.bvh, ray);
     if (!is_traceable(ray)) return false;
 #ifdef SOMBRA_HAVE_EMBREE
     if (accel.kind == AccelKind::Embree) return accel.embree != nullptr && occluded_embree(*accel.embree, ray);

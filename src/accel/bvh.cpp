@@ -146,7 +146,7 @@ struct SurfaceHits {
 };
 
 template <typename Filter>
-bool intersect_bvh_with(const Bvh& bvh, const TriangleMesh& mesh, const Filter& filter, const Ray& ray, Hit& hit) {
+bool intersect_bvh_with(const Bvh& bvh, const Filter& filter, const Ray& ray, Hit& hit) {
     if (bvh.nodes.empty() || !is_traceable(ray)) return false;
     const BoxRay box_ray = make_box_ray(ray);
     const BvhWideNode* nodes = bvh.nodes.data();
@@ -164,7 +164,7 @@ bool intersect_bvh_with(const Bvh& bvh, const TriangleMesh& mesh, const Filter& 
             for (std::uint32_t k = current.child; k < end; ++k) {
                 const TriangleBlock& block = blocks[k];
                 BlockHits found;
-                intersect_block(block, lanes, ray.tmax, found);
+                intersect_block(block, lanes, ray.tmax, best.t, found);
                 for (int sure = found.sure; sure != 0; sure &= sure - 1) {
                     const int lane = __builtin_ctz(static_cast<unsigned>(sure));
                     const float t = found.t[lane];
@@ -178,9 +178,10 @@ bool intersect_bvh_with(const Bvh& bvh, const TriangleMesh& mesh, const Filter& 
                     }
                 }
                 for (int near = found.near; near != 0; near &= near - 1) {
-                    const std::uint32_t triangle = block.triangle[__builtin_ctz(static_cast<unsigned>(near))];
+                    const int lane = __builtin_ctz(static_cast<unsigned>(near));
+                    const std::uint32_t triangle = block.triangle[lane];
                     float t, b1, b2;
-                    const PreparedTriangle tri = prepare_triangle(mesh, mesh.triangles[triangle]);
+                    const PreparedTriangle tri = lane_triangle(block, lane);
                     if (!intersect_triangle(ray.origin, ray.dir, tri, ray.tmax, t, b1, b2)) continue;
                     if ((t < best.t || (t == best.t && triangle < best.triangle)) && filter.keeps(triangle, b1, b2))
                         best = Hit{t, b1, b2, triangle};
@@ -228,7 +229,7 @@ inline bool any_sure_hit_kept(const BlockHits& found, const TriangleBlock& block
 }
 
 template <typename Filter>
-bool occluded_bvh_with(const Bvh& bvh, const TriangleMesh& mesh, const Filter& filter, const Ray& ray) {
+bool occluded_bvh_with(const Bvh& bvh, const Filter& filter, const Ray& ray) {
     if (bvh.nodes.empty() || !is_traceable(ray)) return false;
     const BoxRay box_ray = make_box_ray(ray);
     const BvhWideNode* nodes = bvh.nodes.data();
@@ -243,12 +244,13 @@ bool occluded_bvh_with(const Bvh& bvh, const TriangleMesh& mesh, const Filter& f
             const std::uint32_t end = current.child + (current.count + 3) / 4;
             for (std::uint32_t k = current.child; k < end; ++k) {
                 BlockHits found;
-                intersect_block(blocks[k], lanes, ray.tmax, found);
+                intersect_block(blocks[k], lanes, ray.tmax, ray.tmax, found);
                 if (any_sure_hit_kept(found, blocks[k], filter)) return true;
                 for (int near = found.near; near != 0; near &= near - 1) {
-                    const std::uint32_t triangle = blocks[k].triangle[__builtin_ctz(static_cast<unsigned>(near))];
+                    const int lane = __builtin_ctz(static_cast<unsigned>(near));
+                    const std::uint32_t triangle = blocks[k].triangle[lane];
                     float t, b1, b2;
-                    const PreparedTriangle tri = prepare_triangle(mesh, mesh.triangles[triangle]);
+                    const PreparedTriangle tri = lane_triangle(blocks[k], lane);
                     if (intersect_triangle(ray.origin, ray.dir, tri, ray.tmax, t, b1, b2) && filter.keeps(triangle, b1, b2))
                         return true;
                 }
@@ -280,20 +282,16 @@ bool occluded_bvh_with(const Bvh& bvh, const TriangleMesh& mesh, const Filter& f
 
 }  // namespace
 
-bool intersect_bvh(const Bvh& bvh, const TriangleMesh& mesh, const Ray& ray, Hit& hit) {
-    return intersect_bvh_with(bvh, mesh, EveryHit{}, ray, hit);
-}
+bool intersect_bvh(const Bvh& bvh, const Ray& ray, Hit& hit) { return intersect_bvh_with(bvh, EveryHit{}, ray, hit); }
 
-bool occluded_bvh(const Bvh& bvh, const TriangleMesh& mesh, const Ray& ray) {
-    return occluded_bvh_with(bvh, mesh, EveryHit{}, ray);
-}
+bool occluded_bvh(const Bvh& bvh, const Ray& ray) { return occluded_bvh_with(bvh, EveryHit{}, ray); }
 
 bool intersect_bvh(const Bvh& bvh, const Cutouts& cutouts, const Ray& ray, Hit& hit) {
-    return intersect_bvh_with(bvh, *cutouts.mesh, SurfaceHits{cutouts}, ray, hit);
+    return intersect_bvh_with(bvh, SurfaceHits{cutouts}, ray, hit);
 }
 
 bool occluded_bvh(const Bvh& bvh, const Cutouts& cutouts, const Ray& ray) {
-    return occluded_bvh_with(bvh, *cutouts.mesh, SurfaceHits{cutouts}, ray);
+    return occluded_bvh_with(bvh, SurfaceHits{cutouts}, ray);
 }
 
 }  // namespace sombra

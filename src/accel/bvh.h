@@ -49,15 +49,16 @@ inline constexpr int kBvhSahMaxDepth = 31;
 inline constexpr std::uint32_t kBvhEmptyLane = 0xffffffffu;
 
 // Four triangles of a leaf, structure of arrays for the SSE test
-// (bvh_triangle4.h): [axis][lane]. p0 is the first corner as the mesh gives
-// it, e1 = p1 − p0 and e2 = p2 − p0 computed in float exactly as
-// intersect_triangle computes them, so each lane repeats the scalar test's
-// arithmetic. An empty lane is all zeros (a zero normal: never hit). 176
-// bytes, against 48 + 4 for a PreparedTriangle and an index.
+// (bvh_triangle4.h): [axis][lane]. The corners p0, p1, p2 as the mesh gives
+// them: the test takes e1 = p1 − p0 and e2 = p2 − p0 in float exactly as
+// intersect_triangle does, so each lane repeats the scalar test's
+// arithmetic, and a lane near an edge is re-decided from these corners
+// without reading the mesh. An empty lane is all zeros (a zero normal: never
+// hit). 176 bytes, against 48 + 4 for a PreparedTriangle and an index.
 struct alignas(16) TriangleBlock {
     float p0[3][4];
-    float e1[3][4];
-    float e2[3][4];
+    float p1[3][4];
+    float p2[3][4];
     float em[4];                // max_component(max(abs(e1), abs(e2))): the near-edge band's edge length
     std::uint32_t triangle[4];  // index into TriangleMesh::triangles, or kBvhEmptyLane
 };
@@ -84,16 +85,17 @@ struct Bvh {
 Bvh make_bvh(const TriangleMesh& mesh);
 
 // Closest hit with 0 < t < ray.tmax, ties at equal t going to the lower
-// triangle index (see accel.h). Returns false and leaves `hit` untouched when
+// triangle index (see accel.h), against the triangles of the mesh the tree
+// was built over (the blocks hold their corners: the mesh is not read). Returns false and leaves `hit` untouched when
 // nothing is hit. Rays with a non-finite or zero direction, or a non-finite
 // origin, hit nothing.
-bool intersect_bvh(const Bvh& bvh, const TriangleMesh& mesh, const Ray& ray, Hit& hit);
+bool intersect_bvh(const Bvh& bvh, const Ray& ray, Hit& hit);
 
 // True when any triangle is hit with 0 < t < ray.tmax; stops at the first.
-bool occluded_bvh(const Bvh& bvh, const TriangleMesh& mesh, const Ray& ray);
+bool occluded_bvh(const Bvh& bvh, const Ray& ray);
 
-// The same two queries skipping the hits where `cutouts` (active, over
-// `mesh`) says the surface does not exist.
+// The same two queries skipping the hits where `cutouts` (active, over the
+// tree's mesh) says the surface does not exist.
 bool intersect_bvh(const Bvh& bvh, const Cutouts& cutouts, const Ray& ray, Hit& hit);
 bool occluded_bvh(const Bvh& bvh, const Cutouts& cutouts, const Ray& ray);
 

@@ -43,12 +43,12 @@ void fill_blocks(const TriangleMesh& mesh, const BinaryBvh& binary, const LeafBl
             if (k + lane >= leaf.count) continue;
             const std::uint32_t triangle = binary.triangle_order[leaf.first + k + lane];
             const Index3& tri = mesh.triangles[triangle];
-            const Vec3 p0 = mesh.positions[tri[0]];
-            const Vec3 e1 = mesh.positions[tri[1]] - p0, e2 = mesh.positions[tri[2]] - p0;
+            const Vec3 p0 = mesh.positions[tri[0]], p1 = mesh.positions[tri[1]], p2 = mesh.positions[tri[2]];
+            const Vec3 e1 = p1 - p0, e2 = p2 - p0;
             for (int a = 0; a < 3; ++a) {
                 block.p0[a][lane] = p0[a];
-                block.e1[a][lane] = e1[a];
-                block.e2[a][lane] = e2[a];
+                block.p1[a][lane] = p1[a];
+                block.p2[a][lane] = p2[a];
             }
             block.em[lane] = max_component(max(abs(e1), abs(e2)));
             block.triangle[lane] = triangle;

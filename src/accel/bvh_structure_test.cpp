@@ -98,23 +98,21 @@ TEST(BvhStructure, LeavesBoundTheirTrianglesAndHoldEachOnce) {
     for (std::uint32_t t : testing::bvh_triangles(bvh)) ++seen[t];
     for (std::size_t i = 0; i < seen.size(); ++i) ASSERT_EQ(seen[i], 1) << "triangle " << i;
 
-    // Each lane holds the mesh's own first corner and the edges as the
-    // scalar test computes them, bit for bit; empty lanes are all zero.
+    // Each lane holds the mesh's own corners, bit for bit, and the edge
+    // length as the scalar test computes it; empty lanes are all zero.
     for (const TriangleBlock& block : bvh.blocks) {
         for (int lane = 0; lane < 4; ++lane) {
-            Vec3 p0{}, e1{}, e2{};
+            Vec3 p[3]{};
             if (block.triangle[lane] != kBvhEmptyLane) {
                 const Index3& tri = mesh.triangles[block.triangle[lane]];
-                p0 = mesh.positions[tri[0]];
-                e1 = mesh.positions[tri[1]] - p0;
-                e2 = mesh.positions[tri[2]] - p0;
+                for (int k = 0; k < 3; ++k) p[k] = mesh.positions[tri[k]];
             }
-            const float em = max_component(max(abs(e1), abs(e2)));
+            const float em = max_component(max(abs(p[1] - p[0]), abs(p[2] - p[0])));
             ASSERT_EQ(std::memcmp(&block.em[lane], &em, 4), 0);
             for (int a = 0; a < 3; ++a) {
-                ASSERT_EQ(std::memcmp(&block.p0[a][lane], &p0[a], 4), 0);
-                ASSERT_EQ(std::memcmp(&block.e1[a][lane], &e1[a], 4), 0);
-                ASSERT_EQ(std::memcmp(&block.e2[a][lane], &e2[a], 4), 0);
+                ASSERT_EQ(std::memcmp(&block.p0[a][lane], &p[0][a], 4), 0);
+                ASSERT_EQ(std::memcmp(&block.p1[a][lane], &p[1][a], 4), 0);
+                ASSERT_EQ(std::memcmp(&block.p2[a][lane], &p[2][a], 4), 0);
             }
         }
     }

@@ -10,6 +10,7 @@
 #include <immintrin.h>
 
 #include "accel/bvh.h"
+#include "accel/triangle.h"
 
 namespace sombra {
 
@@ -27,7 +28,9 @@ inline RayLanes make_ray_lanes(Vec3 o, Vec3 d) {
 // What intersect_block found. Lane i's bit in `sure` is set when the scalar
 // test returns true with t = t[i] (0 < t < tmax) and weights from su[i],
 // sv[i], inv_det[i] (finish_barycentrics); its bit in `near` when only the
-// scalar test can decide. Lanes in neither are misses.
+// scalar test's double-precision edge test can decide, and the float t is
+// in (0, tmax) and at or before near_limit. Lanes in neither are misses, or
+// hits beyond near_limit.
 struct BlockHits {
     int sure = 0;
     int near = 0;
@@ -45,21 +48,28 @@ inline __m128 abs4(__m128 a) { return _mm_andnot_ps(_mm_set1_ps(-0.0f), a); }
 }  // namespace detail
 
 // The float part of intersect_triangle for the block's four lanes; `tmax`
-// is the scalar test's tmax. Fills t, su, sv, inv_det only when `sure` ≠ 0.
-inline void intersect_block(const TriangleBlock& b, const RayLanes& r, float tmax, BlockHits& out) {
+// is the scalar test's tmax. Lanes the scalar test would re-decide near an
+// edge are left out of `near` when their t exceeds `near_limit` (a closest
+// hit so far: they could not beat it; pass tmax to keep them all). Fills t,
+// su, sv, inv_det only when `sure` ≠ 0.
+inline void intersect_block(const TriangleBlock& b, const RayLanes& r, float tmax, float near_limit, BlockHits& out) {
     using detail::dot4;
     const __m128 sign = _mm_set1_ps(-0.0f);
-    const __m128 e1x = _mm_load_ps(b.e1[0]), e1y = _mm_load_ps(b.e1[1]), e1z = _mm_load_ps(b.e1[2]);
-    const __m128 e2x = _mm_load_ps(b.e2[0]), e2y = _mm_load_ps(b.e2[1]), e2z = _mm_load_ps(b.e2[2]);
+    const __m128 p0x = _mm_load_ps(b.p0[0]), p0y = _mm_load_ps(b.p0[1]), p0z = _mm_load_ps(b.p0[2]);
+    // e1 = p1 − p0, e2 = p2 − p0, as prepare_triangle and intersect_triangle compute them.
+    const __m128 e1x = _mm_sub_ps(_mm_load_ps(b.p1[0]), p0x), e1y = _mm_sub_ps(_mm_load_ps(b.p1[1]), p0y),
+                 e1z = _mm_sub_ps(_mm_load_ps(b.p1[2]), p0z);
+    const __m128 e2x = _mm_sub_ps(_mm_load_ps(b.p2[0]), p0x), e2y = _mm_sub_ps(_mm_load_ps(b.p2[1]), p0y),
+                 e2z = _mm_sub_ps(_mm_load_ps(b.p2[2]), p0z);
     // n = cross(e1, e2), as prepare_triangle computes it.
     const __m128 nx = _mm_sub_ps(_mm_mul_ps(e1y, e2z), _mm_mul_ps(e1z, e2y));
     const __m128 ny = _mm_sub_ps(_mm_mul_ps(e1z, e2x), _mm_mul_ps(e1x, e2z));
     const __m128 nz = _mm_sub_ps(_mm_mul_ps(e1x, e2y), _mm_mul_ps(e1y, e2x));
     const __m128 det = _mm_xor_ps(dot4(r.dx, r.dy, r.dz, nx, ny, nz), sign);
     const __m128 nonzero = _mm_cmpneq_ps(det, _mm_setzero_ps());  // true for NaN, as !(det != 0) is false
-    const __m128 tvx = _mm_sub_ps(r.ox, _mm_load_ps(b.p0[0]));
-    const __m128 tvy = _mm_sub_ps(r.oy, _mm_load_ps(b.p0[1]));
-    const __m128 tvz = _mm_sub_ps(r.oz, _mm_load_ps(b.p0[2]));
+    const __m128 tvx = _mm_sub_ps(r.ox, p0x);
+    const __m128 tvy = _mm_sub_ps(r.oy, p0y);
+    const __m128 tvz = _mm_sub_ps(r.oz, p0z);
     // c = cross(tvec, d)
     const __m128 cx = _mm_sub_ps(_mm_mul_ps(tvy, r.dz), _mm_mul_ps(tvz, r.dy));
     const __m128 cy = _mm_sub_ps(_mm_mul_ps(tvz, r.dx), _mm_mul_ps(tvx, r.dz));
@@ -75,24 +85,30 @@ inline void intersect_block(const TriangleBlock& b, const RayLanes& r, float tma
     const int outside_bits = _mm_movemask_ps(_mm_andnot_ps(inside, nonzero));
     out.sure = 0;
     out.near = 0;
+    int within_bits = 0;
     if (outside_bits != 0) {
-        // The scalar band, doubled: a lane within it goes to the scalar
-        // test, which decides it exactly, so the filter only has to be
-        // conservative.
+        // The scalar test's band, with its float operations in its order
+        // (the power-of-two factor is exact), so a lane outside it here is
+        // outside it there: a sure miss.
         using detail::abs4;
         const __m128 tm = _mm_max_ps(abs4(tvx), _mm_max_ps(abs4(tvy), abs4(tvz)));
         const __m128 em = _mm_load_ps(b.em);
-        const __m128 band = _mm_mul_ps(_mm_set1_ps(0x1p-14f), _mm_mul_ps(_mm_mul_ps(r.dm, em), _mm_add_ps(tm, em)));
+        const __m128 band = _mm_mul_ps(_mm_set1_ps(0x1p-15f), _mm_mul_ps(_mm_mul_ps(r.dm, em), _mm_add_ps(tm, em)));
         const __m128 neg_band = _mm_xor_ps(band, sign);
         const __m128 within = _mm_and_ps(_mm_and_ps(_mm_cmpge_ps(U, neg_band), _mm_cmpge_ps(V, neg_band)),
                                          _mm_cmpge_ps(W, neg_band));
-        out.near = outside_bits & _mm_movemask_ps(within);
+        within_bits = outside_bits & _mm_movemask_ps(within);
     }
-    if (inside_bits == 0) return;
+    if ((inside_bits | within_bits) == 0) return;
+    // t as the scalar test computes it, for the lanes inside and for those
+    // within the band: the scalar test rejects the latter too when t is out
+    // of (0, tmax), and the caller has no use for them beyond near_limit.
     const __m128 inv_det = _mm_div_ps(_mm_set1_ps(1.0f), det);
     const __m128 t = _mm_mul_ps(dot4(tvx, tvy, tvz, nx, ny, nz), inv_det);
     const __m128 in_range = _mm_and_ps(_mm_cmpgt_ps(t, zero), _mm_cmplt_ps(t, _mm_set1_ps(tmax)));
-    out.sure = inside_bits & _mm_movemask_ps(in_range);
+    const int in_range_bits = _mm_movemask_ps(in_range);
+    out.near = within_bits & in_range_bits & _mm_movemask_ps(_mm_cmple_ps(t, _mm_set1_ps(near_limit)));
+    out.sure = inside_bits & in_range_bits;
     if (out.sure == 0) return;
     _mm_store_ps(out.t, t);
     _mm_store_ps(out.su, su);
@@ -107,6 +123,14 @@ inline void finish_barycentrics(const BlockHits& h, int lane, float& b1, float& 
     clamp_barycentrics(u, v);
     b1 = u;
     b2 = v;
+}
+
+// Lane `lane`'s triangle as the scalar test prepares it from the mesh (the
+// block holds the mesh's own corners), for re-deciding a `near` lane.
+inline PreparedTriangle lane_triangle(const TriangleBlock& b, int lane) {
+    return prepare_triangle(Vec3{b.p0[0][lane], b.p0[1][lane], b.p0[2][lane]},
+                            Vec3{b.p1[0][lane], b.p1[1][lane], b.p1[2][lane]},
+                            Vec3{b.p2[0][lane], b.p2[1][lane], b.p2[2][lane]});
 }
 
 }  // namespace sombra
