@@ -61,6 +61,7 @@ int main(int argc, char** argv) {
     growth->add_option("--width", growth_options.width, "Image width")->capture_default_str();
     growth->add_option("--height", growth_options.height, "Image height")->capture_default_str();
     growth->add_option("--csv", growth_options.csv, "Also write the numbers as CSV to this file");
+    add_embree_quality_option(*growth, growth_options.embree_quality);
 
     PathBenchOptions path_options;
     std::vector<std::string> path_files;
