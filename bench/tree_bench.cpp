@@ -23,7 +23,7 @@ struct TreeShape {
 
 // The wide tree's SAH cost with the builder's own weights (a node visit
 // and a block test cost 1 each): the expected node visits and block tests
-// of a ray through the root's box, under the usual uniform-rays model, so
+// of a ray through the root's box (the boxes as traversal decodes them), under the usual uniform-rays model, so
 // the sum over nodes of area ÷ the root's area, and over leaves of that
 // times their blocks.
 TreeShape tree_shape(const Bvh& bvh) {
@@ -33,18 +33,18 @@ TreeShape tree_shape(const Bvh& bvh) {
     Vec3 root_lo{INFINITY}, root_hi{-INFINITY};
     const BvhWideNode& root = bvh.nodes[0];
     for (int i = 0; i < W; ++i) {
-        if (!(root.bounds[i] <= root.bounds[W + i])) continue;
-        root_lo = min(root_lo, Vec3{root.bounds[i], root.bounds[2 * W + i], root.bounds[4 * W + i]});
-        root_hi = max(root_hi, Vec3{root.bounds[W + i], root.bounds[3 * W + i], root.bounds[5 * W + i]});
+        if (!slot_used(root, i)) continue;
+        const BvhChildBox box = child_box(root, i);
+        root_lo = min(root_lo, box.lo);
+        root_hi = max(root_hi, box.hi);
     }
     const double root_area = half_area(root_lo, root_hi);
     shape.sah = 1.0;  // the root node itself
     for (const BvhWideNode& node : bvh.nodes) {
         for (int i = 0; i < W; ++i) {
-            if (!(node.bounds[i] <= node.bounds[W + i])) continue;
-            const double area = half_area({node.bounds[i], node.bounds[2 * W + i], node.bounds[4 * W + i]},
-                                          {node.bounds[W + i], node.bounds[3 * W + i], node.bounds[5 * W + i]}) /
-                                root_area;
+            if (!slot_used(node, i)) continue;
+            const BvhChildBox box = child_box(node, i);
+            const double area = half_area(box.lo, box.hi) / root_area;
             shape.sah += area * (node.count[i] > 0 ? double((node.count[i] + 3) / 4) : 1.0);
             shape.references += node.count[i];
         }

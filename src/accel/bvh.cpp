@@ -1,6 +1,7 @@
 // BVH traversal: iterative with a fixed stack; the eight child boxes of a
-// node tested at once with AVX (in two halves with SSE), the children entered nearest first, and boxes
-// pruned by the closest hit so far. Leaves are tested four triangles at a
+// node (quantised, bvh.h) decoded and tested at once with AVX (in two halves
+// with SSE), the children entered nearest first, and boxes pruned by the
+// closest hit so far. Leaves are tested four triangles at a
 // time (bvh_triangle4.h); lanes near an edge fall back to the scalar test.
 #include <immintrin.h>
 
@@ -8,6 +9,7 @@
 #include <cfloat>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 
 #include "accel/accel.h"
 #include "accel/bvh.h"
@@ -28,24 +30,37 @@ constexpr float kBoxSlack = 1.0f + 4.0f * FLT_EPSILON;
 #ifdef __AVX__
 using Lanes = __m256;
 inline Lanes set1(float v) { return _mm256_set1_ps(v); }
-inline Lanes load(const float* p) { return _mm256_load_ps(p); }
+inline Lanes add(Lanes a, Lanes b) { return _mm256_add_ps(a, b); }
 inline Lanes sub(Lanes a, Lanes b) { return _mm256_sub_ps(a, b); }
 inline Lanes mul(Lanes a, Lanes b) { return _mm256_mul_ps(a, b); }
 inline Lanes max(Lanes a, Lanes b) { return _mm256_max_ps(a, b); }
 inline Lanes min(Lanes a, Lanes b) { return _mm256_min_ps(a, b); }
 inline int le_mask(Lanes a, Lanes b) { return _mm256_movemask_ps(_mm256_cmp_ps(a, b, _CMP_LE_OQ)); }
 inline void store(float* p, Lanes a) { _mm256_store_ps(p, a); }
+// Eight grid indices, widened and converted exactly to floats.
+inline Lanes load_indices(const std::uint8_t* p) {
+    const __m128i bytes = _mm_loadl_epi64(reinterpret_cast<const __m128i*>(p));
+    return _mm256_cvtepi32_ps(_mm256_cvtepu8_epi32(bytes));
+}
 constexpr int kLanes = 8;
 #else
 using Lanes = __m128;
 inline Lanes set1(float v) { return _mm_set1_ps(v); }
-inline Lanes load(const float* p) { return _mm_load_ps(p); }
+inline Lanes add(Lanes a, Lanes b) { return _mm_add_ps(a, b); }
 inline Lanes sub(Lanes a, Lanes b) { return _mm_sub_ps(a, b); }
 inline Lanes mul(Lanes a, Lanes b) { return _mm_mul_ps(a, b); }
 inline Lanes max(Lanes a, Lanes b) { return _mm_max_ps(a, b); }
 inline Lanes min(Lanes a, Lanes b) { return _mm_min_ps(a, b); }
 inline int le_mask(Lanes a, Lanes b) { return _mm_movemask_ps(_mm_cmple_ps(a, b)); }
 inline void store(float* p, Lanes a) { _mm_store_ps(p, a); }
+// Four grid indices, widened with SSE2 alone and converted exactly to floats.
+inline Lanes load_indices(const std::uint8_t* p) {
+    std::int32_t packed;
+    std::memcpy(&packed, p, sizeof packed);
+    const __m128i zero = _mm_setzero_si128();
+    const __m128i bytes = _mm_cvtsi32_si128(packed);
+    return _mm_cvtepi32_ps(_mm_unpacklo_epi16(_mm_unpacklo_epi8(bytes, zero), zero));
+}
 constexpr int kLanes = 4;
 #endif
 static_assert(kBvhWidth % kLanes == 0);
@@ -66,28 +81,37 @@ BoxRay make_box_ray(const Ray& ray) {
             std::signbit(inv.x) ? W : 0, std::signbit(inv.y) ? 3 * W : 2 * W, std::signbit(inv.z) ? 5 * W : 4 * W};
 }
 
+// One plane of the eight (or four) children's boxes: grid indices turned
+// into coordinates with plane_value's operations, lane by lane.
+inline Lanes plane_lanes(const std::uint8_t* indices, Lanes origin, Lanes scale) {
+    return add(origin, mul(scale, load_indices(indices)));
+}
+
 // Writes the distances at which the ray enters the child boxes within
 // [0, tmax] to tnear[] and returns a bit mask of the children it enters.
 // Near and far planes are picked by the direction's sign, so a slab whose
 // plane holds the origin while d is zero along that axis gives NaN (0·∞);
 // max(a, b) and min(a, b) (maxps, minps) return b when a is NaN, so that slab
 // then constrains nothing, and a ray lying in a box face still enters the box.
+// Empty slots are masked out by node.used.
 inline int enter_children(const BvhWideNode& node, const BoxRay& r, float tmax, float* tnear) {
+    const Lanes gx = set1(node.origin[0]), gy = set1(node.origin[1]), gz = set1(node.origin[2]);
+    const Lanes sx = set1(node.scale[0]), sy = set1(node.scale[1]), sz = set1(node.scale[2]);
     int mask = 0;
     for (int h = 0; h < kBvhWidth; h += kLanes) {
-        const float* b = node.bounds + h;
-        const Lanes tx0 = mul(sub(load(b + r.near_x), r.ox), r.ix);
-        const Lanes tx1 = mul(sub(load(b + (r.near_x ^ kBvhWidth)), r.ox), r.ix);
-        const Lanes ty0 = mul(sub(load(b + r.near_y), r.oy), r.iy);
-        const Lanes ty1 = mul(sub(load(b + (r.near_y ^ kBvhWidth)), r.oy), r.iy);
-        const Lanes tz0 = mul(sub(load(b + r.near_z), r.oz), r.iz);
-        const Lanes tz1 = mul(sub(load(b + (r.near_z ^ kBvhWidth)), r.oz), r.iz);
+        const std::uint8_t* b = node.bounds + h;
+        const Lanes tx0 = mul(sub(plane_lanes(b + r.near_x, gx, sx), r.ox), r.ix);
+        const Lanes tx1 = mul(sub(plane_lanes(b + (r.near_x ^ kBvhWidth), gx, sx), r.ox), r.ix);
+        const Lanes ty0 = mul(sub(plane_lanes(b + r.near_y, gy, sy), r.oy), r.iy);
+        const Lanes ty1 = mul(sub(plane_lanes(b + (r.near_y ^ kBvhWidth), gy, sy), r.oy), r.iy);
+        const Lanes tz0 = mul(sub(plane_lanes(b + r.near_z, gz, sz), r.oz), r.iz);
+        const Lanes tz1 = mul(sub(plane_lanes(b + (r.near_z ^ kBvhWidth), gz, sz), r.oz), r.iz);
         const Lanes t0 = max(tz0, max(ty0, max(tx0, set1(0.0f))));
         const Lanes t1 = min(tz1, min(ty1, min(tx1, set1(tmax))));
         store(tnear + h, t0);
         mask |= le_mask(t0, mul(t1, set1(kBoxSlack))) << h;
     }
-    return mask;
+    return mask & node.used;
 }
 
 // A child to visit: an inner node (count 0) or a leaf.

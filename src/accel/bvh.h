@@ -1,6 +1,6 @@
 // sombra's own bounding volume hierarchy: built as a binary tree with binned
-// SAH (Wald 2007, bvh_build.cpp), collapsed into an 8-wide tree of 256-byte
-// nodes (bvh_collapse.cpp) and traversed iteratively with AVX box tests,
+// SAH (Wald 2007, bvh_build.cpp), collapsed into an 8-wide tree of 128-byte
+// nodes with quantised boxes (bvh_collapse.cpp) and traversed iteratively with AVX box tests,
 // nearest child first (bvh.cpp).
 #pragma once
 
@@ -21,24 +21,58 @@ struct Hit;
 // Children per node of the wide tree.
 inline constexpr int kBvhWidth = 8;
 
-// One node of the wide tree: the boxes of up to kBvhWidth children, stored
-// as structure of arrays so one AVX instruction handles a coordinate of all
-// eight (Embree's BVH8 layout). 256 bytes, four cache lines.
+// One node of the wide tree: the boxes of up to kBvhWidth children, each
+// coordinate quantised to 8 bits on a grid of 256 planes per axis spanning
+// the node's own box (compressed wide nodes, as in Ylitie, Karras and Laine,
+// "Efficient incoherent ray traversal on GPUs through compressed wide BVHs",
+// 2017), stored as structure of arrays so one AVX instruction handles a
+// coordinate of all eight. 128 bytes, two cache lines, where float bounds
+// took four: under incoherent rays most node reads miss the caches.
+//
+// A plane's value is plane_value(origin[a], scale[a], q), float operations
+// the traversal repeats exactly, and the build picks each q so that the value
+// lies on the outer side of the child's true bound (bvh_quantise.cpp): the
+// quantised box always contains the float box, so traversal may enter a few
+// more children but never misses one, and hits stay bit-identical.
 struct alignas(64) BvhWideNode {
-    // bounds[kBvhWidth·k + i] for child i: k = 0 min x, 1 max x, 2 min y,
-    // 3 max y, 4 min z, 5 max z. An empty slot has min +∞ and max −∞: no ray
-    // enters it.
-    float bounds[6 * kBvhWidth];
+    float origin[3];  // the grid's first plane per axis: the node's box's min corner
+    float scale[3];   // the grid's step per axis
     std::uint32_t child[kBvhWidth];  // inner child: its index in Bvh::nodes; leaf: its first block in Bvh::blocks
-    std::uint32_t count[kBvhWidth];  // leaf: its triangle count (≥ 1), in (count + 3) / 4 blocks; inner child or empty slot: 0
+    // bounds[kBvhWidth·k + i] for child i: k = 0 min x, 1 max x, 2 min y,
+    // 3 max y, 4 min z, 5 max z, as grid indices.
+    std::uint8_t bounds[6 * kBvhWidth];
+    std::uint8_t count[kBvhWidth];  // leaf: its triangle count (1 … 8), in (count + 3) / 4 blocks; inner child or empty slot: 0
+    std::uint8_t used;              // bit i set: slot i holds a child (no ray enters an empty one)
+    std::uint8_t padding[15];
 };
-static_assert(sizeof(BvhWideNode) == 256);
+static_assert(sizeof(BvhWideNode) == 128);
+
+// The value of grid plane q on an axis whose grid starts at `origin` with
+// step `scale`. Built with -ffp-contract=off, so no FMA forms: the build's
+// quantisation and the traversal's SIMD lanes round alike.
+inline float plane_value(float origin, float scale, std::uint8_t q) { return origin + scale * static_cast<float>(q); }
+
+// Child slot i's box as traversal sees it (the quantised planes' values).
+struct BvhChildBox {
+    Vec3 lo, hi;
+};
+inline BvhChildBox child_box(const BvhWideNode& node, int i) {
+    constexpr int W = kBvhWidth;
+    Vec3 lo, hi;
+    for (int a = 0; a < 3; ++a) {
+        lo[a] = plane_value(node.origin[a], node.scale[a], node.bounds[(2 * a) * W + i]);
+        hi[a] = plane_value(node.origin[a], node.scale[a], node.bounds[(2 * a + 1) * W + i]);
+    }
+    return {lo, hi};
+}
+inline bool slot_used(const BvhWideNode& node, int i) { return (node.used >> i) & 1u; }
 
 // The deepest path from the root to a leaf that make_bvh builds (the root has
 // depth 0); traversal stacks hold this many entries.
 inline constexpr int kBvhMaxDepth = 64;
 // Leaves hold at most this many triangles.
 inline constexpr std::uint32_t kBvhMaxLeafSize = 8;
+static_assert(kBvhMaxLeafSize <= 255, "BvhWideNode::count is a byte");
 // Nodes this deep or deeper are split at the object median instead of by the
 // SAH, which on adversarial input (geometrically spaced triangles) can peel
 // off a few triangles per level. Medians halve the count, so leaves stay

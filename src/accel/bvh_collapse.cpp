@@ -2,13 +2,13 @@
 // Each wide node starts from a binary node's two children and repeatedly
 // opens the inner child with the largest surface area, replacing it by its
 // two children, until it has kBvhWidth or only leaves are left (Wald, Benthin and
-// Boulos, "Getting rid of packets", 2008). Everything here is a function of
+// Boulos, "Getting rid of packets", 2008); its children's boxes are then
+// quantised to the node's grid (bvh_quantise.cpp). Everything here is a function of
 // the binary tree alone, so the wide tree is as deterministic as it is.
 // Each leaf's triangles go into blocks of four (TriangleBlock), in leaf
 // order: the collapse reserves their places, a parallel pass fills them.
 #include <array>
 #include <cstdint>
-#include <limits>
 #include <vector>
 
 #include <tbb/blocked_range.h>
@@ -16,11 +16,10 @@
 
 #include "accel/bvh.h"
 #include "accel/bvh_binary.h"
+#include "accel/bvh_quantise.h"
 
 namespace sombra {
 namespace {
-
-constexpr float kInf = std::numeric_limits<float>::infinity();
 
 float half_area(const BvhNode& n) {
     const Vec3 e = n.bmax - n.bmin;
@@ -89,31 +88,23 @@ struct Collapser {
             children[size++] = left + 1;
         }
         BvhWideNode node{};
-        constexpr int W = kBvhWidth;
-        for (int i = 0; i < W; ++i) {
-            node.bounds[0 * W + i] = node.bounds[2 * W + i] = node.bounds[4 * W + i] = kInf;
-            node.bounds[1 * W + i] = node.bounds[3 * W + i] = node.bounds[5 * W + i] = -kInf;
-        }
+        std::array<BvhChildBox, kBvhWidth> boxes{};
         std::array<std::uint32_t, kBvhWidth> inner_at{};
         for (int i = 0; i < size; ++i) {
             const BvhNode& c = binary.nodes[children[i]];
-            node.bounds[0 * W + i] = c.bmin.x;
-            node.bounds[1 * W + i] = c.bmax.x;
-            node.bounds[2 * W + i] = c.bmin.y;
-            node.bounds[3 * W + i] = c.bmax.y;
-            node.bounds[4 * W + i] = c.bmin.z;
-            node.bounds[5 * W + i] = c.bmax.z;
+            boxes[i] = {c.bmin, c.bmax};
             if (c.count > 0) {
                 leaves.push_back({c.left_or_first, c.count, block_count});
                 node.child[i] = block_count;
                 block_count += (c.count + 3) / 4;
-                node.count[i] = c.count;
+                node.count[i] = static_cast<std::uint8_t>(c.count);
             } else {
                 inner_at[i] = static_cast<std::uint32_t>(nodes.size());
                 node.child[i] = inner_at[i];
                 nodes.emplace_back();
             }
         }
+        quantise_children(boxes.data(), size, node);
         nodes[at] = node;
         for (int i = 0; i < size; ++i) {
             if (binary.nodes[children[i]].count == 0) collapse(children[i], inner_at[i]);

@@ -25,13 +25,10 @@ using testing::random_soup;
 
 constexpr int W = kBvhWidth;
 
-bool slot_used(const BvhWideNode& node, int i) { return node.bounds[i] <= node.bounds[W + i]; }
-
-// Child box i of `node` contains p.
+// Child box i of `node`, as traversal decodes it, contains p.
 bool contains(const BvhWideNode& node, int i, Vec3 p) {
-    const float* b = node.bounds;
-    return b[i] <= p.x && p.x <= b[W + i] && b[2 * W + i] <= p.y && p.y <= b[3 * W + i] && b[4 * W + i] <= p.z &&
-           p.z <= b[5 * W + i];
+    const BvhChildBox b = child_box(node, i);
+    return b.lo.x <= p.x && p.x <= b.hi.x && b.lo.y <= p.y && p.y <= b.hi.y && b.lo.z <= p.z && p.z <= b.hi.z;
 }
 
 struct TreeFacts {
@@ -39,9 +36,19 @@ struct TreeFacts {
     int leaves = 0;
     int nodes = 0;       // inner nodes reached
     int narrow_nodes = 0;  // nodes with fewer than two children
-    int bad_bounds = 0;  // children or triangles outside their parent's box
+    int bad_bounds = 0;  // triangles outside a box above them
+    int loose_planes = 0;  // quantised planes more than a grid step outside the triangles below
     int oversized_leaves = 0;
+    Vec3 lo{INFINITY}, hi{-INFINITY};  // of the triangles below
 };
+
+// A quantised plane lies at most one grid step beyond the true bound (and
+// the rounding of that step's sum with the origin).
+bool plane_is_tight(float plane, float bound, float step) {
+    const float magnitude = std::max(std::abs(plane), std::abs(bound));
+    const float rounding = 2.0f * (std::nextafter(magnitude, INFINITY) - magnitude);  // two ulps
+    return std::abs(plane - bound) <= step * 1.001f + rounding;
+}
 
 TreeFacts inspect(const Bvh& bvh, const TriangleMesh& mesh, std::uint32_t node = 0, int depth = 0) {
     TreeFacts facts;
@@ -52,29 +59,39 @@ TreeFacts inspect(const Bvh& bvh, const TriangleMesh& mesh, std::uint32_t node =
     for (int i = 0; i < W; ++i) {
         if (!slot_used(n, i)) continue;
         ++used;
+        Vec3 lo{INFINITY}, hi{-INFINITY};
         if (n.count[i] > 0) {
             facts.depth = std::max(facts.depth, depth + 1);
             facts.leaves += 1;
             facts.oversized_leaves += n.count[i] > kBvhMaxLeafSize;
             for (std::uint32_t k = 0; k < n.count[i]; ++k) {
                 const std::uint32_t triangle = bvh.blocks[n.child[i] + k / 4].triangle[k % 4];
-                for (std::uint32_t v : mesh.triangles[triangle]) facts.bad_bounds += !contains(n, i, mesh.positions[v]);
+                for (std::uint32_t v : mesh.triangles[triangle]) {
+                    facts.bad_bounds += !contains(n, i, mesh.positions[v]);
+                    lo = min(lo, mesh.positions[v]);
+                    hi = max(hi, mesh.positions[v]);
+                }
             }
-            continue;
+        } else {
+            const TreeFacts sub = inspect(bvh, mesh, n.child[i], depth + 1);
+            facts.bad_bounds += !contains(n, i, sub.lo) || !contains(n, i, sub.hi);
+            facts.depth = std::max(facts.depth, sub.depth);
+            facts.leaves += sub.leaves;
+            facts.nodes += sub.nodes;
+            facts.narrow_nodes += sub.narrow_nodes;
+            facts.bad_bounds += sub.bad_bounds;
+            facts.loose_planes += sub.loose_planes;
+            facts.oversized_leaves += sub.oversized_leaves;
+            lo = sub.lo;
+            hi = sub.hi;
         }
-        const BvhWideNode& c = bvh.nodes[n.child[i]];
-        for (int j = 0; j < W; ++j) {
-            if (!slot_used(c, j)) continue;
-            facts.bad_bounds += !contains(n, i, {c.bounds[j], c.bounds[2 * W + j], c.bounds[4 * W + j]}) ||
-                                !contains(n, i, {c.bounds[W + j], c.bounds[3 * W + j], c.bounds[5 * W + j]});
+        const BvhChildBox box = child_box(n, i);
+        for (int a = 0; a < 3; ++a) {
+            facts.loose_planes += !plane_is_tight(box.lo[a], lo[a], n.scale[a]);
+            facts.loose_planes += !plane_is_tight(box.hi[a], hi[a], n.scale[a]);
         }
-        const TreeFacts sub = inspect(bvh, mesh, n.child[i], depth + 1);
-        facts.depth = std::max(facts.depth, sub.depth);
-        facts.leaves += sub.leaves;
-        facts.nodes += sub.nodes;
-        facts.narrow_nodes += sub.narrow_nodes;
-        facts.bad_bounds += sub.bad_bounds;
-        facts.oversized_leaves += sub.oversized_leaves;
+        facts.lo = min(facts.lo, lo);
+        facts.hi = max(facts.hi, hi);
     }
     facts.narrow_nodes += used < 2;
     return facts;
@@ -86,6 +103,7 @@ TEST(BvhStructure, LeavesBoundTheirTrianglesAndHoldEachOnce) {
     ASSERT_FALSE(bvh.nodes.empty());
     const TreeFacts facts = inspect(bvh, mesh);
     EXPECT_EQ(facts.bad_bounds, 0);
+    EXPECT_EQ(facts.loose_planes, 0);
     EXPECT_EQ(facts.oversized_leaves, 0);
     EXPECT_EQ(facts.narrow_nodes, 0);
     EXPECT_EQ(static_cast<std::size_t>(facts.nodes), bvh.nodes.size());  // every node reached once
@@ -246,7 +264,9 @@ TEST(BvhStructure, SameTreeForAnyThreadCount) {
     EXPECT_EQ(std::memcmp(parallel.blocks.data(), serial.blocks.data(), parallel.blocks.size() * sizeof(TriangleBlock)), 0);
     // The chunked passes put every reference on its side: each triangle
     // inside its leaf's box, each once.
-    EXPECT_EQ(inspect(parallel, mesh).bad_bounds, 0);
+    const TreeFacts facts = inspect(parallel, mesh);
+    EXPECT_EQ(facts.bad_bounds, 0);
+    EXPECT_EQ(facts.loose_planes, 0);
     std::vector<int> seen(mesh.triangles.size(), 0);
     for (std::uint32_t t : testing::bvh_triangles(parallel)) ++seen[t];
     EXPECT_EQ(std::count(seen.begin(), seen.end(), 1), static_cast<std::ptrdiff_t>(seen.size()));
