@@ -85,10 +85,10 @@ struct Bvh {
 Bvh make_bvh(const TriangleMesh& mesh);
 
 // Closest hit with 0 < t < ray.tmax, ties at equal t going to the lower
-// triangle index (see accel.h), against the triangles of the mesh the tree
-// was built over (the blocks hold their corners: the mesh is not read). Returns false and leaves `hit` untouched when
-// nothing is hit. Rays with a non-finite or zero direction, or a non-finite
-// origin, hit nothing.
+// triangle index (see accel.h), among the triangles of the mesh the tree was
+// built over (the blocks hold their corners: the mesh itself is not read).
+// Returns false and leaves `hit` untouched when nothing is hit. Rays with a
+// non-finite or zero direction, or a non-finite origin, hit nothing.
 bool intersect_bvh(const Bvh& bvh, const Ray& ray, Hit& hit);
 
 // True when any triangle is hit with 0 < t < ray.tmax; stops at the first.
