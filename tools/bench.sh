@@ -50,10 +50,10 @@ fi
 bench="$build/bench/sombra-bench"
 scenes_cmd="$bench scenes --reps $reps $shared/scenes/bunny.json $shared/scenes/dragon.json $shared/scenes/manylights.json $shared/scenes/cornell.json $shared/scenes/phong.json"
 load_cmd="$bench load --reps $reps $shared/models/dragon.obj"
-growth_cmd="$bench growth --reps $growth_reps --csv $out/growth.csv $shared/models/dragon-res2.obj $shared/models/dragon.ply build/bench-meshes/dragon-sub1.ply build/bench-meshes/dragon-sub2.ply"
+growth_cmd="$bench growth --reps $growth_reps --width 1280 --height 720 --csv $out/growth.csv $shared/models/dragon-res2.obj $shared/models/dragon.ply build/bench-meshes/dragon-sub1.ply build/bench-meshes/dragon-sub2.ply"
 # The 105 M-triangle mesh in a process of its own, so that its peak memory
 # is its own, with fewer rounds (a build takes minutes).
-growth_big_cmd="$bench growth --reps $growth_big_reps --csv $out/growth-big.csv build/bench-meshes/dragon-split11.ply"
+growth_big_cmd="$bench growth --reps $growth_big_reps --width 1280 --height 720 --csv $out/growth-big.csv build/bench-meshes/dragon-split11.ply"
 plot_cmd="$python tools/plot-growth.py $out/growth.csv $out/growth-big.csv docs/performance-growth.png"
 
 # Path tracing: 256×256 at 32 spp, depth 8 (1–3 s a render here); the
