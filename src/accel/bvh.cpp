@@ -181,8 +181,7 @@ bool intersect_bvh_with(const Bvh& bvh, const Filter& filter, const Ray& ray, Hi
                     const int lane = __builtin_ctz(static_cast<unsigned>(near));
                     const std::uint32_t triangle = block.triangle[lane];
                     float t, b1, b2;
-                    const PreparedTriangle tri = lane_triangle(block, lane);
-                    if (!intersect_triangle(ray.origin, ray.dir, tri, ray.tmax, t, b1, b2)) continue;
+                    if (!intersect_lane(block, lane, ray, t, b1, b2)) continue;
                     if ((t < best.t || (t == best.t && triangle < best.triangle)) && filter.keeps(triangle, b1, b2))
                         best = Hit{t, b1, b2, triangle};
                 }
@@ -250,9 +249,7 @@ bool occluded_bvh_with(const Bvh& bvh, const Filter& filter, const Ray& ray) {
                     const int lane = __builtin_ctz(static_cast<unsigned>(near));
                     const std::uint32_t triangle = blocks[k].triangle[lane];
                     float t, b1, b2;
-                    const PreparedTriangle tri = lane_triangle(blocks[k], lane);
-                    if (intersect_triangle(ray.origin, ray.dir, tri, ray.tmax, t, b1, b2) && filter.keeps(triangle, b1, b2))
-                        return true;
+                    if (intersect_lane(blocks[k], lane, ray, t, b1, b2) && filter.keeps(triangle, b1, b2)) return true;
                 }
             }
         } else {

@@ -11,6 +11,7 @@
 
 #include "accel/bvh.h"
 #include "accel/triangle.h"
+#include "core/ray.h"
 
 namespace sombra {
 
@@ -125,12 +126,14 @@ inline void finish_barycentrics(const BlockHits& h, int lane, float& b1, float& 
     b2 = v;
 }
 
-// Lane `lane`'s triangle as the scalar test prepares it from the mesh (the
-// block holds the mesh's own corners), for re-deciding a `near` lane.
-inline PreparedTriangle lane_triangle(const TriangleBlock& b, int lane) {
-    return prepare_triangle(Vec3{b.p0[0][lane], b.p0[1][lane], b.p0[2][lane]},
-                            Vec3{b.p1[0][lane], b.p1[1][lane], b.p1[2][lane]},
-                            Vec3{b.p2[0][lane], b.p2[1][lane], b.p2[2][lane]});
+// Re-decides a `near` lane: the scalar intersect_triangle on the lane's
+// triangle, prepared from the corners the block holds (the mesh's own, so
+// the same as the brute-force loop's), against `ray` up to ray.tmax.
+inline bool intersect_lane(const TriangleBlock& b, int lane, const Ray& ray, float& t, float& b1, float& b2) {
+    const PreparedTriangle tri = prepare_triangle(Vec3{b.p0[0][lane], b.p0[1][lane], b.p0[2][lane]},
+                                                  Vec3{b.p1[0][lane], b.p1[1][lane], b.p1[2][lane]},
+                                                  Vec3{b.p2[0][lane], b.p2[1][lane], b.p2[2][lane]});
+    return intersect_triangle(ray.origin, ray.dir, tri, ray.tmax, t, b1, b2);
 }
 
 }  // namespace sombra

@@ -114,8 +114,8 @@ bool scalar_redecides(const Vec3 (&tri)[3], Vec3 o, Vec3 d, float tmax) {
     const bool neg = det < 0.0f;
     const float U = neg ? -su : su, V = neg ? -sv : sv, W = (neg ? -det : det) - U - V;
     if (U >= 0.0f && V >= 0.0f && W >= 0.0f) return false;
-    const float band = 0x1p-15f * (max_component(abs(d)) * max_component(max(abs(e1), abs(e2))) *
-                                   (max_component(abs(tvec)) + max_component(max(abs(e1), abs(e2)))));
+    const float em = max_component(max(abs(e1), abs(e2)));
+    const float band = 0x1p-15f * (max_component(abs(d)) * em * (max_component(abs(tvec)) + em));
     if (!(U >= -band && V >= -band && W >= -band)) return false;
     const float t = dot(tvec, p.n) * (1.0f / det);
     return t > 0.0f && t < tmax;
