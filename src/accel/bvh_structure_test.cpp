@@ -41,6 +41,9 @@ struct TreeFacts {
     int narrow_nodes = 0;  // nodes with fewer than two children
     int bad_bounds = 0;  // children or triangles outside their parent's box
     int oversized_leaves = 0;
+    int loose_leaves = 0;  // leaves whose box is not exactly their triangles' box
+    int unsplit_leaves = 0;  // leaves of more than four triangles in a node with a free slot
+    std::vector<std::uint32_t> reached;  // the triangles the leaves hold, as traversal reads them
 };
 
 TreeFacts inspect(const Bvh& bvh, const TriangleMesh& mesh, std::uint32_t node = 0, int depth = 0) {
@@ -48,7 +51,7 @@ TreeFacts inspect(const Bvh& bvh, const TriangleMesh& mesh, std::uint32_t node =
     const BvhWideNode& n = bvh.nodes[node];
     facts.depth = depth;
     facts.nodes = 1;
-    int used = 0;
+    int used = 0, big_leaves = 0;
     for (int i = 0; i < W; ++i) {
         if (!slot_used(n, i)) continue;
         ++used;
@@ -56,10 +59,24 @@ TreeFacts inspect(const Bvh& bvh, const TriangleMesh& mesh, std::uint32_t node =
             facts.depth = std::max(facts.depth, depth + 1);
             facts.leaves += 1;
             facts.oversized_leaves += n.count[i] > kBvhMaxLeafSize;
+            big_leaves += n.count[i] > 4;
+            Vec3 lo{INFINITY, INFINITY, INFINITY}, hi{-INFINITY, -INFINITY, -INFINITY};
             for (std::uint32_t k = 0; k < n.count[i]; ++k) {
                 const std::uint32_t triangle = bvh.blocks[n.child[i] + k / 4].triangle[k % 4];
-                for (std::uint32_t v : mesh.triangles[triangle]) facts.bad_bounds += !contains(n, i, mesh.positions[v]);
+                facts.reached.push_back(triangle);
+                if (triangle >= mesh.triangles.size()) {
+                    ++facts.bad_bounds;
+                    continue;
+                }
+                for (std::uint32_t v : mesh.triangles[triangle]) {
+                    facts.bad_bounds += !contains(n, i, mesh.positions[v]);
+                    lo = min(lo, mesh.positions[v]);
+                    hi = max(hi, mesh.positions[v]);
+                }
             }
+            facts.loose_leaves += lo.x != n.bounds[i] || hi.x != n.bounds[W + i] || lo.y != n.bounds[2 * W + i] ||
+                                  hi.y != n.bounds[3 * W + i] || lo.z != n.bounds[4 * W + i] ||
+                                  hi.z != n.bounds[5 * W + i];
             continue;
         }
         const BvhWideNode& c = bvh.nodes[n.child[i]];
@@ -75,8 +92,12 @@ TreeFacts inspect(const Bvh& bvh, const TriangleMesh& mesh, std::uint32_t node =
         facts.narrow_nodes += sub.narrow_nodes;
         facts.bad_bounds += sub.bad_bounds;
         facts.oversized_leaves += sub.oversized_leaves;
+        facts.loose_leaves += sub.loose_leaves;
+        facts.unsplit_leaves += sub.unsplit_leaves;
+        facts.reached.insert(facts.reached.end(), sub.reached.begin(), sub.reached.end());
     }
     facts.narrow_nodes += used < 2;
+    if (used < W) facts.unsplit_leaves += big_leaves;
     return facts;
 }
 
@@ -87,6 +108,10 @@ TEST(BvhStructure, LeavesBoundTheirTrianglesAndHoldEachOnce) {
     const TreeFacts facts = inspect(bvh, mesh);
     EXPECT_EQ(facts.bad_bounds, 0);
     EXPECT_EQ(facts.oversized_leaves, 0);
+    EXPECT_EQ(facts.loose_leaves, 0);
+    // Free slots take halves of leaves of more than four triangles (as
+    // Embree fills its nodes): a ray then tests only the halves it enters.
+    EXPECT_EQ(facts.unsplit_leaves, 0);
     EXPECT_EQ(facts.narrow_nodes, 0);
     EXPECT_EQ(static_cast<std::size_t>(facts.nodes), bvh.nodes.size());  // every node reached once
     // Collapsing a binary tree fills nodes: far fewer than one per four leaves.
@@ -94,9 +119,16 @@ TEST(BvhStructure, LeavesBoundTheirTrianglesAndHoldEachOnce) {
     EXPECT_LT(facts.depth, kBvhMaxDepth);
     EXPECT_GT(facts.leaves, 20000 / static_cast<int>(kBvhMaxLeafSize));
 
-    std::vector<int> seen(mesh.triangles.size(), 0);
+    std::vector<int> seen(mesh.triangles.size(), 0), reached(mesh.triangles.size(), 0);
     for (std::uint32_t t : testing::bvh_triangles(bvh)) ++seen[t];
-    for (std::size_t i = 0; i < seen.size(); ++i) ASSERT_EQ(seen[i], 1) << "triangle " << i;
+    for (std::uint32_t t : facts.reached) {
+        ASSERT_LT(t, reached.size());
+        ++reached[t];
+    }
+    for (std::size_t i = 0; i < seen.size(); ++i) {
+        ASSERT_EQ(seen[i], 1) << "triangle " << i;
+        ASSERT_EQ(reached[i], 1) << "triangle " << i;
+    }
 
     // Each lane holds the mesh's own corners, bit for bit, and the edge
     // length as the scalar test computes it; empty lanes are all zero.
