@@ -8,6 +8,7 @@
 #include <cfloat>
 #include <cmath>
 #include <cstdint>
+#include <utility>
 
 #include "accel/accel.h"
 #include "accel/bvh.h"
@@ -111,26 +112,37 @@ inline void prefetch_child(const BvhWideNode* nodes, const TriangleBlock* blocks
 }
 
 // Pushes the entered children (bits of `mask`) but the nearest onto the
-// stack, farthest deepest, and returns the nearest: the next to visit.
+// stack, farthest deepest, and returns the nearest: the next to visit. One
+// child, the most common case, touches no stack; two take one compare;
+// more are pushed and insertion-sorted where they lie on the stack.
 inline StackEntry enter_nearest_first(const BvhWideNode& node, int mask, const float* tnear, StackEntry* stack,
                                       int& size, const BvhWideNode* nodes, const TriangleBlock* blocks) {
-    // The entered children, sorted nearest first (insertion sort of ≤ kBvhWidth).
-    StackEntry entered[kBvhWidth];
-    int n = 0;
-    while (mask != 0) {
-        const int i = __builtin_ctz(static_cast<unsigned>(mask));
+    const auto entry = [&](int i) { return StackEntry{node.child[i], node.count[i], tnear[i]}; };
+    StackEntry nearest = entry(__builtin_ctz(static_cast<unsigned>(mask)));
+    mask &= mask - 1;
+    if (mask == 0) return nearest;
+    StackEntry other = entry(__builtin_ctz(static_cast<unsigned>(mask)));
+    mask &= mask - 1;
+    if (other.tnear < nearest.tnear) std::swap(nearest, other);
+    if (mask == 0) {
+        prefetch_child(nodes, blocks, other.child, other.count);
+        stack[size++] = other;
+        return nearest;
+    }
+    assert(size + __builtin_popcount(static_cast<unsigned>(mask)) + 2 <= kBvhStackSize);
+    const int base = size;
+    stack[size++] = other;
+    stack[size++] = nearest;
+    do {
+        const StackEntry e = entry(__builtin_ctz(static_cast<unsigned>(mask)));
         mask &= mask - 1;
-        const StackEntry e{node.child[i], node.count[i], tnear[i]};
-        int j = n++;
-        for (; j > 0 && entered[j - 1].tnear > e.tnear; --j) entered[j] = entered[j - 1];
-        entered[j] = e;
-    }
-    assert(size + n - 1 <= kBvhStackSize);
-    for (int j = n - 1; j > 0; --j) {
-        prefetch_child(nodes, blocks, entered[j].child, entered[j].count);
-        stack[size++] = entered[j];
-    }
-    return entered[0];
+        int j = size++;
+        for (; j > base && stack[j - 1].tnear < e.tnear; --j) stack[j] = stack[j - 1];
+        stack[j] = e;
+    } while (mask != 0);
+    nearest = stack[--size];
+    for (int j = base; j < size; ++j) prefetch_child(nodes, blocks, stack[j].child, stack[j].count);
+    return nearest;
 }
 
 // Which candidate hits count. Without cut-outs every hit does, and the test
