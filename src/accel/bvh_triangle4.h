@@ -81,7 +81,12 @@ inline void intersect_block(const TriangleBlock& b, const RayLanes& r, float tma
     const __m128 U = _mm_xor_ps(su, flip), V = _mm_xor_ps(sv, flip);
     const __m128 W = _mm_sub_ps(_mm_sub_ps(_mm_xor_ps(det, flip), U), V);
     const __m128 zero = _mm_setzero_ps();
-    const __m128 inside = _mm_and_ps(_mm_and_ps(_mm_cmpge_ps(U, zero), _mm_cmpge_ps(V, zero)), _mm_cmpge_ps(W, zero));
+    // The least weight decides inside and the band. A NaN weight makes it
+    // NaN, so that the lane fails both as the scalar test's comparisons do:
+    // a NaN in U or V is one in W too, and minps returns its second operand
+    // when either is NaN.
+    const __m128 least = _mm_min_ps(_mm_min_ps(U, V), W);
+    const __m128 inside = _mm_cmpge_ps(least, zero);
     const int inside_bits = _mm_movemask_ps(_mm_and_ps(inside, nonzero));
     const int outside_bits = _mm_movemask_ps(_mm_andnot_ps(inside, nonzero));
     out.sure = 0;
@@ -95,10 +100,7 @@ inline void intersect_block(const TriangleBlock& b, const RayLanes& r, float tma
         const __m128 tm = _mm_max_ps(abs4(tvx), _mm_max_ps(abs4(tvy), abs4(tvz)));
         const __m128 em = _mm_load_ps(b.em);
         const __m128 band = _mm_mul_ps(_mm_set1_ps(0x1p-15f), _mm_mul_ps(_mm_mul_ps(r.dm, em), _mm_add_ps(tm, em)));
-        const __m128 neg_band = _mm_xor_ps(band, sign);
-        const __m128 within = _mm_and_ps(_mm_and_ps(_mm_cmpge_ps(U, neg_band), _mm_cmpge_ps(V, neg_band)),
-                                         _mm_cmpge_ps(W, neg_band));
-        within_bits = outside_bits & _mm_movemask_ps(within);
+        within_bits = outside_bits & _mm_movemask_ps(_mm_cmpge_ps(least, _mm_xor_ps(band, sign)));
     }
     if ((inside_bits | within_bits) == 0) return;
     // t as the scalar test computes it, for the lanes inside and for those
