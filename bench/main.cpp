@@ -12,6 +12,7 @@
 #include "growth_bench.h"
 #include "load_bench.h"
 #include "path_bench.h"
+#include "rays_bench.h"
 #include "scene_bench.h"
 #include "tree_bench.h"
 
@@ -80,6 +81,18 @@ int main(int argc, char** argv) {
         ->capture_default_str();
     add_embree_quality_option(*path, path_options.embree_quality);
 
+    RaysBenchOptions rays_options;
+    std::vector<std::string> rays_files;
+    CLI::App* rays = app.add_subcommand("rays", "Trace batches of incoherent rays from the surfaces with every backend: traversal alone");
+    rays->add_option("scene", rays_files, "Scene files (.json)")->required()->check(CLI::ExistingFile);
+    rays->add_option("--reps", rays_options.reps, "Timed rounds per backend (median reported)")
+        ->check(CLI::Range(1, 1000))
+        ->capture_default_str();
+    rays->add_option("--rays", rays_options.rays, "Rays of each kind (closest hit, shadow)")
+        ->check(CLI::Range(1, 100000000))
+        ->capture_default_str();
+    add_embree_quality_option(*rays, rays_options.embree_quality);
+
     int tree_reps = 5;
     std::vector<std::string> tree_files;
     CLI::App* tree = app.add_subcommand("tree", "The BVH's tree on scenes: SAH cost, size, build time");
@@ -122,6 +135,7 @@ int main(int argc, char** argv) {
         }
         if (*growth) run_growth_bench(model_files, growth_options, std::cout);
         if (*path) run_path_bench(path_files, path_options, std::cout);
+        if (*rays) run_rays_bench(rays_files, rays_options, std::cout);
         if (*tree) run_tree_bench(tree_files, tree_reps, std::cout);
         if (*path_error) run_path_error_bench(error_file, error_options, std::cout);
     } catch (const sombra::Error& e) {
