@@ -49,7 +49,7 @@ struct BinaryBvh {
     // node refers to are unused and uninitialised: read only the slots that
     // nodes refer to); empty when no triangle can be hit.
     BinaryNodeArray nodes;
-    std::vector<std::uint32_t> triangle_order;  // leaf entries, indices into TriangleMesh::triangles
+    std::vector<std::uint32_t, UninitialisedAllocator<std::uint32_t>> triangle_order;  // leaf entries, indices into TriangleMesh::triangles
 };
 
 // Binned SAH over every triangle of `mesh` that can be hit (see make_bvh).

@@ -6,9 +6,11 @@
 
 #include <cstdint>
 #include <limits>
+#include <vector>
 
 #include <immintrin.h>
 
+#include "accel/bvh_binary.h"
 #include "core/vec3.h"
 
 namespace sombra::bvh_build {
@@ -49,6 +51,8 @@ struct alignas(16) PrimRef {
     __m128 hi() const { return _mm_load_ps(&bmax.x); }
 };
 static_assert(sizeof(PrimRef) == 32);
+// Left unzeroed when made (bvh_build.cpp): every entry read is written first.
+using PrimRefArray = std::vector<PrimRef, UninitialisedAllocator<PrimRef>>;
 
 // A box as two SSE rows (lane 3 unused), grown with one min and one max.
 struct BoxRows {
