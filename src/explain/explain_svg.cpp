@@ -271,7 +271,9 @@ private:
             }
             line(x, x + 0.06f * view_.extent() * v.surface.n_s, kNormalColour, 1.5f);
             dot_at(x, kPathColour, 4);
-            label(x, "x" + std::to_string(v.depth), kPathColour, -16, -6);
+            // append, not "x" + to_string(), here and below: GCC 12's
+            // -Wrestrict misfires on operator+(const char*, string&&) (its bug 105329).
+            label(x, std::string("x").append(std::to_string(v.depth)), kPathColour, -16, -6);
             from = x;
         }
     }
@@ -321,7 +323,7 @@ private:
                              std::to_string(r_.sample) + ": L = " + readable(r_.value) + "   (" + r_.end + ")",
                          "#222"});
         for (const VertexRecord& v : r_.vertices) {
-            const std::string at = r_.path ? "x" + std::to_string(v.depth) + " " : "";
+            const std::string at = r_.path ? std::string("x").append(std::to_string(v.depth)).append(" ") : "";
             if (!v.hit) {
                 lines.push_back({at + "leaves the scene: environment L_e = " + readable(v.emission.radiance) + ", adds " +
                                      readable(v.emission.contribution),
