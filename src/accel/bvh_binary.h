@@ -22,10 +22,11 @@ struct BvhNode {
 static_assert(sizeof(BvhNode) == 32);
 
 // std::allocator, except that resize() leaves new elements uninitialised
-// (BvhNode is an aggregate of floats and integers: an implicit-lifetime
-// type, so the memory holds nodes without a constructor call). Slots of the
+// (for aggregates of floats and integers such as BvhNode: implicit-lifetime
+// types, so the memory holds them without a constructor call). Slots of the
 // binary tree that no node takes are never written, and their untouched
-// pages never become resident (bvh_build.cpp).
+// pages never become resident; the build's other arrays are first touched
+// by the parallel passes that fill them (bvh_build.cpp).
 template <class T>
 struct UninitialisedAllocator : std::allocator<T> {
     template <class U>
