@@ -105,21 +105,21 @@ void run_rays_bench(const std::vector<std::string>& scene_files, const RaysBench
         for (const bool shadow : {false, true}) {
             const std::vector<Ray>& rays = shadow ? batches.shadow : batches.closest;
             std::vector<std::vector<double>> times(accels.size());
-            std::size_t hits = 0;
+            std::vector<std::size_t> hits(accels.size(), 0);
             for (int round = 0; round < o.reps; ++round) {
                 for (std::size_t k = 0; k < accels.size(); ++k) {
                     const std::size_t a = (k + static_cast<std::size_t>(round)) % accels.size();
-                    times[a].push_back(trace_batch(accels[a], rays, shadow, hits));
+                    times[a].push_back(trace_batch(accels[a], rays, shadow, hits[a]));
                 }
             }
-            const std::string hit_share = fixed(100.0 * double(hits) / double(rays.size()), 1) + " %";
+            const std::string hit_share = fixed(100.0 * double(hits[0]) / double(rays.size()), 1) + " %";  // the BVH's
             std::vector<double> medians;
             for (const auto& t : times) medians.push_back(median(t));
             for (std::size_t a = 0; a < accels.size(); ++a) {
                 const bool first = a == 0;
                 table.rows.push_back({first && !shadow ? name : "", first && !shadow ? thousands(scene.geometry.triangles.size()) : "",
                                       first ? thousands(rays.size()) : "", first ? (shadow ? "shadow" : "closest hit") : "",
-                                      first ? hit_share : "", accel_label(compared_accels()[a], o.embree_quality), seconds(medians[a]),
+                                      first ? hit_share : "", accel_label(accels[a].kind, o.embree_quality), seconds(medians[a]),
                                       fixed(double(rays.size()) / medians[a] / 1e6, 2),
                                       a == 1 ? ratio(medians[0], medians[1]) : ""});
             }

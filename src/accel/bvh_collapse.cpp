@@ -183,10 +183,11 @@ struct Collapser {
         float widest_area = -1.0f;
         for (int i = 0; i < size; ++i) {
             const std::uint32_t count = binary.nodes[children[i].node].count;
-            const bool openable = count == 0 || (split_leaves && count > 4 && children[i].other_half < 0);
-            if (openable && area(children[i]) > widest_area) {
+            if (count != 0 && !(split_leaves && count > 4 && children[i].other_half < 0)) continue;
+            const float a = area(children[i]);
+            if (a > widest_area) {
                 widest = i;
-                widest_area = area(children[i]);
+                widest_area = a;
             }
         }
         return widest;
