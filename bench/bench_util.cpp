@@ -12,23 +12,26 @@
 
 namespace sombra::bench {
 
-Accel make_compared_accel(const Scene& scene, AccelKind kind, EmbreeQuality embree_quality) {
+Accel make_compared_accel(const Scene& scene, AccelKind kind, const EmbreeSettings& embree) {
 #ifdef SOMBRA_HAVE_EMBREE
-    if (kind == AccelKind::Embree && embree_quality == EmbreeQuality::High) {
+    if (kind == AccelKind::Embree && (embree.quality == EmbreeQuality::High || embree.robust)) {
         Accel accel;
         accel.kind = kind;
         accel.mesh = &scene.geometry;
         accel.cutouts = make_cutouts(scene.geometry, scene.materials, scene.textures);
-        accel.embree = make_embree_scene(scene.geometry, accel.cutouts, true);
+        accel.embree =
+            make_embree_scene(scene.geometry, accel.cutouts, embree.quality == EmbreeQuality::High, embree.robust);
         return accel;
     }
 #endif
     return make_accel(scene, kind);
 }
 
-std::string accel_label(AccelKind kind, EmbreeQuality embree_quality) {
+std::string accel_label(AccelKind kind, const EmbreeSettings& embree) {
     std::string label(accel_name(kind));
-    if (kind != AccelKind::Bvh && kind != AccelKind::Brute && embree_quality == EmbreeQuality::High) label += " high";
+    if (kind == AccelKind::Bvh || kind == AccelKind::Brute) return label;
+    if (embree.quality == EmbreeQuality::High) label += " high";
+    if (embree.robust) label += " robust";
     return label;
 }
 

@@ -48,10 +48,20 @@ std::vector<AccelKind> compared_accels();
 // yardstick issue 10's render target names.
 enum class EmbreeQuality { Medium, High };
 
-// What make_accel(scene, kind) builds, but Embree at `embree_quality`.
-Accel make_compared_accel(const Scene& scene, AccelKind kind, EmbreeQuality embree_quality);
-// accel_name(kind), with " high" for Embree at High.
-std::string accel_label(AccelKind kind, EmbreeQuality embree_quality);
+// How the benchmarks run Embree: its build quality, and (--embree-robust)
+// whether with RTC_SCENE_FLAG_ROBUST, the mode that trades speed for rays
+// not slipping through edges: the fairer yardstick for sombra's BVH, whose
+// box and triangle tests are conservative and watertight.
+struct EmbreeSettings {
+    EmbreeQuality quality = EmbreeQuality::Medium;
+    bool robust = false;
+};
+
+// What make_accel(scene, kind) builds, but Embree as `embree` says.
+Accel make_compared_accel(const Scene& scene, AccelKind kind, const EmbreeSettings& embree);
+// accel_name(kind), with " high" for Embree at High and " robust" for its
+// robust mode.
+std::string accel_label(AccelKind kind, const EmbreeSettings& embree);
 
 // Pixel-by-pixel agreement of two films of the same size. Two pixels agree
 // when every channel does to 1e-3 relative (below what an 8-bit PNG shows,

@@ -24,13 +24,13 @@ struct GrowthPoint {
 
 std::string megabytes(double bytes) { return fixed(bytes * 1e-6, 1); }
 
-void write_csv(const std::string& path, const std::vector<GrowthPoint>& points, EmbreeQuality embree_quality) {
+void write_csv(const std::string& path, const std::vector<GrowthPoint>& points, const EmbreeSettings& embree) {
     std::ofstream csv(path);
     csv << "mesh,triangles,load_seconds,accel,build_seconds,render_seconds,accel_bytes,rays,load_peak_rss_bytes,"
            "peak_rss_bytes\n";
     for (const GrowthPoint& p : points) {
         for (const BackendTiming& b : p.m.backends) {
-            csv << p.name << ',' << p.m.triangles << ',' << p.load_seconds << ',' << accel_label(b.kind, embree_quality) << ','
+            csv << p.name << ',' << p.m.triangles << ',' << p.load_seconds << ',' << accel_label(b.kind, embree) << ','
                 << b.build_seconds << ',' << b.render_seconds << ',' << b.accel_bytes << ',' << b.rays << ','
                 << p.load_peak_rss << ',' << b.peak_rss_bytes << '\n';
         }
@@ -60,7 +60,7 @@ void run_growth_bench(const std::vector<std::string>& model_files, const GrowthO
         p.load_peak_rss = peak_reset ? peak_rss_since_reset_bytes() : 0;
         std::cerr << "sombra-bench: " << p.name << ": " << thousands(scene.geometry.triangle_count())
                   << " triangles; checking the images agree, then " << o.reps << " rounds\n";
-        p.m = measure_scene(scene, settings, o.reps, file, o.embree_quality);
+        p.m = measure_scene(scene, settings, o.reps, file, o.embree);
         p.peak_rss = peak_rss_bytes();
         points.push_back(std::move(p));
     }
@@ -69,10 +69,10 @@ void run_growth_bench(const std::vector<std::string>& model_files, const GrowthO
     Table table;
     table.header = {"mesh", "triangles", "load s"};
     for (const char* what : {"build s", "render s", "MB", "bytes/tri"}) {
-        for (const AccelKind kind : kinds) table.header.push_back(accel_label(kind, o.embree_quality) + " " + what);
+        for (const AccelKind kind : kinds) table.header.push_back(accel_label(kind, o.embree) + " " + what);
     }
     table.header.push_back("load peak MB");
-    for (const AccelKind kind : kinds) table.header.push_back(accel_label(kind, o.embree_quality) + " peak MB");
+    for (const AccelKind kind : kinds) table.header.push_back(accel_label(kind, o.embree) + " peak MB");
     table.header.push_back("peak RSS MB");
     table.right.assign(table.header.size(), true);
     table.right[0] = false;
@@ -91,7 +91,7 @@ void run_growth_bench(const std::vector<std::string>& model_files, const GrowthO
         table.rows.push_back(std::move(row));
     }
     out << to_markdown(table);
-    if (!o.csv.empty()) write_csv(o.csv, points, o.embree_quality);
+    if (!o.csv.empty()) write_csv(o.csv, points, o.embree);
 }
 
 }  // namespace sombra::bench

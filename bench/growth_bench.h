@@ -14,7 +14,7 @@ struct GrowthOptions {
     int reps = 3;
     int width = 640, height = 360;  // the quick look's image (spp 1)
     std::string csv;                // also write the numbers here, one line per mesh and backend; "" = no
-    EmbreeQuality embree_quality = EmbreeQuality::Medium;
+    EmbreeSettings embree = {};
 };
 
 // For each model file (.obj or .ply): the quick-look scene of spec §7 (one

@@ -19,10 +19,10 @@ struct Round {
     RenderOutput output;
 };
 
-Round build_and_render(const Scene& scene, const RenderSettings& settings, AccelKind kind, EmbreeQuality embree_quality) {
+Round build_and_render(const Scene& scene, const RenderSettings& settings, AccelKind kind, const EmbreeSettings& embree) {
     Round round;
     const auto build_start = Clock::now();
-    const Accel accel = make_compared_accel(scene, kind, embree_quality);
+    const Accel accel = make_compared_accel(scene, kind, embree);
     round.build_seconds = seconds_since(build_start);
     round.accel_bytes = accel_memory_bytes(accel);
 
@@ -53,7 +53,7 @@ ImageAgreement direct_bvh_against_brute(const Scene& scene, const RenderSettings
 }  // namespace
 
 SceneMeasurement measure_scene(const Scene& scene, const RenderSettings& settings, int reps, const std::string& name,
-                               EmbreeQuality embree_quality) {
+                               const EmbreeSettings& embree) {
     const std::vector<AccelKind> kinds = compared_accels();
     SceneMeasurement m;
     m.triangles = scene.geometry.triangle_count();
@@ -62,7 +62,7 @@ SceneMeasurement measure_scene(const Scene& scene, const RenderSettings& setting
     std::vector<Film> films;
     for (const AccelKind kind : kinds) {
         const bool peak_reset = reset_peak_rss();
-        Round round = build_and_render(scene, settings, kind, embree_quality);
+        Round round = build_and_render(scene, settings, kind, embree);
         BackendTiming timing;
         timing.kind = kind;
         timing.peak_rss_bytes = peak_reset ? peak_rss_since_reset_bytes() : 0;
@@ -77,7 +77,7 @@ SceneMeasurement measure_scene(const Scene& scene, const RenderSettings& setting
         const ImageAgreement a = compare_films(films[0], films[k]);
         if (a.fraction() < m.agreement.fraction()) m.agreement = a;
         if (a.fraction() < kMinEqualFraction) {
-            throw Error(name, accel_label(kinds[k], embree_quality) + " and " + std::string(accel_name(kinds[0])) +
+            throw Error(name, accel_label(kinds[k], embree) + " and " + std::string(accel_name(kinds[0])) +
                                   " images differ in " + thousands(a.pixels - a.equal) + " of " +
                                   thousands(a.pixels) + " pixels (more than 0.1 %): not timing a wrong result");
         }
@@ -95,7 +95,7 @@ SceneMeasurement measure_scene(const Scene& scene, const RenderSettings& setting
     for (int rep = 0; rep < reps; ++rep) {
         for (std::size_t i = 0; i < kinds.size(); ++i) {
             const std::size_t k = rep % 2 == 0 ? i : kinds.size() - 1 - i;
-            const Round round = build_and_render(scene, settings, kinds[k], embree_quality);
+            const Round round = build_and_render(scene, settings, kinds[k], embree);
             builds[k].push_back(round.build_seconds);
             renders[k].push_back(round.render_seconds);
         }

@@ -45,6 +45,6 @@ struct SceneMeasurement {
 // kMinEqualFraction of the pixels, or the BVH and the brute-force loop
 // disagree on a sampled pixel centre: no numbers for a wrong result.
 SceneMeasurement measure_scene(const Scene& scene, const RenderSettings& settings, int reps, const std::string& name,
-                               EmbreeQuality embree_quality = EmbreeQuality::Medium);
+                               const EmbreeSettings& embree = {});
 
 }  // namespace sombra::bench

@@ -140,7 +140,7 @@ void run_path_bench(const std::vector<std::string>& scene_files, const PathBench
         std::vector<Accel> accels;
         std::vector<RenderJob> jobs;
         accels.reserve(kinds.size());
-        for (const AccelKind kind : kinds) accels.push_back(make_compared_accel(scene, kind, o.embree_quality));
+        for (const AccelKind kind : kinds) accels.push_back(make_compared_accel(scene, kind, o.embree));
         for (const Accel& accel : accels) jobs.push_back(make_render_job(scene, accel, settings));
 
         // The checks, which also warm caches and thread pools for the rounds.
@@ -161,7 +161,7 @@ void run_path_bench(const std::vector<std::string>& scene_files, const PathBench
                 std::snprintf(text, sizeof text,
                               "%s and %s path-traced images differ in mean by z = (%.1f, %.1f, %.1f) standard errors "
                               "(means %.5g %.5g %.5g against %.5g %.5g %.5g): not timing a wrong result",
-                              accel_label(kinds[0], o.embree_quality).c_str(), accel_label(kinds[k], o.embree_quality).c_str(),
+                              accel_label(kinds[0], o.embree).c_str(), accel_label(kinds[k], o.embree).c_str(),
                               t.z[0], t.z[1], t.z[2], t.mean_a[0], t.mean_a[1], t.mean_a[2], t.mean_b[0],
                               t.mean_b[1], t.mean_b[2]);
                 throw Error(file, text);
@@ -192,7 +192,7 @@ void run_path_bench(const std::vector<std::string>& scene_files, const PathBench
             const bool head = k == 0;
             table.rows.push_back({head ? name : "", head ? thousands(scene.geometry.triangle_count()) : "",
                                   head ? image_text(settings) : "", head ? std::to_string(settings.spp) : "",
-                                  accel_label(kinds[k], o.embree_quality), seconds(render_s[k]),
+                                  accel_label(kinds[k], o.embree), seconds(render_s[k]),
                                   fixed(double(rays[k]) / samples, 2), fixed(mrays[k], 2),
                                   thousands(std::uint64_t(std::llround(sps[k]))),
                                   head ? "" : fixed(100.0 * equal[k].fraction(), 2) + " %",

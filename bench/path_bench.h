@@ -19,7 +19,7 @@ struct PathBenchOptions {
     int height = 192;
     int spp = 16;
     int max_depth = 8;
-    EmbreeQuality embree_quality = EmbreeQuality::Medium;
+    EmbreeSettings embree = {};
 };
 
 // Renders each scene with the path integrator (integrator = path set here,

@@ -13,7 +13,7 @@ namespace sombra::bench {
 struct RaysBenchOptions {
     int reps = 9;          // timed rounds, the backends in rotated order; medians reported
     int rays = 400000;     // rays of each kind per round
-    EmbreeQuality embree_quality = EmbreeQuality::Medium;
+    EmbreeSettings embree = {};
 };
 
 // Per scene, two batches made once with a fixed seed: from a point of a

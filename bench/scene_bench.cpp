@@ -38,7 +38,7 @@ void run_scene_bench(const std::vector<std::string>& scene_files, const SceneBen
         const RenderSettings settings = resolve(scene.render, o, file);
         std::cerr << "sombra-bench: " << name << ": checking the images agree, then " << o.reps
                   << " rounds of build + render\n";
-        const SceneMeasurement m = measure_scene(scene, settings, o.reps, file, o.embree_quality);
+        const SceneMeasurement m = measure_scene(scene, settings, o.reps, file, o.embree);
 
         std::string image = std::to_string(settings.width);
         image.append("×").append(std::to_string(settings.height));
@@ -47,7 +47,7 @@ void run_scene_bench(const std::vector<std::string>& scene_files, const SceneBen
             const BackendTiming& b = m.backends[k];
             const bool first = k == 0;
             table.rows.push_back({first ? name : "", first ? thousands(m.triangles) : "", first ? image : "",
-                                  accel_label(b.kind, o.embree_quality), seconds(b.build_seconds), seconds(b.render_seconds),
+                                  accel_label(b.kind, o.embree), seconds(b.build_seconds), seconds(b.render_seconds),
                                   fixed(b.mrays_per_second(), 1), bytes_per_triangle(b.accel_bytes, m.triangles),
                                   first ? "" : fixed(100.0 * m.agreement.fraction(), 3) + " %"});
         }

@@ -13,7 +13,7 @@ namespace sombra::bench {
 struct SceneBenchOptions {
     int reps = 5;
     std::optional<int> width, height;  // override the scenes' own image size
-    EmbreeQuality embree_quality = EmbreeQuality::Medium;
+    EmbreeSettings embree = {};
 };
 
 // Measures each scene file (measure.h) and writes one Markdown table to

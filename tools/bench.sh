@@ -60,6 +60,9 @@ plot_cmd="$python tools/plot-growth.py $out/growth.csv $out/growth-big.csv docs/
 # error of the Cornell box against a 4096-spp reference at 128×128.
 path_cmd="$bench path --reps $reps --width 256 --height 256 --spp 32 --max-depth 8 $shared/scenes/cornell.json $shared/scenes/dragon.json $shared/scenes/phong.json"
 rays_cmd="$bench rays --reps 9 --rays 400000 $shared/scenes/cornell.json $shared/scenes/dragon.json $shared/scenes/bunny.json $shared/scenes/manylights.json"
+# The same rays against Embree in its robust mode, which like sombra's BVH
+# lets no ray through an edge.
+rays_robust_cmd="$rays_cmd --embree-robust"
 path_error_cmd="$bench path-error --width 128 --height 128 --max-depth 8 --reference-spp 4096 --spp 16,64,256 --budget 1 --cache-dir $out $shared/scenes/cornell.json"
 sombra="$build/src/app/sombra"
 alloc_cmd="LD_PRELOAD=$out/malloc_count.so $sombra render $shared/scenes/cornell.json --integrator path --max-depth 8 --width 64 --height 64 --spp N -q"
@@ -87,6 +90,9 @@ if want path; then
   echo "bench.sh: $rays_cmd" >&2
   { echo '```sh'; echo "$rays_cmd"; echo '```'; echo; $rays_cmd; } >"$out/path-rays.md.tmp"
   mv "$out/path-rays.md.tmp" "$out/path-rays.md"
+  echo "bench.sh: $rays_robust_cmd" >&2
+  { echo '```sh'; echo "$rays_robust_cmd"; echo '```'; echo; $rays_robust_cmd; } >"$out/path-rays-robust.md.tmp"
+  mv "$out/path-rays-robust.md.tmp" "$out/path-rays-robust.md"
   echo "bench.sh: $path_error_cmd" >&2
   { echo '```sh'; echo "$path_error_cmd"; echo '```'; echo; $path_error_cmd; } >"$out/path-error.md.tmp"
   mv "$out/path-error.md.tmp" "$out/path-error.md"
@@ -129,6 +135,7 @@ embree="$(dpkg-query -W -f='${Version}' libembree-dev 2>/dev/null || echo 'not i
   echo "$plot_cmd"
   echo "$path_cmd"
   echo "$rays_cmd"
+  echo "$rays_robust_cmd"
   echo "$path_error_cmd"
   echo '```'
 } >"$out/machine.md.tmp"
@@ -140,7 +147,7 @@ if want scenes && want load && want growth && want path; then blocks="machine"; 
 want scenes && blocks="$blocks scenes"
 want load && blocks="$blocks load"
 want growth && blocks="$blocks growth"
-want path && blocks="$blocks path path-rays path-error path-alloc"
+want path && blocks="$blocks path path-rays path-rays-robust path-error path-alloc"
 "$python" - "$out" docs/performance.md $blocks <<'EOF'
 import re, sys
 out, doc = sys.argv[1], sys.argv[2]

@@ -110,7 +110,7 @@ void drop_cut_out_hits(const RTCFilterFunctionNArguments* args) {
 }  // namespace
 
 std::shared_ptr<const EmbreeScene> make_embree_scene(const TriangleMesh& mesh, const Cutouts& cutouts,
-                                                     bool high_quality) {
+                                                     bool high_quality, bool robust) {
     auto s = std::make_shared<EmbreeScene>();
     s->device = rtcNewDevice(nullptr);
     if (s->device == nullptr) {
@@ -170,8 +170,10 @@ std::shared_ptr<const EmbreeScene> make_embree_scene(const TriangleMesh& mesh, c
         throw_if_failed(*s, "setting up the triangles");
     }
     // Default scene flags and, unless asked for HIGH (Embree's spatial-split
-    // builder), the default build quality: Embree as most users run it.
+    // builder), the default build quality: Embree as most users run it; the
+    // benchmarks may ask for the robust mode.
     if (high_quality) rtcSetSceneBuildQuality(s->scene, RTC_BUILD_QUALITY_HIGH);
+    if (robust) rtcSetSceneFlags(s->scene, RTC_SCENE_FLAG_ROBUST);
     rtcCommitScene(s->scene);
     throw_if_failed(*s, "building the BVH");
     return s;

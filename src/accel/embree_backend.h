@@ -4,9 +4,10 @@
 // only when CMake finds Embree 3 (then SOMBRA_HAVE_EMBREE is defined).
 //
 // Embree is used as it comes: default scene flags (RTC_SCENE_FLAG_NONE, so
-// not the watertight "robust" mode) and the default build quality
-// (RTC_BUILD_QUALITY_MEDIUM; RTC_BUILD_QUALITY_HIGH, its spatial-split
-// builder, on request), one triangle geometry over the whole mesh.
+// not the watertight "robust" mode, which the benchmarks may ask for) and the
+// default build quality (RTC_BUILD_QUALITY_MEDIUM; RTC_BUILD_QUALITY_HIGH,
+// its spatial-split builder, on request), one triangle geometry over the
+// whole mesh.
 // Hits agree with the BVH's to float rounding, not bit for bit: Embree's
 // Möller–Trumbore variant rounds differently, is not watertight at edges, and
 // does not send ties at equal t to the lower triangle index.
@@ -35,9 +36,11 @@ struct EmbreeScene;
 // fails (unsupported CPU, out of memory). With active `cutouts` (over
 // `mesh`, outliving the result), Embree's filter functions drop the hits
 // where the surface is cut out. `high_quality` builds with
-// RTC_BUILD_QUALITY_HIGH instead of the default MEDIUM.
+// RTC_BUILD_QUALITY_HIGH instead of the default MEDIUM; `robust` sets
+// RTC_SCENE_FLAG_ROBUST (conservative box tests, rays do not slip between
+// triangles: the benchmarks' fairer yardstick, and slower).
 std::shared_ptr<const EmbreeScene> make_embree_scene(const TriangleMesh& mesh, const Cutouts& cutouts = {},
-                                                     bool high_quality = false);
+                                                     bool high_quality = false, bool robust = false);
 
 // Closest hit with 0 < t < ray.tmax; (b1, b2) are Embree's (u, v), which are
 // the weights of the triangle's second and third corner as in sombra, and
