@@ -48,10 +48,12 @@ std::vector<AccelKind> compared_accels();
 // yardstick issue 10's render target names.
 enum class EmbreeQuality { Medium, High };
 
-// How the benchmarks run Embree: its build quality, and (--embree-robust)
-// whether with RTC_SCENE_FLAG_ROBUST, the mode that trades speed for rays
-// not slipping through edges: the fairer yardstick for sombra's BVH, whose
-// box and triangle tests are conservative and watertight.
+// How the benchmarks run Embree: its build quality, and (`rays
+// --embree-robust`) whether with RTC_SCENE_FLAG_ROBUST, the mode that trades
+// speed for rays not slipping through edges: the fairer yardstick for
+// sombra's BVH, whose box and triangle tests are conservative and
+// watertight. (Not for renders: that mode reports the surface a spawned ray
+// leaves at t = 0, docs/performance.md.)
 struct EmbreeSettings {
     EmbreeQuality quality = EmbreeQuality::Medium;
     bool robust = false;

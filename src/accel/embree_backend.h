@@ -38,7 +38,9 @@ struct EmbreeScene;
 // where the surface is cut out. `high_quality` builds with
 // RTC_BUILD_QUALITY_HIGH instead of the default MEDIUM; `robust` sets
 // RTC_SCENE_FLAG_ROBUST (conservative box tests, rays do not slip between
-// triangles: the benchmarks' fairer yardstick, and slower).
+// triangles: a fairer yardstick for traversal, and slower; but a ray spawned
+// off a surface by its error bound then hits that surface at t = 0, so it is
+// no renderer's backend).
 std::shared_ptr<const EmbreeScene> make_embree_scene(const TriangleMesh& mesh, const Cutouts& cutouts = {},
                                                      bool high_quality = false, bool robust = false);
 
