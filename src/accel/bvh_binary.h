@@ -4,10 +4,9 @@
 
 #include <cstdint>
 #include <memory>
-#include <new>
-#include <utility>
 #include <vector>
 
+#include "accel/unset_elements.h"
 #include "core/vec3.h"
 #include "scene/mesh.h"
 
@@ -21,14 +20,13 @@ struct BvhNode {
 };
 static_assert(sizeof(BvhNode) == 32);
 
-// std::allocator, except that resize() leaves new elements uninitialised
-// (for aggregates of floats and integers such as BvhNode: implicit-lifetime
-// types, so the memory holds them without a constructor call). Slots of the
-// binary tree that no node takes are never written, and their untouched
-// pages never become resident; the build's other arrays are first touched
-// by the parallel passes that fill them (bvh_build.cpp).
+// std::allocator, except that resize() leaves new elements unset
+// (unset_elements.h). Slots of the binary tree that no node takes are never
+// written, and their untouched pages never become resident; the build's
+// other arrays are first touched by the parallel passes that fill them
+// (bvh_build.cpp).
 template <class T>
-struct UninitialisedAllocator : std::allocator<T> {
+struct UninitialisedAllocator : std::allocator<T>, LeavesNewElementsUnset {
     template <class U>
     struct rebind {
         using other = UninitialisedAllocator<U>;
@@ -36,12 +34,7 @@ struct UninitialisedAllocator : std::allocator<T> {
     UninitialisedAllocator() = default;
     template <class U>
     UninitialisedAllocator(const UninitialisedAllocator<U>&) noexcept {}
-    template <class U>
-    void construct(U*) noexcept {}
-    template <class U, class... Args>
-    void construct(U* p, Args&&... args) {
-        ::new (static_cast<void*>(p)) U(std::forward<Args>(args)...);
-    }
+    using LeavesNewElementsUnset::construct;  // not the one std::allocator may bring
 };
 using BinaryNodeArray = std::vector<BvhNode, UninitialisedAllocator<BvhNode>>;
 

@@ -6,9 +6,10 @@
 // when the blocks came to hold the corners p1, p2 instead of the edges e1,
 // e2: same triangles in the same lanes, bvh_structure_test checks each lane's
 // corners; and again when free slots came to take the halves of leaves of
-// more than four triangles: the same node and block counts, bvh_structure_test
-// checks each leaf's box and triangles), and the binary tree's slots are checked to be used the way the
-// savings rely on (a prefix of each serial subtree's range).
+// more than four triangles: the same node and block counts,
+// bvh_structure_test checks each leaf's box and triangles), and the binary
+// tree's slots are checked to be used the way the savings rely on (a prefix
+// of each serial subtree's range).
 #include <gtest/gtest.h>
 
 #include <algorithm>

@@ -11,7 +11,8 @@
 
 #include <cstddef>
 #include <new>
-#include <utility>
+
+#include "accel/unset_elements.h"
 
 namespace sombra {
 
@@ -26,8 +27,10 @@ inline constexpr std::size_t kHugePageBytes = std::size_t{2} << 20;
 void* allocate_big_array(std::size_t bytes, std::size_t align);
 void release_big_array(void* p, std::size_t bytes, std::size_t align) noexcept;
 
+// Like std::allocator otherwise, new elements left unset (unset_elements.h):
+// make_bvh writes every node and block.
 template <class T>
-struct HugePageAllocator {
+struct HugePageAllocator : LeavesNewElementsUnset {
     using value_type = T;
     HugePageAllocator() = default;
     template <class U>
@@ -37,17 +40,6 @@ struct HugePageAllocator {
         return static_cast<T*>(allocate_big_array(n * sizeof(T), alignof(T)));
     }
     void deallocate(T* p, std::size_t n) noexcept { release_big_array(p, n * sizeof(T), alignof(T)); }
-    // resize() and emplace_back() leave new elements unzeroed (the element
-    // types are aggregates of floats and integers, implicit-lifetime types):
-    // make_bvh writes every node and block, and zeroing them first made one
-    // thread fault in every page, gigabytes at 100 M triangles, before the
-    // parallel pass that fills them (optimisation log, B8).
-    template <class U>
-    void construct(U*) noexcept {}
-    template <class U, class... Args>
-    void construct(U* p, Args&&... args) {
-        ::new (static_cast<void*>(p)) U(std::forward<Args>(args)...);
-    }
     friend bool operator==(const HugePageAllocator&, const HugePageAllocator&) { return true; }
 };
 
