@@ -3,6 +3,7 @@
 // safe from any number of threads.
 #pragma once
 
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <memory>
@@ -27,6 +28,12 @@ struct Hit {
     float t = 0;
     float b1 = 0, b2 = 0;
     std::uint32_t triangle = kNoHit;  // index into TriangleMesh::triangles
+    // The triangle's corners, triangle_corners(mesh, triangle), when the
+    // backend has them at hand: the BVH copies them from the leaf it has just
+    // tested, which saves shading three reads at random places in the mesh
+    // (optimisation log, step P31). The other backends leave has_corners false.
+    std::array<Vec3, 3> corners{};
+    bool has_corners = false;
 };
 
 enum class AccelKind {

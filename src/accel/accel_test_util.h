@@ -115,6 +115,8 @@ inline std::string describe(bool found, const Hit& hit) {
     return out.str();
 }
 
+// Brute force against the BVH on every ray: hits bit for bit (triangle, t,
+// weights; the BVH's corners against the mesh's), and occlusion.
 inline Comparison compare_with_brute(const TriangleMesh& mesh, const std::vector<Ray>& rays) {
     const Accel brute = make_accel(mesh, AccelKind::Brute);
     const Accel bvh = make_accel(mesh, AccelKind::Bvh);
@@ -130,7 +132,9 @@ inline Comparison compare_with_brute(const TriangleMesh& mesh, const std::vector
         // occluded() must agree with intersect() in each backend, and the backends with each other.
         const bool same = want_found == got_found && want_occluded == got_occluded && got_occluded == got_found &&
                           (!want_found || (want.triangle == got.triangle && want.t == got.t &&
-                                           want.b1 == got.b1 && want.b2 == got.b2));
+                                           want.b1 == got.b1 && want.b2 == got.b2 &&
+                                           got.has_corners &&
+                                           got.corners == triangle_corners(mesh, got.triangle)));
         if (same) continue;
         if (result.mismatches++ == 0) {
             result.first_mismatch = describe(ray) + ": brute " + describe(want_found, want) +

@@ -167,6 +167,9 @@ bool intersect_bvh_with(const Bvh& bvh, const Filter& filter, const Ray& ray, Hi
 
     Hit best;
     best.t = ray.tmax;
+    // Where the closest hit's corners lie: copied into `hit` once, at the end.
+    const TriangleBlock* best_block = nullptr;
+    int best_lane = 0;
     StackEntry stack[kBvhStackSize];
     int size = 0;
     StackEntry current{0, 0, 0.0f};
@@ -187,6 +190,8 @@ bool intersect_bvh_with(const Bvh& bvh, const Filter& filter, const Ray& ray, Hi
                         finish_barycentrics(found, lane, b1, b2);
                         if (!filter.keeps(triangle, b1, b2)) continue;
                         best = Hit{t, b1, b2, triangle};
+                        best_block = &block;
+                        best_lane = lane;
                     }
                 }
                 for (int near = found.near; near != 0; near &= near - 1) {
@@ -194,8 +199,11 @@ bool intersect_bvh_with(const Bvh& bvh, const Filter& filter, const Ray& ray, Hi
                     const std::uint32_t triangle = block.triangle[lane];
                     float t, b1, b2;
                     if (!intersect_lane(block, lane, ray, t, b1, b2)) continue;
-                    if ((t < best.t || (t == best.t && triangle < best.triangle)) && filter.keeps(triangle, b1, b2))
+                    if ((t < best.t || (t == best.t && triangle < best.triangle)) && filter.keeps(triangle, b1, b2)) {
                         best = Hit{t, b1, b2, triangle};
+                        best_block = &block;
+                        best_lane = lane;
+                    }
                 }
             }
         } else {
@@ -212,6 +220,8 @@ bool intersect_bvh_with(const Bvh& bvh, const Filter& filter, const Ray& ray, Hi
             if (size == 0) {
                 if (best.triangle == kNoHit) return false;
                 hit = best;
+                hit.corners = block_corners(*best_block, best_lane);
+                hit.has_corners = true;
                 return true;
             }
             const StackEntry entry = stack[--size];

@@ -9,6 +9,8 @@
 
 #include <immintrin.h>
 
+#include <array>
+
 #include "accel/bvh.h"
 #include "accel/triangle.h"
 #include "core/ray.h"
@@ -128,13 +130,18 @@ inline void finish_barycentrics(const BlockHits& h, int lane, float& b1, float& 
     b2 = v;
 }
 
+// A lane's corners, the mesh's own (TriangleBlock).
+inline std::array<Vec3, 3> block_corners(const TriangleBlock& b, int lane) {
+    return {Vec3{b.p0[0][lane], b.p0[1][lane], b.p0[2][lane]}, Vec3{b.p1[0][lane], b.p1[1][lane], b.p1[2][lane]},
+            Vec3{b.p2[0][lane], b.p2[1][lane], b.p2[2][lane]}};
+}
+
 // Re-decides a `near` lane: the scalar intersect_triangle on the lane's
 // triangle, prepared from the corners the block holds (the mesh's own, so
 // the same as the brute-force loop's), against `ray` up to ray.tmax.
 inline bool intersect_lane(const TriangleBlock& b, int lane, const Ray& ray, float& t, float& b1, float& b2) {
-    const PreparedTriangle tri = prepare_triangle(Vec3{b.p0[0][lane], b.p0[1][lane], b.p0[2][lane]},
-                                                  Vec3{b.p1[0][lane], b.p1[1][lane], b.p1[2][lane]},
-                                                  Vec3{b.p2[0][lane], b.p2[1][lane], b.p2[2][lane]});
+    const std::array<Vec3, 3> p = block_corners(b, lane);
+    const PreparedTriangle tri = prepare_triangle(p[0], p[1], p[2]);
     return intersect_triangle(ray.origin, ray.dir, tri, ray.tmax, t, b1, b2);
 }
 

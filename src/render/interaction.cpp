@@ -5,10 +5,7 @@
 namespace sombra {
 
 SurfaceInteraction make_surface_interaction(const TriangleMesh& mesh, const Ray& ray, const Hit& hit) {
-    const Index3& tri = mesh.triangles[hit.triangle];
-    const Vec3 p0 = mesh.positions[tri[0]];
-    const Vec3 p1 = mesh.positions[tri[1]];
-    const Vec3 p2 = mesh.positions[tri[2]];
+    const auto [p0, p1, p2] = hit.has_corners ? hit.corners : triangle_corners(mesh, hit.triangle);
     const float b0 = 1.0f - hit.b1 - hit.b2;
 
     SurfaceInteraction si;

@@ -82,6 +82,12 @@ struct TriangleMesh {
     bool has_colors() const { return !color_indices.empty(); }
 };
 
+// The corners of `triangle`, in its order.
+inline std::array<Vec3, 3> triangle_corners(const TriangleMesh& mesh, std::uint32_t triangle) {
+    const Index3& p = mesh.triangles[triangle];
+    return {mesh.positions[p[0]], mesh.positions[p[1]], mesh.positions[p[2]]};
+}
+
 // The barycentric weights (b1, b2) of point y in the plane of `triangle`,
 // from the areas it spans with the edges (for points sampled on a triangle
 // rather than hit); false for a triangle of no area.
