@@ -25,7 +25,7 @@ SurfaceInteraction make_surface_interaction(const TriangleMesh& mesh, const Ray&
     si.n_g = n_g;
     si.n_s = n_g;
 
-    if (mesh.has_normals()) {
+    if (mesh.has_normals() && may_be_complete(mesh.complete_normals, hit.triangle)) {
         const Index3& ni = mesh.normal_indices[hit.triangle];
         if (ni[0] != kNoNormal && ni[1] != kNoNormal && ni[2] != kNoNormal) {
             const Vec3 blended = b0 * mesh.normals[ni[0]] + hit.b1 * mesh.normals[ni[1]] + hit.b2 * mesh.normals[ni[2]];

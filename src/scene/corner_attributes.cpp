@@ -48,6 +48,16 @@ std::optional<Vec3> unit(Vec3 v) {
     return v / len;
 }
 
+// A bit a triangle: set when none of its corner indices is kNone.
+std::vector<std::uint64_t> complete_corner_bits(const std::vector<Index3>& indices) {
+    std::vector<std::uint64_t> bits((indices.size() + 63) / 64, 0);
+    for (std::size_t t = 0; t < indices.size(); ++t) {
+        const Index3& c = indices[t];
+        if (c[0] != kNone && c[1] != kNone && c[2] != kNone) bits[t / 64] |= std::uint64_t{1} << (t % 64);
+    }
+    return bits;
+}
+
 }  // namespace
 
 void append_corner_attributes(TriangleMesh& out, const TriangleMesh& in, const Transform& transform) {
@@ -68,6 +78,11 @@ void append_corner_attributes(TriangleMesh& out, const TriangleMesh& in, const T
                      });
     append_attribute(out.colors, out.color_indices, in.colors, in.color_indices, count, before, mirrored,
                      [](const Rgba& c) { return std::optional<Rgba>(c); });
+}
+
+void mark_complete_corners(TriangleMesh& mesh) {
+    mesh.complete_normals = complete_corner_bits(mesh.normal_indices);
+    mesh.complete_uvs = complete_corner_bits(mesh.uv_indices);
 }
 
 }  // namespace sombra

@@ -19,4 +19,9 @@ namespace sombra {
 // attribute the other's triangles get none (kNoNormal …).
 void append_corner_attributes(TriangleMesh& out, const TriangleMesh& in, const Transform& transform);
 
+// Derives mesh.complete_normals and complete_uvs from normal_indices and
+// uv_indices: a bit a triangle, set when all three corners have the
+// attribute; each left empty when the mesh has none of it.
+void mark_complete_corners(TriangleMesh& mesh);
+
 }  // namespace sombra

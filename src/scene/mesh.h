@@ -75,12 +75,32 @@ struct TriangleMesh {
     // loaded file, into Scene::materials for the scene's world geometry.
     std::vector<std::uint32_t> material_ids;
 
+    // Derived from normal_indices and uv_indices by mark_complete_corners
+    // (corner_attributes.h; scene loading does it for the world geometry):
+    // bit t % 64 of word t / 64 is set when all three corners of triangle t
+    // have a normal (complete_normals: the triangle is smooth-shaded) or a uv
+    // (complete_uvs). Shading tests these bits, an eighth of a megabyte each
+    // for a million triangles, before it reads the triangle's entries of
+    // normal_indices and uv_indices, 12 MB each, at random; a scene mixing
+    // meshes with and without normals or uvs would otherwise read both on
+    // every hit for nothing (optimisation log, step P32). Empty: not
+    // derived, and the indices are read.
+    std::vector<std::uint64_t> complete_normals;
+    std::vector<std::uint64_t> complete_uvs;
+
     std::size_t triangle_count() const { return triangles.size(); }
     bool has_normals() const { return !normal_indices.empty(); }
     bool has_uvs() const { return !uv_indices.empty(); }
     bool has_tangents() const { return !tangent_indices.empty(); }
     bool has_colors() const { return !color_indices.empty(); }
 };
+
+// False when `bits` (TriangleMesh::complete_normals or complete_uvs) says
+// that some corner of `triangle` lacks the attribute; true when it says
+// otherwise or was not derived.
+inline bool may_be_complete(const std::vector<std::uint64_t>& bits, std::uint32_t triangle) {
+    return bits.empty() || (bits[triangle / 64] >> (triangle % 64) & 1u) != 0;
+}
 
 // The corners of `triangle`, in its order.
 inline std::array<Vec3, 3> triangle_corners(const TriangleMesh& mesh, std::uint32_t triangle) {
@@ -108,7 +128,7 @@ inline bool point_barycentrics(const TriangleMesh& mesh, std::uint32_t triangle,
 // (the first corner weighs 1 − b1 − b2), or false, leaving `uv` untouched,
 // when some corner has none. Every uv lookup goes through here.
 inline bool interpolate_uv(const TriangleMesh& mesh, std::uint32_t triangle, float b1, float b2, Vec2& uv) {
-    if (!mesh.has_uvs()) return false;
+    if (!mesh.has_uvs() || !may_be_complete(mesh.complete_uvs, triangle)) return false;
     const Index3& ti = mesh.uv_indices[triangle];
     if (ti[0] == kNoUv || ti[1] == kNoUv || ti[2] == kNoUv) return false;
     const Vec2 t0 = mesh.uvs[ti[0]], t1 = mesh.uvs[ti[1]], t2 = mesh.uvs[ti[2]];

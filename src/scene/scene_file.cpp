@@ -292,6 +292,7 @@ Scene load_scene_text(const std::string& text, const fs::path& path, Diagnostics
         if (last_use[mesh_of[i]] == i) meshes[mesh_of[i]] = LoadedMesh{};
     }
     for (std::size_t i = 0; i < quad_meshes.size(); ++i) append_object(scene, quad_meshes[i], quad_specs[i], s);
+    mark_complete_corners(scene.geometry);
     return scene;
 }
 
@@ -333,6 +334,7 @@ Scene make_quicklook_scene(const std::filesystem::path& model, Diagnostics& diag
     scene.textures = std::move(loaded.textures);
     for (Material& m : scene.materials) m.textured = any_texture(m.textures);
     scene.geometry = std::move(loaded.mesh);
+    mark_complete_corners(scene.geometry);
     scene.objects.push_back(SceneObject{model.filename().string(), model.string(), 0,
                                         static_cast<std::uint32_t>(scene.geometry.triangle_count())});
 

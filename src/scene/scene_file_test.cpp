@@ -308,6 +308,9 @@ TEST_F(SceneFile, ObjectsConcatenateWithOffsetsAndMaterials) {
     EXPECT_EQ(g.normal_indices[0], (Index3{kNoNormal, kNoNormal, kNoNormal}));
     EXPECT_NE(g.normal_indices[2][0], kNoNormal);
     EXPECT_EQ(g.normal_indices[4], (Index3{kNoNormal, kNoNormal, kNoNormal}));
+    // Loading derives which triangles have all three (TriangleMesh::complete_normals).
+    EXPECT_EQ(g.complete_normals, std::vector<std::uint64_t>{0b00100u});
+    EXPECT_TRUE(g.complete_uvs.empty());
     // The override gives both triangles "grey"; without it, the file's own materials.
     ASSERT_EQ(g.material_ids.size(), 5u);
     EXPECT_EQ(s.materials.at(g.material_ids[0]).name, "grey");
