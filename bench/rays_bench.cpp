@@ -1,8 +1,8 @@
 #include "rays_bench.h"
 
 #include <algorithm>
-#include <cmath>
 #include <bit>
+#include <cmath>
 #include <filesystem>
 #include <iostream>
 #include <random>

@@ -115,7 +115,7 @@ inline std::string describe(bool found, const Hit& hit) {
     return out.str();
 }
 
-// Brute force against the BVH on every ray: hits bit for bit (triangle, t,
+// Brute force against the BVH on every ray: the same hits (triangle, t,
 // weights; the BVH's corners against the mesh's), and occlusion.
 inline Comparison compare_with_brute(const TriangleMesh& mesh, const std::vector<Ray>& rays) {
     const Accel brute = make_accel(mesh, AccelKind::Brute);

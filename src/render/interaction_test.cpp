@@ -43,29 +43,6 @@ TriangleMesh mixed_mesh() {
     return mesh;
 }
 
-TEST(CompleteCorners, ABitPerTriangleWithAllThreeCorners) {
-    TriangleMesh mesh = mixed_mesh();
-    mark_complete_corners(mesh);
-    ASSERT_EQ(mesh.complete_normals.size(), 4u);  // 200 bits in 64-bit words
-    ASSERT_EQ(mesh.complete_uvs.size(), 4u);
-    for (std::uint32_t t = 0; t < 200; ++t) {
-        const bool normals = (mesh.complete_normals[t / 64] >> (t % 64) & 1u) != 0;
-        const bool uvs = (mesh.complete_uvs[t / 64] >> (t % 64) & 1u) != 0;
-        EXPECT_EQ(normals, t % 3 == 0) << t;
-        EXPECT_EQ(uvs, t % 5 < 2) << t;
-        EXPECT_EQ(may_be_complete(mesh.complete_normals, t), normals) << t;
-    }
-    EXPECT_EQ(mesh.complete_normals[3] >> 8, 0u);  // no bit beyond the last triangle
-
-    TriangleMesh bare;
-    bare.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
-    bare.triangles = {{0, 1, 2}};
-    mark_complete_corners(bare);
-    EXPECT_TRUE(bare.complete_normals.empty());
-    EXPECT_TRUE(bare.complete_uvs.empty());
-    EXPECT_TRUE(may_be_complete(bare.complete_normals, 0));  // not derived: read the indices
-}
-
 // What shading makes of a hit is the same, bit for bit, whether the mesh's
 // complete-corner bits are derived or not and whether the hit carries its
 // corners (the BVH's) or not.
