@@ -173,11 +173,11 @@ Scene blocked_scene() {
 
 // The blocked scene's one pixel, traced with the recorder.
 struct BlockedStory {
-    Scene scene = blocked_scene();
+    Scene scene;
     Accel accel = make_accel(scene, AccelKind::Bvh);
     RenderJob job = make_render_job(scene, accel, scene.render, 1);
     SampleRecord record;
-    BlockedStory() {
+    explicit BlockedStory(Scene s = blocked_scene()) : scene(std::move(s)) {
         RayCounters counters;
         trace_pixel_sample(job, 0, 0, 0, counters, record);
     }
@@ -235,6 +235,26 @@ TEST(ExplainRecord, NamesTheBlockerTheLightBehindAndEachFactorOfTheVisibleLight)
     const Vec3 value{static_cast<float>(j["value"][0].get<double>()), static_cast<float>(j["value"][1].get<double>()),
                      static_cast<float>(j["value"][2].get<double>())};
     EXPECT_TRUE(same_bits(value, r.value));
+}
+
+// The text says where n_s came from: vertex normals even when they equal
+// n_g (a flat floor's, as the shared scenes' plane.obj has), or none.
+TEST(ExplainRecord, SaysWhetherTheShadingNormalCameFromVertexNormals) {
+    const BlockedStory flat;
+    const std::string flat_text = explain_text(ExplainContext{flat.scene, flat.job, "test.json"}, flat.record);
+    EXPECT_NE(flat_text.find("(shading normal: the same, no vertex normals)"), std::string::npos) << flat_text;
+
+    Scene scene = blocked_scene();
+    TriangleMesh& mesh = scene.geometry;
+    mesh.normals = {Vec3{0, 1, 0}};
+    mesh.normal_indices.assign(mesh.triangles.size(), Index3{kNoNormal, kNoNormal, kNoNormal});
+    mesh.normal_indices[0] = mesh.normal_indices[1] = Index3{0, 0, 0};  // the ground's
+    const BlockedStory smooth(std::move(scene));
+    ASSERT_EQ(smooth.record.vertices.size(), 1u);
+    EXPECT_LT(smooth.record.vertices[0].surface.triangle, 2u);
+    const std::string smooth_text = explain_text(ExplainContext{smooth.scene, smooth.job, "test.json"}, smooth.record);
+    EXPECT_NE(smooth_text.find("(shading normal: blended vertex normals, here the same as n_g)"), std::string::npos)
+        << smooth_text;
 }
 
 TEST(ExplainRecord, SvgShowsTheBlockedShadowRayInRedAndEmbedsTheImage) {
