@@ -51,15 +51,6 @@ private:
         return s + ", triangle " + std::to_string(o.triangle) + ", material \"" + m.name + "\"";
     }
 
-    // Whether all three corners of `triangle` have a vertex normal (spec §9),
-    // so that n_s is blended from them even where it equals n_g.
-    bool has_vertex_normals(std::uint32_t triangle) const {
-        const TriangleMesh& mesh = c_.scene.geometry;
-        if (!mesh.has_normals()) return false;
-        const Index3& n = mesh.normal_indices[triangle];
-        return n[0] != kNoNormal && n[1] != kNoNormal && n[2] != kNoNormal;
-    }
-
     // The material's name and type, and its parameters as the BSDF saw them at the hit.
     static std::string material_text(const HitRecord& h, const Material& named) {
         const Material& m = h.shaded;
@@ -100,9 +91,10 @@ private:
         out_ << "  n_g      " << readable(h.n_g) << "  (geometric normal, turned to face the ray)\n";
         const MaterialTextures& maps = c_.scene.materials[h.material].textures;
         const bool mapped = h.has_uv && (maps.normal_map.is_set() || maps.bump_map.is_set());
+        const bool smooth = has_vertex_normals(c_.scene.geometry, h.triangle);
         out_ << "  n_s      " << readable(h.n_s)
-             << (mapped                 ? "  (shading normal: after the material's normal or bump map)"
-                 : !has_vertex_normals(h.triangle) ? "  (shading normal: the same, no vertex normals)"
+             << (mapped           ? "  (shading normal: after the material's normal or bump map)"
+                 : !smooth        ? "  (shading normal: the same, no vertex normals)"
                  : h.n_s == h.n_g ? "  (shading normal: blended vertex normals, here the same as n_g)"
                                   : "  (shading normal: blended vertex normals)")
              << "\n";

@@ -25,17 +25,15 @@ SurfaceInteraction make_surface_interaction(const TriangleMesh& mesh, const Ray&
     si.n_g = n_g;
     si.n_s = n_g;
 
-    if (mesh.has_normals() && may_be_complete(mesh.complete_normals, hit.triangle)) {
+    if (has_vertex_normals(mesh, hit.triangle)) {
         const Index3& ni = mesh.normal_indices[hit.triangle];
-        if (ni[0] != kNoNormal && ni[1] != kNoNormal && ni[2] != kNoNormal) {
-            const Vec3 blended = b0 * mesh.normals[ni[0]] + hit.b1 * mesh.normals[ni[1]] + hit.b2 * mesh.normals[ni[2]];
-            const float len = length(blended);
-            // Opposing corner normals can cancel: fall back to the geometric normal.
-            if (len > 1e-12f && std::isfinite(len)) {
-                Vec3 n_s = blended / len;
-                if (dot(n_s, n_g) < 0.0f) n_s = -n_s;
-                si.n_s = n_s;
-            }
+        const Vec3 blended = b0 * mesh.normals[ni[0]] + hit.b1 * mesh.normals[ni[1]] + hit.b2 * mesh.normals[ni[2]];
+        const float len = length(blended);
+        // Opposing corner normals can cancel: fall back to the geometric normal.
+        if (len > 1e-12f && std::isfinite(len)) {
+            Vec3 n_s = blended / len;
+            if (dot(n_s, n_g) < 0.0f) n_s = -n_s;
+            si.n_s = n_s;
         }
     }
     si.has_uv = interpolate_uv(mesh, hit.triangle, hit.b1, hit.b2, si.uv);

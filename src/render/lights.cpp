@@ -15,15 +15,6 @@ namespace {
 
 constexpr float kPi = std::numbers::pi_v<float>;
 
-struct TriangleCorners {
-    Vec3 p0, p1, p2;
-};
-
-TriangleCorners corners(const TriangleMesh& mesh, std::uint32_t triangle) {
-    const Index3& t = mesh.triangles[triangle];
-    return {mesh.positions[t[0]], mesh.positions[t[1]], mesh.positions[t[2]]};
-}
-
 // The radius of a sphere around the scene's bounding box.
 float bounding_radius(const TriangleMesh& mesh) {
     if (mesh.positions.empty()) return 1.0f;
@@ -86,15 +77,15 @@ LightSet make_light_set(const Scene& scene, Environment environment, bool sample
     for (std::uint32_t t = 0; t < mesh.triangle_count(); ++t) {
         const Material& m = scene.materials[mesh.material_ids[t]];
         if (!is_emissive(m)) continue;
-        const TriangleCorners c = corners(mesh, t);
-        const float area = 0.5f * length(cross(c.p1 - c.p0, c.p2 - c.p0));
+        const auto [p0, p1, p2] = triangle_corners(mesh, t);
+        const float area = 0.5f * length(cross(p1 - p0, p2 - p0));
         // Degenerate or non-finite triangles are never hit, so never lights.
         if (!(area > 0.0f) || !std::isfinite(area)) continue;
         lights.emitters.push_back(t);
         lights.emitter_areas.push_back(area);
         const float sides = m.emits_front_only ? 1.0f : 2.0f;
         power.push_back(std::max(luminance(m.ke), 1e-6f * max_component(m.ke)) * area * kPi * sides);
-        tree_emitters.push_back({c.p0, c.p1, c.p2, power.back(), !m.emits_front_only});
+        tree_emitters.push_back({p0, p1, p2, power.back(), !m.emits_front_only});
     }
     lights.use_tree = selection == LightSelection::Tree ||
                       (selection == LightSelection::Automatic && tree_emitters.size() >= kLightTreeMinEmitters);
@@ -160,16 +151,16 @@ bool sample_light(const LightSet& lights, const Scene& scene, Vec3 x, Vec3 n, fl
     }
 
     const std::uint32_t triangle = lights.emitters[chosen];
-    const TriangleCorners c = corners(scene.geometry, triangle);
-    const Vec3 n_w = normalize(cross(c.p1 - c.p0, c.p2 - c.p0));
-    const SphericalTriangle spherical = make_spherical_triangle(x, c.p0, c.p1, c.p2);
+    const auto [p0, p1, p2] = triangle_corners(scene.geometry, triangle);
+    const Vec3 n_w = normalize(cross(p1 - p0, p2 - p0));
+    const SphericalTriangle spherical = make_spherical_triangle(x, p0, p1, p2);
     Vec3 y, wi;
     float pdf = 0;
     if (sample_by_solid_angle(spherical)) {
         // Uniform over the solid angle; the point is where that direction meets the plane.
         wi = sample_spherical_triangle(spherical, u1, u2);
         const float cos_y = dot(n_w, wi);
-        const float t = dot(c.p0 - x, n_w) / cos_y;
+        const float t = dot(p0 - x, n_w) / cos_y;
         if (!(t > 0.0f) || !std::isfinite(t)) return false;
         y = x + t * wi;
         pdf = static_cast<float>(1.0 / spherical.solid_angle);
@@ -177,7 +168,7 @@ bool sample_light(const LightSet& lights, const Scene& scene, Vec3 x, Vec3 n, fl
         // Uniform by area: the square-root parameterisation of the triangle.
         const float su = std::sqrt(u1);
         const float b1 = 1.0f - su, b2 = u2 * su;
-        y = (1.0f - b1 - b2) * c.p0 + b1 * c.p1 + b2 * c.p2;
+        y = (1.0f - b1 - b2) * p0 + b1 * p1 + b2 * p2;
         const Vec3 to_light = y - x;
         const float dist2 = dot(to_light, to_light);
         if (!(dist2 > 0.0f)) return false;
@@ -207,10 +198,10 @@ float pdf_light_triangle(const LightSet& lights, const Scene& scene, std::uint32
                                                pmf_light_tree(lights.tree, x, n, static_cast<std::uint32_t>(e))
                                          : lights.choice_probability[e];
     if (!(choice > 0.0f)) return 0.0f;
-    const TriangleCorners c = corners(scene.geometry, triangle);
-    const SphericalTriangle spherical = make_spherical_triangle(x, c.p0, c.p1, c.p2);
+    const auto [p0, p1, p2] = triangle_corners(scene.geometry, triangle);
+    const SphericalTriangle spherical = make_spherical_triangle(x, p0, p1, p2);
     if (sample_by_solid_angle(spherical)) return choice * static_cast<float>(1.0 / spherical.solid_angle);
-    const Vec3 n_w = normalize(cross(c.p1 - c.p0, c.p2 - c.p0));
+    const Vec3 n_w = normalize(cross(p1 - p0, p2 - p0));
     return choice * area_to_solid_angle(x, y, n_w, lights.emitter_areas[e]);
 }
 

@@ -102,6 +102,14 @@ inline bool may_be_complete(const std::vector<std::uint64_t>& bits, std::uint32_
     return bits.empty() || (bits[triangle / 64] >> (triangle % 64) & 1u) != 0;
 }
 
+// True when all three corners of `triangle` have a vertex normal: the
+// triangle is smooth-shaded (spec §9).
+inline bool has_vertex_normals(const TriangleMesh& mesh, std::uint32_t triangle) {
+    if (!mesh.has_normals() || !may_be_complete(mesh.complete_normals, triangle)) return false;
+    const Index3& n = mesh.normal_indices[triangle];
+    return n[0] != kNoNormal && n[1] != kNoNormal && n[2] != kNoNormal;
+}
+
 // The corners of `triangle`, in its order.
 inline std::array<Vec3, 3> triangle_corners(const TriangleMesh& mesh, std::uint32_t triangle) {
     const Index3& p = mesh.triangles[triangle];
