@@ -120,9 +120,8 @@ inline std::array<Vec3, 3> triangle_corners(const TriangleMesh& mesh, std::uint3
 // from the areas it spans with the edges (for points sampled on a triangle
 // rather than hit); false for a triangle of no area.
 inline bool point_barycentrics(const TriangleMesh& mesh, std::uint32_t triangle, Vec3 y, float& b1, float& b2) {
-    const Index3& p = mesh.triangles[triangle];
-    const Vec3 p0 = mesh.positions[p[0]];
-    const Vec3 e1 = mesh.positions[p[1]] - p0, e2 = mesh.positions[p[2]] - p0, d = y - p0;
+    const auto [p0, p1, p2] = triangle_corners(mesh, triangle);
+    const Vec3 e1 = p1 - p0, e2 = p2 - p0, d = y - p0;
     const float d11 = dot(e1, e1), d12 = dot(e1, e2), d22 = dot(e2, e2);
     const float d1 = dot(d, e1), d2 = dot(d, e2);
     const float den = d11 * d22 - d12 * d12;
