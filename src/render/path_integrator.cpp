@@ -10,7 +10,7 @@
 #include "render/bsdf.h"
 #include "render/integrator.h"
 #include "render/interaction.h"
-#include "render/point_lights.h"
+#include "render/delta_lights.h"
 #include "render/ray_cone.h"
 #include "render/sample_recorder.h"
 #include "render/shading.h"
