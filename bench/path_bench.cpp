@@ -257,10 +257,16 @@ std::uint64_t reference_key(const std::string& file, const Scene& scene, const R
         h.value(m.roughness);
         h.value(m.emits_front_only);
     }
-    for (const PointLight& l : scene.lights) {
+    for (const PunctualLight& l : scene.lights) {
+        h.value(l.type);
         h.value(l.position);
+        h.value(l.direction);
         h.value(l.intensity);
+        h.value(l.cos_outer);
+        h.value(l.cos_inner);
     }
+    h.value(scene.camera.aperture_radius);
+    h.value(scene.camera.focus_distance.value_or(0.0f));
     h.value(scene.background);
     h.value(s.width);
     h.value(s.height);

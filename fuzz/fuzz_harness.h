@@ -198,12 +198,24 @@ inline std::string textures_problem(const std::vector<Material>& materials, cons
     return {};
 }
 
+// Why a light is unusable, or "": finite values, non-negative intensity, a
+// unit direction for spots and directional lights, spot cosines in order.
+inline std::string light_problem(const PunctualLight& light) {
+    if (!is_finite(light.position) || !is_finite(light.intensity) || min_component(light.intensity) < 0)
+        return "bad light";
+    if (light.type != LightType::Point && !(std::fabs(length(light.direction) - 1) < 1e-3f))
+        return "light direction not unit";
+    if (light.type == LightType::Spot &&
+        !(light.cos_outer >= -1e-6f && light.cos_outer < 1 && light.cos_inner >= light.cos_outer && light.cos_inner <= 1))
+        return "bad spot cone";
+    return {};
+}
+
 inline std::string loaded_mesh_problem(const LoadedMesh& loaded) {
     for (const Material& m : loaded.materials)
         if (std::string problem = material_problem(m); !problem.empty()) return problem;
-    for (const PointLight& light : loaded.lights)
-        if (!is_finite(light.position) || !is_finite(light.intensity) || min_component(light.intensity) < 0)
-            return "bad light";
+    for (const PunctualLight& light : loaded.lights)
+        if (std::string problem = light_problem(light); !problem.empty()) return problem;
     if (const std::optional<ModelCamera>& c = loaded.camera;
         c && !(is_finite(c->origin) && is_finite(c->forward) && is_finite(c->up) && c->yfov_degrees > 0 &&
                c->yfov_degrees < 180 && std::isfinite(c->aspect) && c->aspect >= 0 &&
@@ -226,9 +238,10 @@ inline std::string scene_problem(const Scene& scene) {
     if (c.look_at && !(is_finite(c.look_at->origin) && is_finite(c.look_at->look_at) && is_finite(c.look_at->up) &&
                        c.look_at->fov_degrees > 0 && c.look_at->fov_degrees < 180))
         return "bad look-at camera";
-    for (const PointLight& light : scene.lights)
-        if (!is_finite(light.position) || !is_finite(light.intensity) || min_component(light.intensity) < 0)
-            return "bad light";
+    for (const PunctualLight& light : scene.lights)
+        if (std::string problem = light_problem(light); !problem.empty()) return problem;
+    if (!(c.aperture_radius >= 0 && std::isfinite(c.aperture_radius))) return "bad aperture";
+    if (c.focus_distance && !(*c.focus_distance > 0 && std::isfinite(*c.focus_distance))) return "bad focus distance";
     for (const Material& m : scene.materials)
         if (std::string problem = material_problem(m); !problem.empty()) return problem;
     if (std::string problem = textures_problem(scene.materials, scene.textures); !problem.empty()) return problem;

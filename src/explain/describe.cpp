@@ -41,10 +41,20 @@ TriangleOrigin triangle_origin(const Scene& scene, std::uint32_t triangle) {
     return {object->name, object->file, triangle - object->first_triangle};
 }
 
+const char* light_type_name(LightType type) {
+    switch (type) {
+        case LightType::Point: return "point";
+        case LightType::Spot: return "spot";
+        case LightType::Directional: return "directional";
+    }
+    return "?";
+}
+
 const char* outcome_name(LightOutcome outcome) {
     switch (outcome) {
         case LightOutcome::Behind: return "behind";
         case LightOutcome::OnSurface: return "on_surface";
+        case LightOutcome::OutsideCone: return "outside_cone";
         case LightOutcome::Blocked: return "blocked";
         case LightOutcome::Visible: return "visible";
     }

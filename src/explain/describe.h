@@ -30,8 +30,10 @@ struct TriangleOrigin {
 };
 TriangleOrigin triangle_origin(const Scene& scene, std::uint32_t triangle);
 
-// "behind", "on_surface", "blocked", "visible".
+// "behind", "on_surface", "outside_cone", "blocked", "visible".
 const char* outcome_name(LightOutcome outcome);
+// "point", "spot", "directional".
+const char* light_type_name(LightType type);
 
 // A number for reading: 4 significant digits ("0.1592", "1.2e+05").
 std::string readable(float v);

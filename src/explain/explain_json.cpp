@@ -41,6 +41,12 @@ public:
                            {"t", number(r_.t)},
                            {"origin", vec(r_.origin)},
                            {"direction", vec(r_.direction)}};
+        if (r_.lens) {
+            const Camera& cam = c_.job.camera;
+            j["camera_ray"]["lens"] = {{"sample", {number(r_.lens_u), number(r_.lens_v)}},
+                                       {"aperture_radius", number(cam.lens_radius)},
+                                       {"focus_distance", number(cam.focus_distance)}};
+        }
         const VertexRecord* first = r_.vertices.empty() ? nullptr : &r_.vertices.front();
         j["hit"] = first && first->hit ? hit(first->surface) : Json(nullptr);
         j["lights"] = first ? lights(*first) : Json::array();
@@ -107,18 +113,28 @@ private:
         return j;
     }
 
-    Json point_light(const PointLightRecord& l) const {
-        const PointLight& light = c_.scene.lights[l.light];
-        Json j = {{"type", "point"},
-                  {"index", l.light},
-                  {"position", vec(light.position)},
-                  {"intensity", vec(light.intensity)},
-                  {"outcome", outcome_name(l.outcome)}};
+    Json delta_light(const DeltaLightRecord& l) const {
+        const PunctualLight& light = c_.scene.lights[l.light];
+        Json j = {{"type", light_type_name(light.type)}, {"index", l.light}};
+        if (light.type != LightType::Directional) j["position"] = vec(light.position);
+        if (light.type != LightType::Point) j["direction"] = vec(light.direction);
+        if (light.type == LightType::Directional) {
+            j["irradiance"] = vec(light.intensity);
+        } else {
+            j["intensity"] = vec(light.intensity);
+        }
+        if (light.type == LightType::Spot) {
+            j["cos_outer"] = number(light.cos_outer);
+            j["cos_inner"] = number(light.cos_inner);
+        }
+        j["outcome"] = outcome_name(l.outcome);
         if (l.outcome != LightOutcome::OnSurface) {
             j["omega_i"] = vec(l.wi);
-            j["distance"] = number(l.distance);
+            // A directional light is unbounded: no distance (spec §16).
+            j["distance"] = light.type == LightType::Directional ? Json(nullptr) : number(l.distance);
             j["cos_g"] = number(l.cos_g);
             j["cos_s"] = number(l.cos_s);
+            if (light.type == LightType::Spot) j["spot_factor"] = number(l.spot_factor);
             j["incident"] = vec(l.incident);
             j["f_r"] = f_terms(l.f_diffuse, l.f_lobe, l.f);
         }
@@ -159,7 +175,7 @@ private:
 
     Json lights(const VertexRecord& v) const {
         Json list = Json::array();
-        for (const PointLightRecord& l : v.point_lights) list.push_back(point_light(l));
+        for (const DeltaLightRecord& l : v.delta_lights) list.push_back(delta_light(l));
         if (r_.path && v.hit && !v.delta_material && c_.job.lights.has_sampled_lights())
             list.push_back(sampled_light(v.sampled_light));
         return list;

@@ -125,7 +125,8 @@ private:
         add(r_.origin);
         for (const VertexRecord& v : r_.vertices)
             if (v.hit) add(v.surface.position);
-        for (const PointLight& l : c_.scene.lights) add(l.position);
+        for (const PunctualLight& l : c_.scene.lights)
+            if (l.type != LightType::Directional) add(l.position);  // a directional light has no place
         const Point2 interest_lo = lo, interest_hi = hi;
         Point2 scene_lo{INFINITY, INFINITY}, scene_hi{-INFINITY, -INFINITY};
         for (const Vec3 p : c_.scene.geometry.positions) {
@@ -218,6 +219,7 @@ private:
 
     void lights() {
         for (std::size_t i = 0; i < c_.scene.lights.size(); ++i) {
+            if (c_.scene.lights[i].type == LightType::Directional) continue;  // drawn as its shadow rays only
             const Vec3 p = c_.scene.lights[i].position;
             const Point2 q = view_.screen(p);
             svg_ << "<circle cx=\"" << num(q.x) << "\" cy=\"" << num(q.y) << "\" r=\"7\" fill=\"#ffd54f\" stroke=\"#b07800\" "
@@ -246,7 +248,7 @@ private:
             cross_at(at, kBlockedColour);
             // Named in the view when the story is short; a long path's caption names each blocker instead.
             if (r_.vertices.size() <= 2) label(at, "blocked by " + object_name(blocker.triangle), kBlockedColour);
-        } else if (outcome == LightOutcome::Behind) {
+        } else if (outcome == LightOutcome::Behind || outcome == LightOutcome::OutsideCone) {
             line(x, target, kBehindColour, 1, "2 4");
         }
     }
@@ -261,8 +263,13 @@ private:
             }
             const Vec3 x = v.surface.position;
             line(from, x, kPathColour, 2.2f);
-            for (const PointLightRecord& l : v.point_lights)
-                shadow_ray(x, c_.scene.lights[l.light].position, l.outcome, l.blocker);
+            for (const DeltaLightRecord& l : v.delta_lights) {
+                // Toward a directional light the ray has no end: drawn as far as the environment's.
+                const PunctualLight& light = c_.scene.lights[l.light];
+                const Vec3 target =
+                    light.type == LightType::Directional ? x + 0.3f * view_.extent() * l.wi : light.position;
+                shadow_ray(x, target, l.outcome, l.blocker);
+            }
             const SampledLightRecord& s = v.sampled_light;
             if (s.sampled) {
                 const Vec3 target = s.environment ? x + 0.3f * view_.extent() * s.wi : s.target;
@@ -311,6 +318,7 @@ private:
                         kBlockedColour};
             case LightOutcome::Behind: return {name + ": behind the surface, adds nothing", kBehindColour};
             case LightOutcome::OnSurface: return {name + ": on the surface, adds nothing", kBehindColour};
+            case LightOutcome::OutsideCone: return {name + ": outside the spot's cone, adds nothing", kBehindColour};
         }
         return {name, kBehindColour};
     }
@@ -334,7 +342,7 @@ private:
                 lines.push_back({at + "on " + object_name(v.surface.triangle) + ", throughput " + readable(v.throughput) +
                                      (v.emission.present ? ", emission adds " + readable(v.emission.contribution) : ""),
                                  kPathColour});
-            for (const PointLightRecord& l : v.point_lights)
+            for (const DeltaLightRecord& l : v.delta_lights)
                 lines.push_back(light_line("  " + at + "light " + std::to_string(l.light), l.outcome, l.blocker, l.contribution));
             const SampledLightRecord& s = v.sampled_light;
             if (s.sampled)

@@ -31,7 +31,7 @@ Vec3 sum_of_terms(const SampleRecord& r) {
     Vec3 sum{0.0f};
     for (const VertexRecord& v : r.vertices) {
         if (v.emission.present) sum += v.emission.contribution;
-        for (const PointLightRecord& l : v.point_lights) sum += l.contribution;
+        for (const DeltaLightRecord& l : v.delta_lights) sum += l.contribution;
         if (v.sampled_light.sampled) sum += v.sampled_light.contribution;
     }
     return sum;
@@ -101,6 +101,15 @@ TEST_P(ExplainSharedScene, ValueIsTheRenderedSampleBitForBit) {
 INSTANTIATE_TEST_SUITE_P(SharedScenes, ExplainSharedScene,
                          ::testing::Values("bunny.json", "cornell.json", "phong.json", "manylights.json", "dragon.json"));
 
+// The repository's scene of spot, sun and thin lens (spec §16, §17), under
+// both integrators: every delta light's factor and every lens sample.
+TEST(ExplainRepoScene, SpotSunAndLensMatchTheRender) {
+    Diagnostics diag;
+    const Scene scene = load_scene_file(kSource / "scenes" / "spot-sun-dof.json", diag);
+    expect_explain_matches_render(scene, scaled_down(scene.render, 8, IntegratorKind::Direct, 3), 1000, "direct, 3 spp");
+    expect_explain_matches_render(scene, scaled_down(scene.render, 8, IntegratorKind::Path, 3), 1000, "path, 3 spp");
+}
+
 // The repository's path-tracing scenes: quad lights (MIS), glass, metal, Russian roulette.
 TEST(ExplainRepoScene, PathTracedScenesMatchTheRender) {
     for (const char* name : {"cornell-box-path.json", "spheres.json", "cutouts.json"}) {
@@ -131,7 +140,7 @@ TEST(ExplainRecord, ListsTheCutOutsARayWentThrough) {
             const VertexRecord& v = record.vertices[0];
             ASSERT_EQ(v.holes.size(), v.holes_crossed);
             // Shadow rays that reach the lamp through a hole list it too, nearer than the lamp.
-            for (const PointLightRecord& l : v.point_lights) {
+            for (const DeltaLightRecord& l : v.delta_lights) {
                 if (l.outcome != LightOutcome::Visible || l.holes_crossed == 0) continue;
                 ++lit_through;
                 EXPECT_EQ(scene.materials[scene.geometry.material_ids[l.holes[0].triangle]].name, "screen");
@@ -165,7 +174,7 @@ Scene blocked_scene() {
     testing::add_quad(scene.geometry, {-2, 0, -2}, {-2, 0, 2}, {2, 0, 2}, {2, 0, -2}, 0);
     testing::add_quad(scene.geometry, {-0.5f, 1, -0.5f}, {-0.5f, 1, 0.5f}, {0.5f, 1, 0.5f}, {0.5f, 1, -0.5f}, 1);
     scene.objects = {SceneObject{"/objects/0", "ground.obj", 0, 2}, SceneObject{"/objects/1", "blocker.obj", 2, 2}};
-    scene.lights = {PointLight{{0, 3, 0}, Vec3{10.0f}}, PointLight{{0, -1, 0}, Vec3{10.0f}}, PointLight{{1.5f, 2, 0}, Vec3{8.0f}}};
+    scene.lights = {make_point_light({0, 3, 0}, Vec3{10.0f}), make_point_light({0, -1, 0}, Vec3{10.0f}), make_point_light({1.5f, 2, 0}, Vec3{8.0f})};
     scene.camera.look_at = CameraLookAt{{3, 2, 0.1f}, {0.1f, 0, 0.1f}, {0, 1, 0}, 10};
     scene.render = RenderSettings{1, 1, 1, 0};
     return scene;
@@ -194,19 +203,19 @@ TEST(ExplainRecord, NamesTheBlockerTheLightBehindAndEachFactorOfTheVisibleLight)
     ASSERT_TRUE(v.hit);
     EXPECT_LT(v.surface.triangle, 2u);  // the ground
     EXPECT_NEAR(v.surface.distance, std::sqrt(2.9f * 2.9f + 4.0f), 1e-4f);
-    ASSERT_EQ(v.point_lights.size(), 3u);
+    ASSERT_EQ(v.delta_lights.size(), 3u);
 
-    const PointLightRecord& above = v.point_lights[0];
+    const DeltaLightRecord& above = v.delta_lights[0];
     EXPECT_EQ(above.outcome, LightOutcome::Blocked);
     EXPECT_TRUE(above.blocker.triangle == 2 || above.blocker.triangle == 3) << above.blocker.triangle;
     // The blocker is 1 above the ground: the ray to (0, 3, 0) meets it a third of its way up.
     EXPECT_NEAR(above.blocker.distance, length(Vec3{-0.1f, 3, -0.1f}) / 3.0f, 1e-4f);
     EXPECT_EQ(above.contribution, Vec3{0.0f});
 
-    EXPECT_EQ(v.point_lights[1].outcome, LightOutcome::Behind);
+    EXPECT_EQ(v.delta_lights[1].outcome, LightOutcome::Behind);
 
     // The visible light: each factor as spec §4 writes it.
-    const PointLightRecord& side = v.point_lights[2];
+    const DeltaLightRecord& side = v.delta_lights[2];
     ASSERT_EQ(side.outcome, LightOutcome::Visible);
     const Vec3 to_light = scene.lights[2].position - v.surface.position;
     const float d2 = dot(to_light, to_light);
@@ -297,7 +306,7 @@ TEST(ExplainRecord, TexturedMaterialShowsItsValuesAtTheHit) {
             if (!named.textured || !named.textures.kd.is_set() || named.type != MaterialType::Diffuse) continue;
             ++textured_hits;
             EXPECT_TRUE(h.has_uv);
-            for (const PointLightRecord& l : r.vertices[0].point_lights) {
+            for (const DeltaLightRecord& l : r.vertices[0].delta_lights) {
                 if (l.outcome == LightOutcome::Visible) {
                     EXPECT_EQ(l.f_diffuse, h.shaded.kd * std::numbers::inv_pi_v<float>);
                 }

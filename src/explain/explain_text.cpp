@@ -37,8 +37,22 @@ private:
              << (c_.job.settings.spp == 1 ? "  (the centre: one sample per pixel)" : "") << "\n";
         out_ << "  image plane            s = " << readable(r_.s) << ", t = " << readable(r_.t)
              << "  (s = 1 − 2(i + x)/W, t = 1 − 2(j + y)/H)\n";
-        out_ << "  origin o               " << readable(r_.origin) << "\n";
-        out_ << "  direction d            s·l + t·u + f = " << readable(r_.direction) << "\n";
+        if (!r_.lens) {
+            out_ << "  origin o               " << readable(r_.origin) << "\n";
+            out_ << "  direction d            s·l + t·u + f = " << readable(r_.direction) << "\n";
+            out_ << "      with l = " << readable(cam.left) << ", u = " << readable(cam.up) << ", f = "
+                 << readable(cam.forward) << "\n";
+            return;
+        }
+        // A thin lens (spec §17): the ray leaves a point of the lens and aims
+        // where the pinhole ray meets the focus plane.
+        out_ << "  lens sample            (" << readable(r_.lens_u) << ", " << readable(r_.lens_v)
+             << ") on the unit square, mapped to the disc of radius r = " << readable(cam.lens_radius) << "\n";
+        out_ << "  origin                 " << readable(r_.origin) << "  (o + r·(x·l̂ + y·û), o = "
+             << readable(cam.origin) << ")\n";
+        out_ << "  direction              " << readable(r_.direction)
+             << "  (towards where s·l + t·u + f meets the focus plane at distance " << readable(cam.focus_distance)
+             << ")\n";
         out_ << "      with l = " << readable(cam.left) << ", u = " << readable(cam.up) << ", f = " << readable(cam.forward)
              << "\n";
     }
@@ -105,10 +119,10 @@ private:
         if (v.delta_material) {
             out_ << "  lights   none: a perfectly specular surface reflects a point light in one direction only,\n"
                     "           never towards this viewer (its BRDF is a delta)\n";
-        } else if (v.point_lights.empty() && c_.scene.lights.empty()) {
-            out_ << "  point lights: none in the scene\n";
+        } else if (v.delta_lights.empty() && c_.scene.lights.empty()) {
+            out_ << "  point, spot and directional lights: none in the scene\n";
         }
-        for (const PointLightRecord& l : v.point_lights) point_light(l, v.throughput);
+        for (const DeltaLightRecord& l : v.delta_lights) delta_light(l, v.throughput);
         if (r_.path && !v.delta_material) sampled_light(v.sampled_light);
         if (r_.path) bounce(v);
     }
@@ -142,34 +156,54 @@ private:
              << "\n";
     }
 
-    void point_light(const PointLightRecord& l, Vec3 beta) {
-        const PointLight& light = c_.scene.lights[l.light];
-        out_ << "  point light " << l.light << " at " << readable(light.position) << ", I = " << readable(light.intensity)
-             << "\n";
+    void delta_light(const DeltaLightRecord& l, Vec3 beta) {
+        const PunctualLight& light = c_.scene.lights[l.light];
+        const bool directional = light.type == LightType::Directional, spot = light.type == LightType::Spot;
+        // What arrives, named as its factor in the equation; the column of
+        // '=' moves one to the right for a spot's longer name.
+        const char* incident = directional ? "E" : spot ? "I·s²/|c−x|²" : "I/|c−x|²";
+        const char* pad = directional ? "          " : spot ? " " : "   ";
+        const char* wide = spot ? " " : "";
+        if (directional) {
+            out_ << "  directional light " << l.light << " travelling along " << readable(light.direction)
+                 << ", E = " << readable(light.intensity) << "\n";
+        } else if (spot) {
+            out_ << "  spot light " << l.light << " at " << readable(light.position) << " pointing along "
+                 << readable(light.direction) << ", I = " << readable(light.intensity) << ", cone cos "
+                 << readable(light.cos_outer) << " (outer) to " << readable(light.cos_inner) << " (inner)\n";
+        } else {
+            out_ << "  point light " << l.light << " at " << readable(light.position) << ", I = "
+                 << readable(light.intensity) << "\n";
+        }
         if (l.outcome == LightOutcome::OnSurface) {
             out_ << "    sits exactly on x: it lights nothing\n";
             return;
         }
-        out_ << "    ω_i = " << readable(l.wi) << ", |c − x| = " << readable(l.distance) << ", n_g·ω_i = " << readable(l.cos_g)
-             << "\n";
+        out_ << "    ω_i = " << readable(l.wi) << ", |c − x| = " << (directional ? "unbounded" : readable(l.distance))
+             << ", n_g·ω_i = " << readable(l.cos_g) << "\n";
         if (l.outcome == LightOutcome::Behind) {
             out_ << "    BEHIND the surface (n_g·ω_i ≤ 0): no contribution\n";
             return;
         }
+        if (spot) out_ << "    spot falloff s² = " << readable(l.spot_factor) << "\n";
+        if (l.outcome == LightOutcome::OutsideCone) {
+            out_ << "    OUTSIDE the spot's cone (s = 0): no contribution\n";
+            return;
+        }
         if (l.outcome == LightOutcome::Blocked) {
-            blocked(l.blocker, ", before the light");
-            out_ << "    (unblocked it would give I/|c−x|² = " << readable(l.incident) << ", f_r = " << readable(l.f)
-                 << ", |n_s·ω_i| = " << readable(l.cos_s) << ")\n";
+            blocked(l.blocker, directional ? "" : ", before the light");
+            out_ << "    (unblocked it would give " << incident << " = " << readable(l.incident)
+                 << ", f_r = " << readable(l.f) << ", |n_s·ω_i| = " << readable(l.cos_s) << ")\n";
             return;
         }
         out_ << "    visible\n";
         holes(l.holes, l.holes_crossed, "    the shadow ray went through ", "      ");
-        out_ << "    I/|c−x|²   = " << readable(l.incident) << "\n";
-        out_ << "    f_r        = " << readable(l.f) << " = diffuse " << readable(l.f_diffuse) << " + lobe "
-             << readable(l.f_lobe) << "\n";
-        out_ << "    |n_s·ω_i|  = " << readable(l.cos_s) << "\n";
-        if (r_.path) out_ << "    β          = " << readable(beta) << "\n";
-        out_ << "    product    = " << readable(l.contribution) << "\n";
+        out_ << "    " << incident << pad << "= " << readable(l.incident) << "\n";
+        out_ << "    f_r        " << wide << "= " << readable(l.f) << " = diffuse " << readable(l.f_diffuse)
+             << " + lobe " << readable(l.f_lobe) << "\n";
+        out_ << "    |n_s·ω_i|  " << wide << "= " << readable(l.cos_s) << "\n";
+        if (r_.path) out_ << "    β          " << wide << "= " << readable(beta) << "\n";
+        out_ << "    product    " << wide << "= " << readable(l.contribution) << "\n";
     }
 
     void sampled_light(const SampledLightRecord& l) {

@@ -16,7 +16,10 @@ Vec3d scaled_unit(Vec3d a, double length) {
 
 }  // namespace
 
-Camera make_camera(const CameraSpec& spec, int width, int height) {
+namespace {
+
+// The pinhole basis of either form.
+Camera make_pinhole(const CameraSpec& spec, int width, int height) {
     if (spec.basis) return Camera{spec.basis->origin, spec.basis->left, spec.basis->up, spec.basis->forward};
 
     // Look-at form, computed in double so that the basis is perpendicular to
@@ -31,6 +34,27 @@ Camera make_camera(const CameraSpec& spec, int width, int height) {
     const Vec3d l = scaled_unit(cross(to_double(look.up), f), half_height * aspect);
     const Vec3d u = scaled_unit(cross(f, l), half_height);
     return Camera{look.origin, to_float(l), to_float(u), to_float(f)};
+}
+
+}  // namespace
+
+Camera make_camera(const CameraSpec& spec, int width, int height) {
+    Camera camera = make_pinhole(spec, width, height);
+    if (!(spec.aperture_radius > 0.0f)) return camera;
+    const double r = spec.aperture_radius;
+    camera.lens_radius = spec.aperture_radius;
+    camera.lens_left = to_float(scaled_unit(to_double(camera.left), r));
+    camera.lens_up = to_float(scaled_unit(to_double(camera.up), r));
+    camera.unit_forward = to_float(scaled_unit(to_double(camera.forward), 1.0));
+    // Readers require focus_distance with the basis form; |forward| keeps a
+    // scene built in code without one well defined.
+    if (spec.focus_distance)
+        camera.focus_distance = *spec.focus_distance;
+    else if (spec.look_at)
+        camera.focus_distance = static_cast<float>(length(to_double(spec.look_at->look_at) - to_double(spec.look_at->origin)));
+    else
+        camera.focus_distance = static_cast<float>(length(to_double(camera.forward)));
+    return camera;
 }
 
 }  // namespace sombra

@@ -1,7 +1,10 @@
-// The pinhole camera of spec §3, always in the assignment's basis form:
-// M = [l u f o] maps image-plane coordinates (s, t) ∈ [-1, 1]² to the point
-// s·l + t·u + f + o, and the ray for (s, t) leaves o towards it.
+// The camera of spec §3, always in the assignment's basis form: M = [l u f o]
+// maps image-plane coordinates (s, t) ∈ [-1, 1]² to the point s·l + t·u +
+// f + o, and the pinhole ray for (s, t) leaves o towards it; with a thin
+// lens (spec §17) rays leave points of the lens and meet on the focus plane.
 #pragma once
+
+#include <cmath>
 
 #include "core/ray.h"
 #include "scene/scene.h"
@@ -13,6 +16,12 @@ struct Camera {
     Vec3 left;     // s = +1 is the image's left edge; |left| sets the horizontal field of view
     Vec3 up;       // t = +1 is the top edge; |up| sets the vertical field of view
     Vec3 forward;  // from the origin to the image plane's centre
+    // Thin lens (spec §17): lens_radius 0 is the pinhole. lens_left and
+    // lens_up are the unit left and up vectors times lens_radius;
+    // unit_forward is forward / |forward|.
+    float lens_radius = 0;
+    float focus_distance = 1;
+    Vec3 lens_left, lens_up, unit_forward;
 };
 
 // Resolves either form of the scene's camera. The look-at form depends on the
@@ -21,9 +30,45 @@ struct Camera {
 // validated (scene_file.h does), exactly one form set.
 Camera make_camera(const CameraSpec& spec, int width, int height);
 
-// The ray through image-plane point (s, t); its direction is not normalised.
+// The pinhole ray through image-plane point (s, t); its direction is not normalised.
 inline Ray camera_ray(const Camera& camera, float s, float t) {
     return Ray{camera.origin, s * camera.left + t * camera.up + camera.forward};
+}
+
+// A point on the unit disc from (u1, u2) ∈ [0, 1)², by Shirley and Chiu's
+// concentric map (area-preserving, so uniform samples stay uniform and
+// stratified ones stay stratified).
+inline void concentric_disc(float u1, float u2, float& x, float& y) {
+    const float a = 2.0f * u1 - 1.0f, b = 2.0f * u2 - 1.0f;
+    if (a == 0.0f && b == 0.0f) {
+        x = y = 0.0f;
+        return;
+    }
+    constexpr float kQuarterPi = 0.78539816339744830962f;
+    if (std::fabs(a) > std::fabs(b)) {
+        x = a * std::cos(kQuarterPi * (b / a));
+        y = a * std::sin(kQuarterPi * (b / a));
+    } else {
+        x = b * std::sin(kQuarterPi * (a / b));
+        y = b * std::cos(kQuarterPi * (a / b));
+    }
+}
+
+// The ray through (s, t) for lens sample (u1, u2): from the lens point
+// o + r·(x·l̂ + y·û), (x, y) = concentric_disc(u1, u2), through the point
+// where the pinhole ray crosses the focus plane. Its direction is scaled so
+// that its forward component equals the pinhole ray's (the two coincide at
+// the lens centre). With lens_radius 0 exactly camera_ray(camera, s, t).
+inline Ray camera_ray(const Camera& camera, float s, float t, float u1, float u2) {
+    const Ray pinhole = camera_ray(camera, s, t);
+    if (!(camera.lens_radius > 0.0f)) return pinhole;
+    float x = 0, y = 0;
+    concentric_disc(u1, u2, x, y);
+    const Vec3 offset = x * camera.lens_left + y * camera.lens_up;
+    // The pinhole ray meets the focus plane at o + d·(focus / (d·f̂)); from
+    // o + offset toward it is d·(focus / (d·f̂)) − offset, here times (d·f̂) / focus.
+    const float along = dot(pinhole.dir, camera.unit_forward);
+    return Ray{camera.origin + offset, pinhole.dir - offset * (along / camera.focus_distance)};
 }
 
 // Image-plane coordinates of a point in the image given in pixel units:

@@ -1,59 +1,17 @@
+// The direct integrator of spec §4: what the camera ray sees, lit by the
+// delta lights (point, spot, directional) only.
 #include "render/integrator.h"
 
 #include <cmath>
 
 #include "render/bsdf.h"
-#include "render/interaction.h"
 #include "render/delta_lights.h"
+#include "render/interaction.h"
 #include "render/ray_cone.h"
 #include "render/sample_recorder.h"
 #include "render/shading.h"
 
 namespace sombra {
-
-template <class Recorder>
-void add_point_lights(const Scene& scene, const Accel& accel, const SurfaceInteraction& si, const Material& material,
-                      const BsdfPoint& bsdf_point, Vec3 wo, Vec3 beta, Vec3& radiance, RayCounters& counters,
-                      Recorder& recorder) {
-    const ShadingView view{si, material, bsdf_point, wo};
-    const Vec3 shadow_origin = offset_ray_origin(si.position, si.position_error, si.n_g);
-    for (const PointLight& light : scene.lights) {
-        const auto index = static_cast<std::uint32_t>(&light - scene.lights.data());  // for the recorder only
-        const Vec3 to_light = light.position - si.position;
-        const float distance_squared = dot(to_light, to_light);
-        if (!(distance_squared > 0.0f)) {  // a light exactly on the surface lights nothing
-            recorder.point_light(index, LightOutcome::OnSurface, view, Vec3{0.0f}, 0.0f, nullptr, Vec3{0.0f});
-            continue;
-        }
-        const Vec3 wi = to_light / std::sqrt(distance_squared);
-        // A light behind the surface (as seen from the viewer's side) adds nothing.
-        if (dot(si.n_g, wi) <= 0.0f) {
-            recorder.point_light(index, LightOutcome::Behind, view, wi, distance_squared, nullptr, Vec3{0.0f});
-            continue;
-        }
-
-        // Shadow ray: from the offset origin to the light; t = 1 reaches the
-        // light, and the bound just short of it keeps the light's own
-        // position (possibly on a surface) from counting as an occluder.
-        ++counters.shadow_rays;
-        const Ray shadow{shadow_origin, light.position - shadow_origin, 1.0f - 1e-5f};
-        if (occluded(accel, shadow)) {
-            recorder.point_light(index, LightOutcome::Blocked, view, wi, distance_squared, &shadow, Vec3{0.0f});
-            continue;
-        }
-
-        // L += I / |c − x|² · f_r(x, ω_i, ω_o) · |n_s · ω_i|
-        const Vec3 f_r = eval_bsdf(material, bsdf_point, wo, wi);
-        const Vec3 contribution = beta * (light.intensity * (std::fabs(dot(si.n_s, wi)) / distance_squared) * f_r);
-        radiance += contribution;
-        recorder.point_light(index, LightOutcome::Visible, view, wi, distance_squared, &shadow, contribution);
-    }
-}
-
-template void add_point_lights<NoRecorder>(const Scene&, const Accel&, const SurfaceInteraction&, const Material&,
-                                           const BsdfPoint&, Vec3, Vec3, Vec3&, RayCounters&, NoRecorder&);
-template void add_point_lights<SampleRecorder>(const Scene&, const Accel&, const SurfaceInteraction&, const Material&,
-                                               const BsdfPoint&, Vec3, Vec3, Vec3&, RayCounters&, SampleRecorder&);
 
 namespace {
 
@@ -82,7 +40,7 @@ Vec3 trace_direct_recorded(const IntegratorContext& ctx, const Ray& ray, RayCoun
         recorder.emission(radiance, 1.0f, 0.0f, 0.0f, radiance);
         // Delta BSDFs (mirror, glass) reflect nothing from a point light.
         if (!is_delta_bsdf(material)) {
-            add_point_lights(scene, *ctx.accel, si, material, make_bsdf_point(si.n_g, si.n_s, si.outside), wo,
+            add_delta_lights(scene, *ctx.accel, si, material, make_bsdf_point(si.n_g, si.n_s, si.outside), wo,
                              Vec3{1.0f}, radiance, counters, recorder);
         } else {
             recorder.delta_material();

@@ -1,5 +1,6 @@
 // The integrators: radiance arriving at a camera ray's origin. `direct`
-// (spec §4) adds point lights' direct light to what the camera sees; `path`
+// (spec §4, direct_integrator.cpp) adds the delta lights' direct light
+// (point, spot, directional: render/delta_lights.h) to what the camera sees; `path`
 // (spec §10) estimates the whole rendering equation by unidirectional path
 // tracing with next-event estimation and multiple importance sampling. Both
 // read the same lights (render/lights.h) and BSDFs (render/bsdf.h).
@@ -10,28 +11,12 @@
 #include "accel/accel.h"
 #include "core/ray.h"
 #include "render/lights.h"
+#include "render/ray_counters.h"
 #include "render/sample_record.h"
 #include "render/sampler.h"
 #include "scene/scene.h"
 
 namespace sombra {
-
-// Rays traced by one worker; summed over workers for the statistics.
-struct RayCounters {
-    std::uint64_t camera_rays = 0;
-    std::uint64_t shadow_rays = 0;        // every next-event (shadow) ray
-    std::uint64_t bounce_rays = 0;        // rays traced by BSDF sampling (path integrator)
-    std::uint64_t nonfinite_samples = 0;  // samples whose radiance was NaN/Inf, dropped (counted as 0)
-
-    std::uint64_t rays() const { return camera_rays + shadow_rays + bounce_rays; }
-    RayCounters& operator+=(const RayCounters& b) {
-        camera_rays += b.camera_rays;
-        shadow_rays += b.shadow_rays;
-        bounce_rays += b.bounce_rays;
-        nonfinite_samples += b.nonfinite_samples;
-        return *this;
-    }
-};
 
 // How the path integrator reaches emitters and the environment. Renders
 // always use Mis; the single strategies exist so that tests can check that
@@ -59,7 +44,7 @@ struct IntegratorContext {
 
 // Linear RGB radiance arriving at the ray's origin along -ray.dir (ray.dir
 // need not be unit length), by spec §4: background, or emission plus each
-// visible point light's I/|c−x|² · f · |n_s·ω_i|. Never returns NaN or Inf:
+// visible delta light's term (I/|c−x|² · f · |n_s·ω_i| for a point light). Never returns NaN or Inf:
 // a non-finite result is counted in counters.nonfinite_samples and returned as 0.
 Vec3 trace_direct(const IntegratorContext& ctx, const Ray& ray, RayCounters& counters);
 // The same, compiled from the same code, writing every term into `record`

@@ -56,7 +56,7 @@ Scene plane_under_point_light(Vec3 light_pos, Vec3 intensity, Vec3 kd) {
     scene.materials.push_back(Material{"plane", MaterialType::Diffuse, kd, {}, 1, {}});
     const float e = 1000;
     add_quad(scene.geometry, {-e, 0, -e}, {e, 0, -e}, {e, 0, e}, {-e, 0, e}, 0);
-    scene.lights.push_back(PointLight{light_pos, intensity});
+    scene.lights.push_back(make_point_light(light_pos, intensity));
     return scene;
 }
 
@@ -190,7 +190,7 @@ TEST(Integrator, ShadingNormalsAreInterpolated) {
     const Vec3 tilted{std::sin(1.0471976f), std::cos(1.0471976f), 0};
     m.normals = {tilted};
     m.normal_indices = {{0, 0, 0}};
-    scene.lights.push_back(PointLight{{0, 1, 0}, {4, 4, 4}});
+    scene.lights.push_back(make_point_light({0, 1, 0}, {4, 4, 4}));
     RayCounters counters;
     const Accel accel = make_accel(scene, AccelKind::Bvh);
     const Vec3 l = trace_direct(scene, accel, Ray{{0, 2, 0}, {0, -1, 0}}, counters);
@@ -209,7 +209,7 @@ TEST(Integrator, NoSelfShadowingOnLargeOffsetGeometry) {
     const float e = 50;
     const Vec3 c{1000, 500, -700};
     add_quad(scene.geometry, c + Vec3{-e, 0, -e}, c + Vec3{e, 0.01f, -e}, c + Vec3{e, 0.02f, e}, c + Vec3{-e, 0.01f, e}, 0);
-    scene.lights.push_back(PointLight{c + Vec3{-40, 1.5f, 3}, {100, 100, 100}});
+    scene.lights.push_back(make_point_light(c + Vec3{-40, 1.5f, 3}, {100, 100, 100}));
     const Accel accel = make_accel(scene, AccelKind::Bvh);
     RayCounters counters;
     int dark = 0;

@@ -217,7 +217,7 @@ Scene lit_scene(int texels) {
     add_uv_quad(scene, {0, -0.4f, -3}, {1, 0, 0}, {0, 0, -1}, 6.0f, 2);
     add_uv_quad(scene, {0, 0.6f, -5}, {1, 0, 0}, {0, 1, 0}, 2.0f, 0);
     add_uv_quad(scene, {0.8f, 0.1f, -3}, {r, 0, r}, {0, 1, 0}, 1.0f, 1);
-    scene.lights.push_back(PointLight{{0.5f, 1.0f, -1.5f}, Vec3{4.0f}});
+    scene.lights.push_back(make_point_light({0.5f, 1.0f, -1.5f}, Vec3{4.0f}));
     finish(scene);
     return scene;
 }

@@ -133,7 +133,7 @@ Vec3 trace_path_recorded(const IntegratorContext& ctx, const Ray& camera_ray, Sa
 
         const ShadingView view{si, material, bsdf_point, wo};
         if (!is_delta_bsdf(material)) {
-            add_point_lights(scene, *ctx.accel, si, material, bsdf_point, wo, beta, radiance, counters, recorder);
+            add_delta_lights(scene, *ctx.accel, si, material, bsdf_point, wo, beta, radiance, counters, recorder);
             if (lights.has_sampled_lights() && ctx.strategy != LightStrategy::BsdfOnly)
                 radiance += beta * sample_one_light(ctx, view, u_choice, u_light, counters, recorder);
         } else {

@@ -287,7 +287,7 @@ TEST(PathIntegrator, PointLightInsideADiffuseSphereAtDepthOne) {
     Scene scene;
     scene.materials.push_back(diffuse(Vec3{0.5f}));
     add_sphere(scene.geometry, {0, 0, 0}, 2.0f, 4, 0);
-    scene.lights.push_back(PointLight{{0, 0, 0}, {3, 3, 3}});
+    scene.lights.push_back(make_point_light({0, 0, 0}, {3, 3, 3}));
     const Accel accel = make_accel(scene, AccelKind::Bvh);
     const LightSet lights = make_light_set(scene, make_constant_environment(scene.background), true);
     const IntegratorContext ctx{&scene, &accel, &lights, 1};
@@ -380,7 +380,7 @@ TEST(PathIntegrator, SameImageForAnyThreadCount) {
     add_quad(scene.geometry, {-5, 0, -5}, {-5, 0, 5}, {5, 0, 5}, {5, 0, -5}, 0);
     add_sphere(scene.geometry, {0, 1, 0}, 1.0f, 2, 1);
     add_quad(scene.geometry, {-1, 4, -1}, {1, 4, -1}, {1, 4, 1}, {-1, 4, 1}, 2);
-    scene.lights.push_back(PointLight{{2, 3, 2}, {5, 5, 5}});
+    scene.lights.push_back(make_point_light({2, 3, 2}, {5, 5, 5}));
     scene.camera.look_at = CameraLookAt{{0, 2, 6}, {0, 1, 0}, {0, 1, 0}, 45};
     RenderSettings settings{40, 30, 8, 5};
     settings.integrator = IntegratorKind::Path;

@@ -20,14 +20,34 @@ namespace {
 // and are large enough that scheduling costs nothing.
 constexpr int kTileSize = 16;
 
+// Where sample k of pixel (i, j) goes: its position in the pixel, the
+// image-plane point, the lens point and the camera ray.
+struct CameraSample {
+    PixelSample offset;
+    float s = 0, t = 0;
+    SampleStream::Pair lens{0.5f, 0.5f};  // (0.5, 0.5) is the lens centre; drawn only with an open aperture
+    Ray ray;
+};
+
+CameraSample camera_sample(const RenderJob& job, std::uint64_t key, int i, int j, std::uint32_t k) {
+    const RenderSettings& rs = job.settings;
+    CameraSample c;
+    c.offset = pixel_sample(k, static_cast<std::uint32_t>(rs.spp), key);
+    c.s = image_plane_s(static_cast<float>(i) + c.offset.x, rs.width);
+    c.t = image_plane_t(static_cast<float>(j) + c.offset.y, rs.height);
+    if (job.camera.lens_radius > 0.0f) {
+        c.lens = SampleStream{key, k, static_cast<std::uint32_t>(rs.spp)}.lens_2d();
+        c.ray = camera_ray(job.camera, c.s, c.t, c.lens.u1, c.lens.u2);
+    } else {
+        c.ray = camera_ray(job.camera, c.s, c.t);
+    }
+    return c;
+}
+
 template <class... Record>
-Vec3 trace_sample(const RenderJob& job, const IntegratorContext& ctx, std::uint64_t key, int i, int j, std::uint32_t k,
-                  RayCounters& counters, Record&... record) {
+Vec3 trace_sample(const RenderJob& job, const IntegratorContext& ctx, std::uint64_t key, const Ray& ray,
+                  std::uint32_t k, RayCounters& counters, Record&... record) {
     const RenderSettings& s = job.settings;
-    const PixelSample offset = pixel_sample(k, static_cast<std::uint32_t>(s.spp), key);
-    const float x = static_cast<float>(i) + offset.x;
-    const float y = static_cast<float>(j) + offset.y;
-    const Ray ray = camera_ray(job.camera, image_plane_s(x, s.width), image_plane_t(y, s.height));
     if (s.integrator == IntegratorKind::Path) {
         SampleStream samples{key, k, static_cast<std::uint32_t>(s.spp)};
         return trace_path(ctx, ray, samples, counters, record...);
@@ -40,7 +60,7 @@ Vec3 render_pixel(const RenderJob& job, const IntegratorContext& ctx, int i, int
     const auto spp = static_cast<std::uint32_t>(s.spp);
     const std::uint64_t key = pixel_key(s.seed, i, j, s.width);
     Vec3 sum{0.0f};
-    for (std::uint32_t k = 0; k < spp; ++k) sum += trace_sample(job, ctx, key, i, j, k, counters);
+    for (std::uint32_t k = 0; k < spp; ++k) sum += trace_sample(job, ctx, key, camera_sample(job, key, i, j, k).ray, k, counters);
     return sum / static_cast<float>(spp);
 }
 
@@ -72,20 +92,21 @@ IntegratorContext make_integrator_context(const RenderJob& job) {
 }
 
 Vec3 trace_pixel_sample(const RenderJob& job, int i, int j, int k, RayCounters& counters, SampleRecord& record) {
-    const RenderSettings& s = job.settings;
-    const std::uint64_t key = pixel_key(s.seed, i, j, s.width);
-    const PixelSample offset = pixel_sample(static_cast<std::uint32_t>(k), static_cast<std::uint32_t>(s.spp), key);
+    const std::uint64_t key = pixel_key(job.settings.seed, i, j, job.settings.width);
+    const CameraSample c = camera_sample(job, key, i, j, static_cast<std::uint32_t>(k));
     record.pixel_x = i;
     record.pixel_y = j;
     record.sample = k;
-    record.offset_x = offset.x;
-    record.offset_y = offset.y;
-    record.s = image_plane_s(static_cast<float>(i) + offset.x, s.width);
-    record.t = image_plane_t(static_cast<float>(j) + offset.y, s.height);
-    const Ray ray = camera_ray(job.camera, record.s, record.t);
-    record.origin = ray.origin;
-    record.direction = ray.dir;
-    return trace_sample(job, make_integrator_context(job), key, i, j, static_cast<std::uint32_t>(k), counters, record);
+    record.offset_x = c.offset.x;
+    record.offset_y = c.offset.y;
+    record.s = c.s;
+    record.t = c.t;
+    record.lens = job.camera.lens_radius > 0.0f;
+    record.lens_u = c.lens.u1;
+    record.lens_v = c.lens.u2;
+    record.origin = c.ray.origin;
+    record.direction = c.ray.dir;
+    return trace_sample(job, make_integrator_context(job), key, c.ray, static_cast<std::uint32_t>(k), counters, record);
 }
 
 RenderOutput render_image(const RenderJob& job, RenderProgress& progress) {

@@ -44,11 +44,11 @@ struct HitRecord {
 enum class LightOutcome {
     Behind,     // n_g·ω_i ≤ 0: the light is behind the surface
     OnSurface,  // the light sits on the shaded point: it lights nothing
+    OutsideCone,  // a spot light's cone does not reach the point (s = 0): no shadow ray
     Blocked,    // the shadow ray met something (see blocker)
     Visible,    // it contributes
 };
 
-// One point light's term at a vertex: L += β · I/|c−x|² · f_r · |n_s·ω_i|.
 // Where a ray crossed a triangle whose surface is cut out at that point
 // (spec §12): the ray went on as if nothing were there.
 struct HoleRecord {
@@ -60,14 +60,17 @@ struct HoleRecord {
 // The most holes one ray's record lists (nearest first); more are counted.
 inline constexpr std::size_t kMaxHolesListed = 8;
 
-struct PointLightRecord {
+// One delta light's term at a vertex (point, spot or directional, spec §4,
+// §16): L += β · incident · f_r · |n_s·ω_i|.
+struct DeltaLightRecord {
     std::uint32_t light = 0;  // index into Scene::lights
     LightOutcome outcome = LightOutcome::Visible;
     Vec3 wi;                  // unit, towards the light
-    float distance = 0;       // |c − x|
+    float distance = 0;       // |c − x|; +∞ for a directional light
     float cos_g = 0;          // n_g·ω_i
     float cos_s = 0;          // |n_s·ω_i|
-    Vec3 incident;            // I / |c − x|²
+    float spot_factor = 1;    // a spot's falloff s² at ω_i (1 for other kinds)
+    Vec3 incident;            // point: I/|c − x|²; spot: I·s²/|c − x|²; directional: E
     Vec3 f_diffuse, f_lobe;   // f_r split into its diffuse term and its lobe (specular) term
     Vec3 f;                   // f_r as the integrator evaluated it
     BlockerRecord blocker;    // when Blocked
@@ -136,7 +139,7 @@ struct VertexRecord {
     std::size_t holes_crossed = 0;  // how many in all (holes lists at most kMaxHolesListed)
     Vec3 throughput;               // β arriving here
     EmissionRecord emission;       // surface emission, or the environment on a miss
-    std::vector<PointLightRecord> point_lights;
+    std::vector<DeltaLightRecord> delta_lights;
     SampledLightRecord sampled_light;
     bool delta_material = false;   // no next-event estimation at a delta BSDF
     BounceRecord bounce;
@@ -147,6 +150,8 @@ struct SampleRecord {
     int pixel_x = 0, pixel_y = 0, sample = 0;
     float offset_x = 0.5f, offset_y = 0.5f;  // position inside the pixel
     float s = 0, t = 0;                      // image-plane coordinates (spec §3)
+    bool lens = false;                       // a thin lens (spec §17): the ray left the lens point (lens_u, lens_v)
+    float lens_u = 0.5f, lens_v = 0.5f;      // the lens sample in [0, 1)², mapped to the disc by concentric_disc
     Vec3 origin, direction;                  // the camera ray (direction as the camera gives it, not unit)
     bool path = false;                       // integrator: path (else direct)
     std::vector<VertexRecord> vertices;      // direct: at most one

@@ -90,9 +90,9 @@ void SampleRecorder::emission(Vec3 le, float w, float bsdf_pdf, float light_pdf,
 
 void SampleRecorder::delta_material() { vertex().delta_material = true; }
 
-void SampleRecorder::point_light(std::uint32_t light, LightOutcome outcome, const ShadingView& view, Vec3 wi,
+void SampleRecorder::delta_light(std::uint32_t light, LightOutcome outcome, const ShadingView& view, Vec3 wi,
                                  float distance_squared, const Ray* shadow, Vec3 contribution) {
-    PointLightRecord r;
+    DeltaLightRecord r;
     r.light = light;
     r.outcome = outcome;
     r.wi = wi;
@@ -100,7 +100,12 @@ void SampleRecorder::point_light(std::uint32_t light, LightOutcome outcome, cons
     r.cos_g = dot(view.si.n_g, wi);
     r.cos_s = std::fabs(dot(view.si.n_s, wi));
     if (outcome != LightOutcome::OnSurface) {
-        r.incident = scene_.lights[light].intensity / distance_squared;
+        // The same arithmetic as add_delta_lights (render/delta_lights.cpp).
+        const PunctualLight& l = scene_.lights[light];
+        if (l.type == LightType::Spot) r.spot_factor = spot_falloff(l, -dot(l.direction, wi));
+        r.incident = l.type == LightType::Directional ? l.intensity
+                     : l.type == LightType::Spot      ? l.intensity * r.spot_factor / distance_squared
+                                                      : l.intensity / distance_squared;
         const BsdfTerms terms = eval_bsdf_terms(view.material, view.bsdf_point, view.wo, wi);
         r.f_diffuse = terms.diffuse;
         r.f_lobe = terms.lobe;
@@ -109,7 +114,7 @@ void SampleRecorder::point_light(std::uint32_t light, LightOutcome outcome, cons
     if (outcome == LightOutcome::Blocked && shadow) r.blocker = find_blocker(*shadow);
     if (outcome == LightOutcome::Visible && shadow) find_holes(*shadow, shadow->tmax, r.holes, r.holes_crossed);
     r.contribution = contribution;
-    vertex().point_lights.push_back(r);
+    vertex().delta_lights.push_back(r);
 }
 
 void SampleRecorder::sampled_light(const LightSample* ls, const ShadingView& view, const Ray* shadow, bool blocked,

@@ -12,6 +12,7 @@
 #include "render/interaction.h"
 #include "render/lights.h"
 #include "render/sample_record.h"
+#include "render/shading_view.h"
 #include "scene/scene.h"
 
 namespace sombra {
@@ -27,7 +28,7 @@ struct NoRecorder {
     template <class... Args>
     void delta_material(const Args&...) {}
     template <class... Args>
-    void point_light(const Args&...) {}
+    void delta_light(const Args&...) {}
     template <class... Args>
     void sampled_light(const Args&...) {}
     template <class... Args>
@@ -38,14 +39,6 @@ struct NoRecorder {
     void end(const Args&...) {}
     template <class... Args>
     void value(const Args&...) {}
-};
-
-// The shading context a light term is evaluated in.
-struct ShadingView {
-    const SurfaceInteraction& si;
-    const Material& material;
-    const BsdfPoint& bsdf_point;
-    Vec3 wo;
 };
 
 // Fills a SampleRecord. The recorder also looks up what blocked a shadow ray
@@ -61,8 +54,9 @@ public:
     void surface(const Ray& ray, const Hit& hit, const SurfaceInteraction& si, const Material& material, Vec3 beta);
     void emission(Vec3 le, float w, float bsdf_pdf, float light_pdf, Vec3 contribution);
     void delta_material();
-    // One point light's term; `shadow` is the shadow ray traced (Blocked, Visible), else null.
-    void point_light(std::uint32_t light, LightOutcome outcome, const ShadingView& view, Vec3 wi, float distance_squared,
+    // One delta light's term; `shadow` is the shadow ray traced (Blocked,
+    // Visible), else null; distance_squared is +∞ for a directional light.
+    void delta_light(std::uint32_t light, LightOutcome outcome, const ShadingView& view, Vec3 wi, float distance_squared,
                      const Ray* shadow, Vec3 contribution);
     // Next-event estimation of one sampled emitter or environment point: `ls`
     // null when nothing was sampled; `shadow` null when no ray was traced.

@@ -139,7 +139,16 @@ struct SampleStream {
     };
     Pair next_2d() {
         const bool stratified = count > 1 && dimension < kStratifiedDimensions;
-        const std::uint64_t key = dimension_key();
+        return pair(dimension_key(), stratified);
+    }
+
+    // The thin lens's point (spec §17): a stratified 2-D dimension of its
+    // own, keyed apart from the sequence next_1d and next_2d walk, so that
+    // opening the aperture leaves every other draw of the sample as it was.
+    Pair lens_2d() const { return pair(mix64(pixel_key ^ 0x6c656e73ull * 0x9e3779b97f4a7c15ull), count > 1); }
+
+private:
+    Pair pair(std::uint64_t key, bool stratified) const {
         if (!stratified) return {hash_to_unit(index, key), hash_to_unit(index, key ^ 0x368cc8b700000000ull)};
         const auto m = static_cast<std::uint32_t>(std::sqrt(static_cast<double>(count)));
         const std::uint32_t n = (count + m - 1) / m;
@@ -150,7 +159,6 @@ struct SampleStream {
                 to_unit((static_cast<float>(s / m) + jy) / static_cast<float>(n))};
     }
 
-private:
     std::uint64_t dimension_key() {
         ++dimension;
         return mix64(pixel_key ^ (static_cast<std::uint64_t>(dimension) * 0x9e3779b97f4a7c15ull));

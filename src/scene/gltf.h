@@ -140,12 +140,15 @@ void apply_textures(const tinygltf::Model& model, const std::filesystem::path& p
 // sombra's stored coordinates (u, 1 − v): the transform a TextureRef applies.
 UvTransform uv_transform_of(Vec2 offset, float rotation, Vec2 scale);
 
-// The KHR_lights_punctual light `index` as a point light's intensity (W/sr,
-// spec §13: colour × intensity / 683), or nothing for spot and directional
-// lights, whose type goes to `skipped_type`. Throws Error for a bad index or
-// non-finite or negative values.
-std::optional<Vec3> point_light_intensity(const tinygltf::Model& model, int index, const std::string& file,
-                                          std::string& skipped_type);
+// The KHR_lights_punctual light `index` (spec §13, §16) at its node's
+// origin, looking down its −z axis, in the node's own coordinates: point and
+// spot lights with I = colour × intensity / 683 W/sr, directional lights with
+// E = colour × intensity / 683 W/m². Other types give nothing, their name in
+// `skipped_type`. Throws Error for a bad index, non-finite or negative
+// values, or cone angles outside 0 ≤ inner, 0 < outer ≤ π/2; inner ≥ outer
+// reads as inner = outer (with a warning unless they are equal).
+std::optional<PunctualLight> punctual_light(const tinygltf::Model& model, int index, const std::string& file,
+                                            std::string& skipped_type, Diagnostics& diag);
 
 // A JSON number that must be an integer in [lo, hi] (tinygltf's own
 // conversion of a huge double to int is undefined behaviour).

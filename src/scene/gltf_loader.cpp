@@ -1,7 +1,7 @@
 // glTF 2.0 → LoadedMesh (spec §13): the default scene's node tree walked
 // from its roots, each node's transform composed parent × child, every
 // triangle primitive of every mesh instance placed in the file's world
-// space, plus the point lights and the first camera the tree places.
+// space, plus the lights and the first camera the tree places.
 #include <algorithm>
 #include <cmath>
 #include <map>
@@ -278,7 +278,7 @@ LoadedMesh load_gltf(const std::filesystem::path& path, Diagnostics& diag) {
     MeshBuilder builder(file);
     std::map<int, std::vector<std::optional<PrimitiveData>>> decoded;  // mesh → its primitives, read once
     std::optional<std::pair<int, ModelCamera>> camera;                  // the lowest camera index placed
-    std::vector<PointLight> lights;
+    std::vector<PunctualLight> lights;
     bool any_triangles = false;
     std::size_t clamped_colors = 0;
     for (const Instance& in : instances) {
@@ -292,9 +292,16 @@ LoadedMesh load_gltf(const std::filesystem::path& path, Diagnostics& diag) {
                 it->second.Has("light") ? gltf::value_int(it->second.Get("light"), 0, 1 << 30) : std::nullopt;
             if (!light) throw Error(file, node_name(in.node) + ": " + gltf::kLights + " names no light");
             std::string type;
-            if (const std::optional<Vec3> intensity = gltf::point_light_intensity(model, *light, file, type))
-                lights.push_back({transform_point(in.world, Vec3{0.0f}), *intensity});
-            else
+            if (std::optional<PunctualLight> l = gltf::punctual_light(model, *light, file, type, diag)) {
+                l->position = transform_point(in.world, l->position);
+                if (l->type != LightType::Point) {
+                    const Vec3 direction = transform_vector(in.world, l->direction);
+                    if (!is_finite(direction) || !(length(to_double(direction)) > 0))
+                        throw Error(file, node_name(in.node) + ": its light's direction is not finite");
+                    l->direction = unit_direction(direction);
+                }
+                lights.push_back(*l);
+            } else
                 ++skipped[type + " lights"];
         }
         if (node.mesh < 0) continue;

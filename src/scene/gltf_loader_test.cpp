@@ -5,6 +5,9 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <string>
+#include <tuple>
+#include <vector>
 
 #include "scene/gltf_test_files.h"
 #include "scene/mesh_file.h"
@@ -173,39 +176,91 @@ TEST(GltfLoader, MaterialsBecomePbrWithTheirTextureReferencesKept) {
     EXPECT_NE(diag.warnings[0].find("'red.png' not found"), std::string::npos) << diag.warnings[0];
 }
 
-// A quad and a light 683 cd bright (1 W/sr per unit of colour), placed by a
-// node under a translated parent; a spot light is skipped with a warning.
+// A quad and three lights under a translated parent (spec §13, §16): a
+// point light 683 cd bright (1 W/sr per unit of colour) moved by its node, a
+// spot turned by its node's rotation (its −z axis, turned 90° about +x,
+// points along +y), and a sun of 3 × 683 lux.
 GltfFile lit_quad() {
     GltfFile f = quad_file();
+    const double h = std::sqrt(0.5);
     f.add_node({{"mesh", 0}});
-    f.add_node({{"translation", {0, 2, 0}}, {"children", {2, 3}}});
+    f.add_node({{"translation", {0, 2, 0}}, {"children", {2, 3, 4}}});
     f.add_node({{"translation", {1, 0, 0}}, {"extensions", {{"KHR_lights_punctual", {{"light", 0}}}}}});
-    f.add_node({{"extensions", {{"KHR_lights_punctual", {{"light", 1}}}}}});
+    f.add_node({{"rotation", {h, 0, 0, h}}, {"extensions", {{"KHR_lights_punctual", {{"light", 1}}}}}});
+    f.add_node({{"extensions", {{"KHR_lights_punctual", {{"light", 2}}}}}});
     f.set_scene({0, 1});
     f.doc["extensions"]["KHR_lights_punctual"]["lights"] = {
         {{"type", "point"}, {"color", {1, 0.5, 0.25}}, {"intensity", 2 * 683}},
-        {{"type", "spot"}, {"intensity", 100}, {"spot", {{"outerConeAngle", 0.5}}}}};
+        {{"type", "spot"}, {"intensity", 683}, {"spot", {{"outerConeAngle", 0.5}, {"innerConeAngle", 0.25}}}},
+        {{"type", "directional"}, {"intensity", 3 * 683}}};
     f.use_extension("KHR_lights_punctual");
     return f;
 }
 
-TEST(GltfLoader, PointLightsAreConvertedFromCandelaAndPlacedByTheirNode) {
+TEST(GltfLoader, LightsAreConvertedFromCandelaAndLuxAndPlacedByTheirNode) {
     TempFolder dir;
     lit_quad().save(dir.path / "m.gltf");
     Diagnostics diag;
     const LoadedMesh m = load_gltf(dir.path / "m.gltf", diag);
-    ASSERT_EQ(m.lights.size(), 1u);
+    ASSERT_EQ(m.lights.size(), 3u);
+    EXPECT_EQ(m.lights[0].type, LightType::Point);
     expect_near(m.lights[0].position, {1, 2, 0});
     expect_near(m.lights[0].intensity, {2, 1, 0.5f}, 1e-6f);
-    ASSERT_EQ(diag.warnings.size(), 1u);
-    EXPECT_NE(diag.warnings[0].find("spot lights"), std::string::npos);
+    EXPECT_EQ(m.lights[1].type, LightType::Spot);
+    expect_near(m.lights[1].position, {0, 2, 0});
+    expect_near(m.lights[1].direction, {0, 1, 0}, 1e-6f);
+    expect_near(m.lights[1].intensity, {1, 1, 1}, 1e-6f);
+    EXPECT_NEAR(m.lights[1].cos_outer, std::cos(0.5), 1e-6);
+    EXPECT_NEAR(m.lights[1].cos_inner, std::cos(0.25), 1e-6);
+    EXPECT_EQ(m.lights[2].type, LightType::Directional);
+    expect_near(m.lights[2].direction, {0, 0, -1}, 1e-6f);
+    expect_near(m.lights[2].intensity, {3, 3, 3}, 1e-6f);
+    EXPECT_TRUE(diag.warnings.empty()) << diag.warnings[0];
 
-    // In a scene file the object's transform moves the light with the mesh.
+    // In a scene file the object's transform moves the lights with the mesh
+    // and turns the spot's and the sun's directions.
     dir.write("s.json", R"({"camera": {"origin": [0, 0, 5], "look_at": [0, 0, 0]},
-        "objects": [{"file": "m.gltf", "transform": [{"translate": [0, 0, -1]}]}]})");
+        "objects": [{"file": "m.gltf", "transform": [{"rotate": {"axis": [0, 1, 0], "degrees": 90}},
+                                                    {"translate": [0, 0, -1]}]}]})");
     const Scene scene = load_scene_file(dir.path / "s.json", diag);
-    ASSERT_EQ(scene.lights.size(), 1u);
-    expect_near(scene.lights[0].position, {1, 2, -1});
+    ASSERT_EQ(scene.lights.size(), 3u);
+    expect_near(scene.lights[0].position, {0, 2, -2}, 1e-6f);
+    expect_near(scene.lights[1].position, {0, 2, -1}, 1e-6f);
+    expect_near(scene.lights[1].direction, {0, 1, 0}, 1e-6f);
+    expect_near(scene.lights[2].direction, {-1, 0, 0}, 1e-6f);
+}
+
+TEST(GltfLoader, SpotConeAnglesAreCheckedAndEqualAnglesAccepted) {
+    for (const auto& [inner, outer, error, warnings] :
+         std::vector<std::tuple<double, double, const char*, std::size_t>>{
+             {0.5, 0.5, "", 0},            // Blender's spot without blend: inner = outer
+             {0.7, 0.5, "", 1},            // inner > outer: read as equal, with a warning
+             {0.0, 0.0, "outerConeAngle", 0},
+             {0.0, 1.6, "outerConeAngle", 0},  // beyond π/2
+             {-0.1, 0.5, "innerConeAngle", 0}}) {
+        GltfFile f = lit_quad();
+        f.doc["extensions"]["KHR_lights_punctual"]["lights"][1]["spot"] = {{"innerConeAngle", inner},
+                                                                          {"outerConeAngle", outer}};
+        TempFolder dir;
+        f.save(dir.path / "m.gltf");
+        Diagnostics diag;
+        SCOPED_TRACE(std::to_string(inner) + " " + std::to_string(outer));
+        if (*error) {
+            try {
+                load_gltf(dir.path / "m.gltf", diag);
+                ADD_FAILURE() << "expected an error";
+            } catch (const Error& e) {
+                EXPECT_NE(e.message().find(error), std::string::npos) << e.message();
+                EXPECT_NE(e.message().find("KHR_lights_punctual light 1"), std::string::npos) << e.message();
+            }
+            continue;
+        }
+        const LoadedMesh m = load_gltf(dir.path / "m.gltf", diag);
+        ASSERT_EQ(m.lights.size(), 3u);
+        EXPECT_EQ(m.lights[1].cos_inner, m.lights[1].cos_outer);
+        EXPECT_NEAR(m.lights[1].cos_outer, std::cos(0.5), 1e-6);
+        EXPECT_EQ(diag.warnings.size(), warnings);
+    }
 }
 
 TEST(GltfLoader, QuickLookUsesTheFilesFirstCamera) {
@@ -214,7 +269,7 @@ TEST(GltfLoader, QuickLookUsesTheFilesFirstCamera) {
     // Camera 1 is placed first in the tree, camera 0 (the first) later: 0 wins.
     f.add_node({{"camera", 1}});
     f.add_node({{"camera", 0}, {"translation", {0, 0, 4}}, {"rotation", {0, h, 0, h}}});  // looks along −x
-    f.doc["scenes"][0]["nodes"] = {0, 1, 4, 5};
+    f.doc["scenes"][0]["nodes"] = {0, 1, 5, 6};
     f.doc["cameras"] = {{{"type", "perspective"}, {"perspective", {{"yfov", 0.5}, {"aspectRatio", 2.0}, {"znear", 0.1}}}},
                         {{"type", "perspective"}, {"perspective", {{"yfov", 1.0}, {"znear", 0.1}}}}};
     TempFolder dir;
@@ -227,7 +282,7 @@ TEST(GltfLoader, QuickLookUsesTheFilesFirstCamera) {
     expect_near(scene.camera.look_at->up, {0, 1, 0});
     EXPECT_NEAR(scene.camera.look_at->fov_degrees, 0.5 * 180 / 3.14159265358979, 1e-4);
     EXPECT_EQ(scene.render.height, scene.render.width / 2);
-    ASSERT_EQ(scene.lights.size(), 1u);  // the file's light replaces the automatic ones
+    ASSERT_EQ(scene.lights.size(), 3u);  // the file's lights replace the automatic ones
 
     // Without a camera, the automatic framing looks at the model from +z.
     f.doc["scenes"][0]["nodes"] = {0};

@@ -1,10 +1,13 @@
 // glTF materials → sombra's `pbr` material (spec §11, §13), their texture
 // references (as the file gives them; gltf_textures.cpp applies them), and
-// KHR_lights_punctual point lights.
+// KHR_lights_punctual lights (point, spot, directional).
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 
 #include "scene/gltf.h"
+
+#include "core/format.h"
 
 namespace sombra::gltf {
 
@@ -162,13 +165,13 @@ Materials convert_materials(const tinygltf::Model& model, const std::string& fil
     return out;
 }
 
-std::optional<Vec3> point_light_intensity(const tinygltf::Model& model, int index, const std::string& file,
-                                          std::string& skipped_type) {
+std::optional<PunctualLight> punctual_light(const tinygltf::Model& model, int index, const std::string& file,
+                                            std::string& skipped_type, Diagnostics& diag) {
     if (index < 0 || static_cast<std::size_t>(index) >= model.lights.size())
         throw Error(file, std::string(kLights) + ": a node names light " + std::to_string(index) + ", but the file has " +
                               std::to_string(model.lights.size()));
     const tinygltf::Light& light = model.lights[static_cast<std::size_t>(index)];
-    if (light.type != "point") {
+    if (light.type != "point" && light.type != "spot" && light.type != "directional") {
         skipped_type = light.type.empty() ? "untyped" : light.type;
         return std::nullopt;
     }
@@ -178,10 +181,30 @@ std::optional<Vec3> point_light_intensity(const tinygltf::Model& model, int inde
         if (light.color.size() != 3) throw Error(file, what + ": color must have 3 components");
         colour = {float(light.color[0]), float(light.color[1]), float(light.color[2])};
     }
+    // Candela (point, spot) or lux (directional) to watts, as Blender imports them.
     const Vec3 intensity = colour * static_cast<float>(light.intensity) / kLumensPerWatt;
     if (!is_finite(intensity) || min_component(colour) < 0.0f || light.intensity < 0.0)
         throw Error(file, what + ": color and intensity must be finite and >= 0");
-    return intensity;
+    // Every light looks down its node's −z axis; the node's transform places it.
+    const Vec3 down_z{0, 0, -1};
+    if (light.type == "point") return make_point_light(Vec3{0.0f}, intensity);
+    if (light.type == "directional") return make_directional_light(down_z, intensity);
+
+    double inner = light.spot.innerConeAngle, outer = light.spot.outerConeAngle;
+    constexpr double kHalfPi = std::numbers::pi / 2;
+    if (!(outer > 0.0 && outer <= kHalfPi))
+        throw Error(file, what + ": spot.outerConeAngle must lie in (0, pi/2], not " + format_number(outer));
+    if (!(inner >= 0.0)) throw Error(file, what + ": spot.innerConeAngle must be >= 0, not " + format_number(inner));
+    if (inner >= outer) {
+        // Blender writes equal angles for a spot without blend (spec §16).
+        if (inner > outer)
+            diag.warn(file, what + ": spot.innerConeAngle " + format_number(inner) + " >= outerConeAngle " +
+                                format_number(outer) + ", read as equal");
+        inner = outer;
+    }
+    constexpr double kDegrees = 180.0 / std::numbers::pi;
+    return make_spot_light(Vec3{0.0f}, down_z, intensity, static_cast<float>(outer * kDegrees),
+                           static_cast<float>(inner * kDegrees));
 }
 
 }  // namespace sombra::gltf

@@ -191,12 +191,12 @@ struct LoadedMesh {
     std::vector<Material> materials;
     std::vector<Texture> textures{};
 
-    // What only glTF files carry (empty for OBJ and PLY): the point lights
+    // What only glTF files carry (empty for OBJ and PLY): the lights
     // and the first camera the file's scene places, in the file's
     // coordinates; and per material (parallel to `materials`, or empty) the
     // glTF texture references as the file gives them (what the materials'
     // TextureRefs were made from; alpha mode and cutoff for cut-outs).
-    std::vector<PointLight> lights;
+    std::vector<PunctualLight> lights;
     std::optional<ModelCamera> camera;
     std::vector<GltfMaterialTextures> texture_refs;
 };

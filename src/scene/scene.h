@@ -63,6 +63,12 @@ struct CameraLookAt {
 struct CameraSpec {
     std::optional<CameraBasis> basis;
     std::optional<CameraLookAt> look_at;
+    // A thin lens (spec §17) on either form: 0 is the pinhole. The focus
+    // plane lies focus_distance along the unit forward axis; unset, it is
+    // |look_at − origin| (look-at form; required with the basis form when
+    // aperture_radius > 0).
+    float aperture_radius = 0;
+    std::optional<float> focus_distance;
 };
 
 // An equirectangular environment map (spec §10 "environment"): it replaces
@@ -91,7 +97,7 @@ struct Scene {
     CameraSpec camera;
     std::vector<Material> materials;
     std::vector<Texture> textures;  // the materials' TextureRefs index this table (spec §12)
-    std::vector<PointLight> lights;
+    std::vector<PunctualLight> lights;
     TriangleMesh geometry;  // all objects, world space; material_ids index materials
     std::vector<SceneObject> objects;  // in triangle order, covering geometry's triangles
 };

@@ -138,6 +138,24 @@ void append_object(Scene& scene, const LoadedMesh& loaded, const ObjectSpec& spe
     }
 }
 
+// A light a glTF file placed, carried by its object's transform: the
+// position moves, the direction turns with the transform's linear part.
+PunctualLight transform_light(PunctualLight light, const Transform& transform, const SceneJson& s,
+                              const std::string& object_pointer) {
+    const std::string where = json_child(object_pointer, "transform");
+    if (light.type != LightType::Directional) {
+        light.position = transform_point(transform, light.position);
+        if (!is_finite(light.position)) json_fail(s, where, "a transformed light position is not finite");
+    }
+    if (light.type != LightType::Point) {
+        const Vec3 direction = transform_vector(transform, light.direction);
+        if (!is_finite(direction) || !(length(to_double(direction)) > 0))
+            json_fail(s, where, "a transformed light direction is not finite");
+        light.direction = unit_direction(direction);
+    }
+    return light;
+}
+
 std::string read_scene_text(const fs::path& path) {
     const std::string name = path.string();
     std::error_code ec;
@@ -188,7 +206,7 @@ Scene load_scene_text(const std::string& text, const fs::path& path, Diagnostics
     if (const Json* v = find_member(root, "materials")) scene.materials = read_materials(s, *v, "/materials", textures);
     SceneLights lights;
     if (const Json* v = find_member(root, "lights")) lights = read_lights(s, *v, "/lights");
-    scene.lights = std::move(lights.points);
+    scene.lights = std::move(lights.punctual);
     if (const Json* v = find_member(root, "environment")) {
         if (find_member(root, "background"))
             json_fail(s, "/environment", "give either 'background' or 'environment', not both (the map replaces the background)");
@@ -280,13 +298,9 @@ Scene load_scene_text(const std::string& text, const fs::path& path, Diagnostics
         world.color_indices.reserve(triangles);
     }
     for (std::size_t i = 0; i < specs.size(); ++i) {
-        // Point lights a glTF file places move with its object (§13).
-        for (const PointLight& light : meshes[mesh_of[i]].lights) {
-            const Vec3 position = transform_point(specs[i].transform, light.position);
-            if (!is_finite(position))
-                json_fail(s, json_child(specs[i].pointer, "transform"), "a transformed light position is not finite");
-            scene.lights.push_back({position, light.intensity});
-        }
+        // Lights a glTF file places move with its object (§13, §16).
+        for (const PunctualLight& light : meshes[mesh_of[i]].lights)
+            scene.lights.push_back(transform_light(light, specs[i].transform, s, specs[i].pointer));
         append_object(scene, meshes[mesh_of[i]], specs[i], s);
         // Free each file's mesh after its last object: peak memory stays near two copies.
         if (last_use[mesh_of[i]] == i) meshes[mesh_of[i]] = LoadedMesh{};
@@ -364,7 +378,7 @@ Scene make_quicklook_scene(const std::filesystem::path& model, Diagnostics& diag
     auto light_at = [&](Vec3 direction, float distance_in_radii, float share) {
         const float d = distance_in_radii * sphere.radius;
         const float intensity = share * kKeyRadiance * std::numbers::pi_v<float> / 0.8f * d * d;
-        return PointLight{sphere.centre + d * normalize(direction), Vec3{intensity}};
+        return make_point_light(sphere.centre + d * normalize(direction), Vec3{intensity});
     };
     scene.lights.push_back(light_at({-1.0f, 1.4f, 1.3f}, 4.0f, 1.0f));   // key: upper left, front
     scene.lights.push_back(light_at({1.2f, 0.3f, 1.0f}, 4.0f, 0.35f));   // fill: right, low

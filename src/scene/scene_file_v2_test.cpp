@@ -218,7 +218,7 @@ TEST_F(SceneV2, HostileValuesNameWhereAndWhat) {
          ": /lights/0/radiance: missing required key 'radiance'"},
         {with_light(R"({"type": "quad", "corner": [0, 0, 0], "edge1": [1, 0, 0], "edge2": [0, 1, 0], "radiance": [1, 1, 1], "position": [0, 0, 0]})"),
          ": /lights/0/position: unknown key 'position'"},
-        {with_light(R"({"type": "spot", "position": [0, 0, 0]})"), ": /lights/0/type: unknown light type 'spot'"},
+        {with_light(R"({"type": "area", "position": [0, 0, 0]})"), ": /lights/0/type: unknown light type 'area'"},
         {with_environment(R"({"file": "sky.exr"})", R"(, "background": [0, 0, 0])"),
          ": /environment: give either 'background' or 'environment', not both"},
         {with_environment(R"({"file": "nothing.exr"})"), ": /environment/file: cannot open 'nothing.exr': no such file"},

@@ -120,13 +120,16 @@ struct QuadLight {
 };
 
 struct SceneLights {
-    std::vector<PointLight> points;
+    std::vector<PunctualLight> punctual;  // point, spot and directional lights, in file order
     std::vector<QuadLight> quads;
 };
 
 // "lights": [{type: "point" (the default when left out), position, intensity}
-// | {type: "quad", corner, edge1, edge2, radiance}]. Zero or parallel quad
-// edges are an error.
+// | {type: "spot", position, direction, intensity, outer_angle, inner_angle}
+// | {type: "directional", direction, irradiance}
+// | {type: "quad", corner, edge1, edge2, radiance}] (scene_json_lights.cpp).
+// A zero direction, spot angles outside 0 ≤ inner ≤ outer ≤ 90 (outer > 0),
+// and zero or parallel quad edges are errors.
 SceneLights read_lights(const SceneJson& s, const Json& v, std::string_view pointer);
 QuadLight read_quad_light(const SceneJson& s, const Json& v, std::string_view pointer);
 

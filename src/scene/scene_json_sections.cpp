@@ -1,5 +1,6 @@
-// The sections of a scene file: render settings, camera, lights and
-// transforms (materials: scene_json_materials.cpp), validated as spec §2–§8 ask.
+// The sections of a scene file: render settings, camera and transforms
+// (lights: scene_json_lights.cpp; materials: scene_json_materials.cpp),
+// validated as spec §2–§8 ask.
 #include "scene/scene_json.h"
 
 #include <cmath>
@@ -72,6 +73,24 @@ CameraLookAt read_camera_look_at(const SceneJson& s, const Json& v, std::string_
     if (!(c.fov_degrees > 0 && c.fov_degrees < 180))
         json_fail(s, json_child(pointer, "fov"), "fov must lie strictly between 0 and 180 degrees");
     return c;
+}
+
+// The thin lens of spec §17: aperture_radius ≥ 0 (0, the default, is the
+// pinhole) and focus_distance > 0, which the basis form must give when the
+// aperture is open (the look-at form defaults to |look_at − origin|).
+void read_lens(const SceneJson& s, const Json& v, std::string_view pointer, CameraSpec& camera) {
+    if (const Json* r = find_member(v, "aperture_radius")) {
+        const std::string p = json_child(pointer, "aperture_radius");
+        camera.aperture_radius = read_float(s, *r, p);
+        if (!(camera.aperture_radius >= 0)) json_fail(s, p, "aperture_radius must be >= 0");
+    }
+    if (const Json* d = find_member(v, "focus_distance")) {
+        const std::string p = json_child(pointer, "focus_distance");
+        camera.focus_distance = read_float(s, *d, p);
+        if (!(*camera.focus_distance > 0)) json_fail(s, p, "focus_distance must be > 0");
+    }
+    if (camera.basis && camera.aperture_radius > 0 && !camera.focus_distance)
+        json_fail(s, pointer, "a basis-form camera with 'aperture_radius' > 0 needs 'focus_distance'");
 }
 
 Transform read_matrix(const SceneJson& s, const Json& v, std::string_view pointer) {
@@ -161,7 +180,7 @@ RenderSettings read_render(const SceneJson& s, const Json& v, std::string_view p
 }
 
 CameraSpec read_camera(const SceneJson& s, const Json& v, std::string_view pointer) {
-    expect_keys(s, v, pointer, {"origin", "left", "up", "forward", "look_at", "fov"});
+    expect_keys(s, v, pointer, {"origin", "left", "up", "forward", "look_at", "fov", "aperture_radius", "focus_distance"});
     const bool basis_form = find_member(v, "left") || find_member(v, "forward");
     const bool look_at_form = find_member(v, "look_at") || find_member(v, "fov");
     if (basis_form && look_at_form)
@@ -174,31 +193,8 @@ CameraSpec read_camera(const SceneJson& s, const Json& v, std::string_view point
         camera.basis = read_camera_basis(s, v, pointer);
     else
         camera.look_at = read_camera_look_at(s, v, pointer);
+    read_lens(s, v, pointer, camera);
     return camera;
-}
-
-SceneLights read_lights(const SceneJson& s, const Json& v, std::string_view pointer) {
-    expect_array(s, v, pointer);
-    SceneLights lights;
-    for (std::size_t i = 0; i < v.size(); ++i) {
-        const std::string p = json_child(pointer, i);
-        const Json& light = v[i];
-        expect_object(s, light, p);
-        std::string type = "point";
-        if (const Json* t = find_member(light, "type")) type = read_string(s, *t, json_child(p, "type"));
-        if (type == "quad") {
-            lights.quads.push_back(read_quad_light(s, light, p));
-            continue;
-        }
-        if (type != "point")
-            json_fail(s, json_child(p, "type"), "unknown light type '" + type + "' (expected 'point' or 'quad')");
-        expect_keys(s, light, p, {"type", "position", "intensity"});
-        PointLight l;
-        l.position = read_vec3(s, require_member(s, light, p, "position"), json_child(p, "position"));
-        l.intensity = read_rgb(s, require_member(s, light, p, "intensity"), json_child(p, "intensity"));
-        lights.points.push_back(l);
-    }
-    return lights;
 }
 
 Transform read_transform(const SceneJson& s, const Json& v, std::string_view pointer) {

@@ -1,0 +1,87 @@
+#include "render/delta_lights.h"
+
+#include <cmath>
+#include <limits>
+
+#include "render/sample_recorder.h"
+#include "render/shading_view.h"
+
+namespace sombra {
+
+template <class Recorder>
+void add_delta_lights(const Scene& scene, const Accel& accel, const SurfaceInteraction& si, const Material& material,
+                      const BsdfPoint& bsdf_point, Vec3 wo, Vec3 beta, Vec3& radiance, RayCounters& counters,
+                      Recorder& recorder) {
+    const ShadingView view{si, material, bsdf_point, wo};
+    const Vec3 shadow_origin = offset_ray_origin(si.position, si.position_error, si.n_g);
+    for (std::uint32_t index = 0; index < scene.lights.size(); ++index) {
+        const PunctualLight& light = scene.lights[index];
+        if (light.type == LightType::Directional) {
+            // From infinitely far: the light arrives along `direction` everywhere.
+            const Vec3 wi = -light.direction;
+            constexpr float kUnbounded = std::numeric_limits<float>::infinity();
+            if (dot(si.n_g, wi) <= 0.0f) {
+                recorder.delta_light(index, LightOutcome::Behind, view, wi, kUnbounded, nullptr, Vec3{0.0f});
+                continue;
+            }
+            ++counters.shadow_rays;
+            const Ray shadow{shadow_origin, wi};
+            if (occluded(accel, shadow)) {
+                recorder.delta_light(index, LightOutcome::Blocked, view, wi, kUnbounded, &shadow, Vec3{0.0f});
+                continue;
+            }
+            // L += E · f_r(x, ω_i, ω_o) · |n_s · ω_i|
+            const Vec3 f_r = eval_bsdf(material, bsdf_point, wo, wi);
+            const Vec3 contribution = beta * (light.intensity * std::fabs(dot(si.n_s, wi)) * f_r);
+            radiance += contribution;
+            recorder.delta_light(index, LightOutcome::Visible, view, wi, kUnbounded, &shadow, contribution);
+            continue;
+        }
+
+        const Vec3 to_light = light.position - si.position;
+        const float distance_squared = dot(to_light, to_light);
+        if (!(distance_squared > 0.0f)) {  // a light exactly on the surface lights nothing
+            recorder.delta_light(index, LightOutcome::OnSurface, view, Vec3{0.0f}, 0.0f, nullptr, Vec3{0.0f});
+            continue;
+        }
+        const Vec3 wi = to_light / std::sqrt(distance_squared);
+        // A light behind the surface (as seen from the viewer's side) adds nothing.
+        if (dot(si.n_g, wi) <= 0.0f) {
+            recorder.delta_light(index, LightOutcome::Behind, view, wi, distance_squared, nullptr, Vec3{0.0f});
+            continue;
+        }
+        // A spot sends I·s² along −ω_i; outside its cone nothing, and no shadow ray is needed.
+        Vec3 intensity = light.intensity;
+        if (light.type == LightType::Spot) {
+            const float falloff = spot_falloff(light, -dot(light.direction, wi));
+            if (!(falloff > 0.0f)) {
+                recorder.delta_light(index, LightOutcome::OutsideCone, view, wi, distance_squared, nullptr, Vec3{0.0f});
+                continue;
+            }
+            intensity = light.intensity * falloff;
+        }
+
+        // Shadow ray: from the offset origin to the light; t = 1 reaches the
+        // light, and the bound just short of it keeps the light's own
+        // position (possibly on a surface) from counting as an occluder.
+        ++counters.shadow_rays;
+        const Ray shadow{shadow_origin, light.position - shadow_origin, 1.0f - 1e-5f};
+        if (occluded(accel, shadow)) {
+            recorder.delta_light(index, LightOutcome::Blocked, view, wi, distance_squared, &shadow, Vec3{0.0f});
+            continue;
+        }
+
+        // L += I / |c − x|² · f_r(x, ω_i, ω_o) · |n_s · ω_i|   (a spot's I carries s²)
+        const Vec3 f_r = eval_bsdf(material, bsdf_point, wo, wi);
+        const Vec3 contribution = beta * (intensity * (std::fabs(dot(si.n_s, wi)) / distance_squared) * f_r);
+        radiance += contribution;
+        recorder.delta_light(index, LightOutcome::Visible, view, wi, distance_squared, &shadow, contribution);
+    }
+}
+
+template void add_delta_lights<NoRecorder>(const Scene&, const Accel&, const SurfaceInteraction&, const Material&,
+                                           const BsdfPoint&, Vec3, Vec3, Vec3&, RayCounters&, NoRecorder&);
+template void add_delta_lights<SampleRecorder>(const Scene&, const Accel&, const SurfaceInteraction&, const Material&,
+                                               const BsdfPoint&, Vec3, Vec3, Vec3&, RayCounters&, SampleRecorder&);
+
+}  // namespace sombra
