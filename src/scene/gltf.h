@@ -1,5 +1,6 @@
 // What the glTF 2.0 loader's parts share, private to src/scene (spec §13):
-// parsing with tinygltf behind guards (gltf_file.cpp), reading accessors
+// parsing with tinygltf behind guards (gltf_file.cpp) and the JSON types
+// checked before it (gltf_json_types.cpp), reading accessors
 // with every bound checked (gltf_accessors.cpp), decoding Draco-compressed
 // primitives (gltf_draco.cpp), materials and lights (gltf_materials.cpp);
 // gltf_loader.cpp walks the node tree and assembles the LoadedMesh.
@@ -41,8 +42,11 @@ inline constexpr const char* kTextureTransform = "KHR_texture_transform";
 // Reads and parses a .gltf or .glb file with tinygltf, after the checks that
 // keep hostile input away from it: the file's size, the GLB header and chunk
 // layout, at most one buffer in the BIN chunk, external files only inside the
-// file's folder and within a byte budget; images are not read. Then checks
-// asset.version and extensionsRequired. Throws Error(path, ...).
+// file's folder and within a byte budget; images are not read; every
+// member's JSON type (check_json_types), an unsupported extension in
+// extensionsRequired named first. Then checks asset.version and
+// extensionsRequired. Throws Error(path, ...), or Error("PATH: /pointer", ...)
+// for a member of the wrong type.
 tinygltf::Model parse_file(const std::filesystem::path& path, Diagnostics& diag);
 
 // Thrown for a feature that makes one primitive unusable but not the file

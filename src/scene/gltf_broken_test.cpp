@@ -134,13 +134,15 @@ TEST(GltfBroken, AssimpTestModelsLoadOrFailCleanly) {
             EXPECT_EQ(fuzz::loaded_mesh_problem(m), "");
             ++loaded;
         } catch (const Error& e) {
-            EXPECT_EQ(e.where(), entry.path().string());
+            // The file, or the file and the JSON pointer of a member of the wrong type.
+            EXPECT_EQ(e.where().rfind(entry.path().string(), 0), 0u) << e.where();
             EXPECT_EQ(std::string(e.what()).find('\n'), std::string::npos) << e.what();
             ++failed;
         }
     }
-    // 46 files in Debian 12's package: most load; the deliberately broken ones fail.
-    EXPECT_GE(loaded, 20u);
+    // 46 files in Debian 12's package: 19 load; the deliberately broken ones
+    // (wrongTypes/ among them), the point and line primitives fail.
+    EXPECT_GE(loaded, 19u);
     EXPECT_GE(failed, 5u);
 }
 

@@ -11,6 +11,7 @@
 #include <cstring>
 #include <set>
 
+#include "scene/gltf_json_types.h"
 #include "scene/mesh_builder.h"
 
 namespace sombra::gltf {
@@ -183,14 +184,36 @@ std::string rebuild_glb(const std::string& bytes, std::string_view json_chunk, s
     return out;
 }
 
-void check_extensions(const tinygltf::Model& model, const std::string& where, Diagnostics& diag) {
+bool supported_extension(const std::string& name) {
     static const std::set<std::string> supported{kDraco, kQuantization, kLights, kIor, kEmissiveStrength,
                                                  kTextureTransform};
-    for (const std::string& name : model.extensionsRequired)
-        if (!supported.count(name)) throw Error(where, "requires the unsupported glTF extension " + name);
+    return supported.count(name) > 0;
+}
+
+void check_required_extension(const std::string& name, const std::string& where) {
+    if (!supported_extension(name)) throw Error(where, "requires the unsupported glTF extension " + name);
+}
+
+// The checks on the JSON before tinygltf reads it: an unsupported extension
+// in extensionsRequired first (spec §24: it is named before any check its
+// data would fail), then the members' types. Another glTF version follows
+// another schema: the version check after parsing names it.
+void check_document(const nlohmann::json& json, const std::string& where) {
+    if (const auto asset = json.find("asset"); asset != json.end() && asset->is_object())
+        if (const auto version = asset->find("version");
+            version != asset->end() && version->is_string() && version->get<std::string>().rfind("2.", 0) != 0)
+            return;
+    if (const auto required = json.find("extensionsRequired"); required != json.end() && required->is_array())
+        for (const nlohmann::json& name : *required)
+            if (name.is_string()) check_required_extension(name.get<std::string>(), where);
+    check_json_types(json, where);
+}
+
+void check_extensions(const tinygltf::Model& model, const std::string& where, Diagnostics& diag) {
+    for (const std::string& name : model.extensionsRequired) check_required_extension(name, where);
     std::string ignored;
     for (const std::string& name : model.extensionsUsed) {
-        if (supported.count(name) || ignored.find(name) != std::string::npos) continue;
+        if (supported_extension(name) || ignored.find(name) != std::string::npos) continue;
         ignored += (ignored.empty() ? "" : ", ") + name;
     }
     if (!ignored.empty()) diag.warn(where, "ignoring the unsupported glTF extensions " + ignored);
@@ -213,11 +236,17 @@ tinygltf::Model parse_file(const fs::path& path, Diagnostics& diag) {
         const std::string_view json_chunk = check_glb(bytes, where);
         nlohmann::json json = parse_json(json_chunk, where);
         check_glb_buffers(json, where);
+        check_document(json, where);
         if (json_chunk.find(kDraco) != std::string_view::npos && strip_draco_indices(json))
             bytes = rebuild_glb(bytes, json_chunk, json.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace));
-    } else if (bytes.find(kDraco) != std::string::npos) {
-        nlohmann::json json = parse_json(bytes, where);
-        if (strip_draco_indices(json)) bytes = json.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
+    } else {
+        // Text that is no JSON object is left to tinygltf, which names what is wrong.
+        nlohmann::json json = nlohmann::json::parse(bytes, nullptr, false);
+        if (json.is_object()) {
+            check_document(json, where);
+            if (bytes.find(kDraco) != std::string::npos && strip_draco_indices(json))
+                bytes = json.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
+        }
     }
     if (bytes.size() > kMaxFileBytes)
         throw Error(where, "glTF file is larger than " + std::to_string(kMaxFileBytes >> 20) + " MiB");
