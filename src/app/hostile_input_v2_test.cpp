@@ -132,7 +132,7 @@ TEST_F(HostileV2, MaxDepthOutOfRangeOnTheCommandLine) {
 }
 
 TEST_F(HostileV2, DirectWarnsOnceAboutContentOnlyPathLights) {
-    const std::string warning = "the direct integrator lights with point lights only";
+    const std::string warning = "the direct integrator lights with point, spot and directional lights only";
     const std::string quad = light_scene(
         R"([{"type": "quad", "corner": [-1, 1, 1], "edge1": [2, 0, 0], "edge2": [0, 0, -2], "radiance": [1, 1, 1]},
                         {"type": "quad", "corner": [-1, -1, 1], "edge1": [0, 0, -2], "edge2": [2, 0, 0], "radiance": [1, 1, 1]}])");

@@ -63,8 +63,9 @@ void print_warnings(const Diagnostics& diag, const Scene& scene, const RenderSet
     // After the overrides: --integrator path silences it, --integrator direct may cause it.
     if (settings.integrator == IntegratorKind::Direct && needs_path_integrator(scene))
         std::cerr << "sombra: warning: " << one_line(o.input)
-                  << ": the direct integrator lights with point lights only: quad lights and the environment "
-                     "are only seen, mirror and glass reflect nothing from point lights; use --integrator path\n";
+                  << ": the direct integrator lights with point, spot and directional lights only: quad lights "
+                     "and the environment are only seen, mirror and glass reflect nothing from them; use "
+                     "--integrator path\n";
 }
 
 }  // namespace sombra
