@@ -276,6 +276,7 @@ TEST_P(EmbreeOnScene, ImageEqualsTheBvhImage) {
     job.settings.width = 192;
     job.settings.height = scene.render.height * 192 / scene.render.width;
     job.camera = make_camera(scene.camera, job.settings.width, job.settings.height);
+    job.lights = make_light_set(scene, make_constant_environment(scene.background), false);
     std::vector<RenderOutput> images;
     for (const AccelKind kind : {AccelKind::Bvh, AccelKind::Embree}) {
         const Accel accel = make_accel(scene, kind);

@@ -114,7 +114,7 @@ private:
     }
 
     Json delta_light(const DeltaLightRecord& l) const {
-        const PunctualLight& light = c_.scene.lights[l.light];
+        const PunctualLight& light = c_.job.lights.delta[l.light];
         Json j = {{"type", light_type_name(light.type)}, {"index", l.light}};
         if (light.type != LightType::Directional) j["position"] = vec(light.position);
         if (light.type != LightType::Point) j["direction"] = vec(light.direction);
@@ -149,7 +149,7 @@ private:
 
     Json sampled_light(const SampledLightRecord& l) const {
         if (!l.sampled) return {{"type", "sampled"}, {"outcome", "none"}, {"contribution", vec(l.contribution)}};
-        Json j = {{"type", l.environment ? "environment" : "emitter"}};
+        Json j = {{"type", l.environment ? "environment" : "emitter"}, {"light", l.light}};
         if (!l.environment) {
             j["emitter"] = where(l.triangle);
             j["point"] = vec(l.target);

@@ -125,7 +125,7 @@ private:
         add(r_.origin);
         for (const VertexRecord& v : r_.vertices)
             if (v.hit) add(v.surface.position);
-        for (const PunctualLight& l : c_.scene.lights)
+        for (const PunctualLight& l : c_.job.lights.delta)
             if (l.type != LightType::Directional) add(l.position);  // a directional light has no place
         const Point2 interest_lo = lo, interest_hi = hi;
         Point2 scene_lo{INFINITY, INFINITY}, scene_hi{-INFINITY, -INFINITY};
@@ -218,9 +218,10 @@ private:
     }
 
     void lights() {
-        for (std::size_t i = 0; i < c_.scene.lights.size(); ++i) {
-            if (c_.scene.lights[i].type == LightType::Directional) continue;  // drawn as its shadow rays only
-            const Vec3 p = c_.scene.lights[i].position;
+        const std::vector<PunctualLight>& delta = c_.job.lights.delta;
+        for (std::size_t i = 0; i < delta.size(); ++i) {
+            if (delta[i].type == LightType::Directional) continue;  // drawn as its shadow rays only
+            const Vec3 p = delta[i].position;
             const Point2 q = view_.screen(p);
             svg_ << "<circle cx=\"" << num(q.x) << "\" cy=\"" << num(q.y) << "\" r=\"7\" fill=\"#ffd54f\" stroke=\"#b07800\" "
                  << "stroke-width=\"1.5\"/>\n";
@@ -265,7 +266,7 @@ private:
             line(from, x, kPathColour, 2.2f);
             for (const DeltaLightRecord& l : v.delta_lights) {
                 // Toward a directional light the ray has no end: drawn as far as the environment's.
-                const PunctualLight& light = c_.scene.lights[l.light];
+                const PunctualLight& light = c_.job.lights.delta[l.light];
                 const Vec3 target =
                     light.type == LightType::Directional ? x + 0.3f * view_.extent() * l.wi : light.position;
                 shadow_ray(x, target, l.outcome, l.blocker);

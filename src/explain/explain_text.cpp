@@ -119,7 +119,7 @@ private:
         if (v.delta_material) {
             out_ << "  lights   none: a perfectly specular surface reflects a point light in one direction only,\n"
                     "           never towards this viewer (its BRDF is a delta)\n";
-        } else if (v.delta_lights.empty() && c_.scene.lights.empty()) {
+        } else if (v.delta_lights.empty() && c_.job.lights.delta.empty()) {
             out_ << "  point, spot and directional lights: none in the scene\n";
         }
         for (const DeltaLightRecord& l : v.delta_lights) delta_light(l, v.throughput);
@@ -157,7 +157,7 @@ private:
     }
 
     void delta_light(const DeltaLightRecord& l, Vec3 beta) {
-        const PunctualLight& light = c_.scene.lights[l.light];
+        const PunctualLight& light = c_.job.lights.delta[l.light];
         const bool directional = light.type == LightType::Directional, spot = light.type == LightType::Spot;
         // What arrives, named as its factor in the equation; the column of
         // '=' moves one to the right for a spot's longer name.
@@ -212,7 +212,8 @@ private:
             out_ << "  sampled light: none this time (the sample fell on a light's dark side or carries nothing)\n";
             return;
         }
-        out_ << "  sampled light: " << (l.environment ? std::string("the environment") : where(l.triangle)) << "\n";
+        out_ << "  sampled light " << l.light << ": "
+             << (l.environment ? std::string("the environment") : where(l.triangle)) << "\n";
         out_ << "    ω_i = " << readable(l.wi);
         if (!l.environment)
             out_ << ", point " << readable(l.target) << ", distance " << readable(l.distance) << ", |n_light·ω_i| = "

@@ -9,13 +9,13 @@
 namespace sombra {
 
 template <class Recorder>
-void add_delta_lights(const Scene& scene, const Accel& accel, const SurfaceInteraction& si, const Material& material,
+void add_delta_lights(const LightSet& lights, const Accel& accel, const SurfaceInteraction& si, const Material& material,
                       const BsdfPoint& bsdf_point, Vec3 wo, Vec3 beta, Vec3& radiance, RayCounters& counters,
                       Recorder& recorder) {
     const ShadingView view{si, material, bsdf_point, wo};
     const Vec3 shadow_origin = offset_ray_origin(si.position, si.position_error, si.n_g);
-    for (std::uint32_t index = 0; index < scene.lights.size(); ++index) {
-        const PunctualLight& light = scene.lights[index];
+    for (std::uint32_t index = 0; index < lights.delta.size(); ++index) {
+        const PunctualLight& light = lights.delta[index];
         if (light.type == LightType::Directional) {
             // From infinitely far: the light arrives along `direction` everywhere.
             const Vec3 wi = -light.direction;
@@ -79,9 +79,9 @@ void add_delta_lights(const Scene& scene, const Accel& accel, const SurfaceInter
     }
 }
 
-template void add_delta_lights<NoRecorder>(const Scene&, const Accel&, const SurfaceInteraction&, const Material&,
+template void add_delta_lights<NoRecorder>(const LightSet&, const Accel&, const SurfaceInteraction&, const Material&,
                                            const BsdfPoint&, Vec3, Vec3, Vec3&, RayCounters&, NoRecorder&);
-template void add_delta_lights<SampleRecorder>(const Scene&, const Accel&, const SurfaceInteraction&, const Material&,
+template void add_delta_lights<SampleRecorder>(const LightSet&, const Accel&, const SurfaceInteraction&, const Material&,
                                                const BsdfPoint&, Vec3, Vec3, Vec3&, RayCounters&, SampleRecorder&);
 
 }  // namespace sombra

@@ -7,12 +7,12 @@
 #include "accel/accel.h"
 #include "render/bsdf.h"
 #include "render/interaction.h"
+#include "render/lights.h"
 #include "render/ray_counters.h"
-#include "scene/scene.h"
 
 namespace sombra {
 
-// Adds to `radiance`, for every light of scene.lights on the viewer's side
+// Adds to `radiance`, for every delta light of `lights` on the viewer's side
 // of n_g and not blocked, beta · f(ω_o, ω_i) · |n_s·ω_i| times what arrives:
 // I/|c−x|² from a point light, I·s²/|c−x|² from a spot (s its falloff at
 // ω_i, scene/light.h; nothing outside its cone, without a shadow ray), E
@@ -22,7 +22,7 @@ namespace sombra {
 // (render/sample_recorder.h) hears every light's outcome; instantiated for
 // NoRecorder and SampleRecorder.
 template <class Recorder>
-void add_delta_lights(const Scene& scene, const Accel& accel, const SurfaceInteraction& si, const Material& material,
+void add_delta_lights(const LightSet& lights, const Accel& accel, const SurfaceInteraction& si, const Material& material,
                       const BsdfPoint& bsdf_point, Vec3 wo, Vec3 beta, Vec3& radiance, RayCounters& counters,
                       Recorder& recorder);
 

@@ -40,7 +40,7 @@ Vec3 trace_direct_recorded(const IntegratorContext& ctx, const Ray& ray, RayCoun
         recorder.emission(radiance, 1.0f, 0.0f, 0.0f, radiance);
         // Delta BSDFs (mirror, glass) reflect nothing from a point light.
         if (!is_delta_bsdf(material)) {
-            add_delta_lights(scene, *ctx.accel, si, material, make_bsdf_point(si.n_g, si.n_s, si.outside), wo,
+            add_delta_lights(*ctx.lights, *ctx.accel, si, material, make_bsdf_point(si.n_g, si.n_s, si.outside), wo,
                              Vec3{1.0f}, radiance, counters, recorder);
         } else {
             recorder.delta_material();
@@ -65,7 +65,7 @@ Vec3 trace_direct(const IntegratorContext& ctx, const Ray& ray, RayCounters& cou
 }
 
 Vec3 trace_direct(const IntegratorContext& ctx, const Ray& ray, RayCounters& counters, SampleRecord& record) {
-    SampleRecorder recorder(*ctx.scene, *ctx.accel, record);
+    SampleRecorder recorder(*ctx.scene, *ctx.lights, *ctx.accel, record);
     return trace_direct_recorded(ctx, ray, counters, recorder);
 }
 

@@ -71,6 +71,7 @@ bool sampled_point_exists(const Scene& scene, std::uint32_t triangle, Vec3 y) {
 
 LightSet make_light_set(const Scene& scene, Environment environment, bool sample_environment_light, LightSelection selection) {
     LightSet lights;
+    lights.delta = scene.lights;
     const TriangleMesh& mesh = scene.geometry;
     std::vector<float> power;
     std::vector<LightTreeEmitter> tree_emitters;
@@ -146,6 +147,7 @@ bool sample_light(const LightSet& lights, const Scene& scene, Vec3 x, Vec3 n, fl
         out.wi = es.direction;
         out.at_infinity = true;
         out.pdf = choice * es.pdf;
+        out.light = lights.environment_light();
         out.triangle = 0xffffffffu;
         return max_component(out.radiance) > 0.0f;
     }
@@ -186,6 +188,7 @@ bool sample_light(const LightSet& lights, const Scene& scene, Vec3 x, Vec3 n, fl
     out.target = y;
     out.at_infinity = false;
     out.pdf = choice * pdf;
+    out.light = lights.first_emitter() + static_cast<std::uint32_t>(chosen);
     out.triangle = triangle;
     return true;
 }
@@ -203,6 +206,25 @@ float pdf_light_triangle(const LightSet& lights, const Scene& scene, std::uint32
     if (sample_by_solid_angle(spherical)) return choice * static_cast<float>(1.0 / spherical.solid_angle);
     const Vec3 n_w = normalize(cross(p1 - p0, p2 - p0));
     return choice * area_to_solid_angle(x, y, n_w, lights.emitter_areas[e]);
+}
+
+LightKind light_kind(const LightSet& lights, const Scene& scene, std::uint32_t light) {
+    if (light < lights.first_emitter()) {
+        switch (lights.delta[light].type) {
+            case LightType::Point: return LightKind::Point;
+            case LightType::Spot: return LightKind::Spot;
+            case LightType::Directional: return LightKind::Directional;
+        }
+    }
+    if (light >= lights.environment_light()) return LightKind::Environment;
+    const std::uint32_t triangle = lights.emitters[light - lights.first_emitter()];
+    return scene.materials[scene.geometry.material_ids[triangle]].emits_front_only ? LightKind::Quad : LightKind::Triangle;
+}
+
+std::uint32_t emitter_light(const LightSet& lights, std::uint32_t triangle) {
+    const auto it = std::lower_bound(lights.emitters.begin(), lights.emitters.end(), triangle);
+    if (it == lights.emitters.end() || *it != triangle) return kNoLight;
+    return lights.first_emitter() + static_cast<std::uint32_t>(it - lights.emitters.begin());
 }
 
 float pdf_light_environment(const LightSet& lights, Vec3 dir) {

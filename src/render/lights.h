@@ -33,7 +33,29 @@ enum class LightSelection {
 // the typical quad light, it would change nothing of note).
 constexpr std::size_t kLightTreeMinEmitters = 8;
 
+// What kind of light an entry of the light set is (spec §4, §10, §16).
+enum class LightKind : std::uint8_t {
+    Point,
+    Spot,
+    Directional,
+    Quad,         // an emitting triangle of a quad light (one-sided)
+    Triangle,     // an emitting triangle of a material with ke (two-sided)
+    Environment,  // the background or environment map, when it lights (path)
+};
+
+inline constexpr std::uint32_t kNoLight = 0xffffffffu;
+
+// Every light of one render, each once. A light's identity is its index in
+// the set, the same for the integrators, `explain` and tests:
+//   [0, delta.size())                         the delta lights (point, spot,
+//                                             directional: scene.lights, in order);
+//   [first_emitter(), environment_light())    the emitting triangles, in triangle order;
+//   environment_light()                       the environment, when environment_lights.
+// The kinds live in per-kind arrays (plain data for the hot path): delta
+// lights are visited one by one at every vertex (render/delta_lights.h);
+// emitters and the environment are sampled one at a time below.
 struct LightSet {
+    std::vector<PunctualLight> delta;
     // Emissive triangles (material ke > 0), in increasing triangle order
     // (so that a hit triangle is found by binary search), with their areas.
     std::vector<std::uint32_t> emitters;
@@ -52,9 +74,20 @@ struct LightSet {
     bool use_tree = false;
 
     bool has_sampled_lights() const { return !choice_probability.empty(); }
+
+    std::uint32_t first_emitter() const { return static_cast<std::uint32_t>(delta.size()); }
+    std::uint32_t environment_light() const { return first_emitter() + static_cast<std::uint32_t>(emitters.size()); }
+    std::uint32_t light_count() const { return environment_light() + (environment_lights ? 1u : 0u); }
 };
 
-// The lights of `scene` for one render. `environment` lights the scene when
+// The kind of light `light` (< lights.light_count()).
+LightKind light_kind(const LightSet& lights, const Scene& scene, std::uint32_t light);
+
+// The identity of emitting triangle `triangle`, or kNoLight when it emits nothing.
+std::uint32_t emitter_light(const LightSet& lights, std::uint32_t triangle);
+
+// The lights of `scene` for one render: its delta lights, its emitting
+// triangles and the environment. `environment` lights the scene when
 // `sample_environment_light` (under path tracing) and is otherwise only seen.
 // Emitter power = luminance(ke) · area · π (twice for two-sided emitters);
 // the environment's = its power proxy · π R², R the scene's bounding radius.
@@ -68,6 +101,7 @@ struct LightSample {
     Vec3 target;     // the sampled point on an emitter (for the shadow ray); unused for the environment
     bool at_infinity = false;  // environment: the shadow ray has no end
     float pdf = 0;   // solid-angle density, including the probability of choosing this light
+    std::uint32_t light = kNoLight;        // its identity in the light set
     std::uint32_t triangle = 0xffffffffu;  // the emitter triangle sampled (all ones for the environment)
 };
 

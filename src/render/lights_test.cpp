@@ -146,5 +146,40 @@ TEST(Lights, NoSampledLightsWithoutEmittersOrEnvironment) {
     EXPECT_FALSE(direct.has_sampled_lights());
 }
 
+TEST(Lights, EveryLightHasOneIdentityInTheSet) {
+    // Two delta lights, then the emitters in triangle order (the bright
+    // two-sided one is triangle 1, the one-sided "quad" triangle 2), then the
+    // environment; sampled lights carry their identity.
+    Scene scene = two_emitters_and_a_floor();
+    scene.lights = {make_spot_light({0, 3, 0}, {0, -1, 0}, Vec3{1}, 30, 10), make_directional_light({0, -1, 0}, Vec3{1})};
+    const LightSet lights = make_light_set(scene, make_constant_environment(Vec3{0.2f}), true);
+    ASSERT_EQ(lights.light_count(), 5u);
+    EXPECT_EQ(lights.first_emitter(), 2u);
+    EXPECT_EQ(lights.environment_light(), 4u);
+    EXPECT_EQ(light_kind(lights, scene, 0), LightKind::Spot);
+    EXPECT_EQ(light_kind(lights, scene, 1), LightKind::Directional);
+    EXPECT_EQ(light_kind(lights, scene, 2), LightKind::Triangle);
+    EXPECT_EQ(light_kind(lights, scene, 3), LightKind::Quad);
+    EXPECT_EQ(light_kind(lights, scene, 4), LightKind::Environment);
+    EXPECT_EQ(emitter_light(lights, 0), kNoLight);  // the floor emits nothing
+    EXPECT_EQ(emitter_light(lights, 1), 2u);
+    EXPECT_EQ(emitter_light(lights, 2), 3u);
+    int seen[5] = {};
+    for (int k = 0; k < 2000; ++k) {
+        LightSample ls;
+        const float u = (static_cast<float>(k) + 0.5f) / 2000;
+        if (!sample_light(lights, scene, {0, 1, 0}, {0, 1, 0}, u, 0.3f, 0.6f, ls)) continue;
+        ASSERT_LT(ls.light, lights.light_count());
+        ++seen[ls.light];
+        if (ls.at_infinity)
+            EXPECT_EQ(ls.light, lights.environment_light());
+        else
+            EXPECT_EQ(ls.light, emitter_light(lights, ls.triangle));
+    }
+    EXPECT_EQ(seen[0] + seen[1], 0) << "delta lights are never sampled";
+    EXPECT_GT(seen[2], 0);
+    EXPECT_GT(seen[4], 0);
+}
+
 }  // namespace
 }  // namespace sombra

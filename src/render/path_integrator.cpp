@@ -133,7 +133,7 @@ Vec3 trace_path_recorded(const IntegratorContext& ctx, const Ray& camera_ray, Sa
 
         const ShadingView view{si, material, bsdf_point, wo};
         if (!is_delta_bsdf(material)) {
-            add_delta_lights(scene, *ctx.accel, si, material, bsdf_point, wo, beta, radiance, counters, recorder);
+            add_delta_lights(lights, *ctx.accel, si, material, bsdf_point, wo, beta, radiance, counters, recorder);
             if (lights.has_sampled_lights() && ctx.strategy != LightStrategy::BsdfOnly)
                 radiance += beta * sample_one_light(ctx, view, u_choice, u_light, counters, recorder);
         } else {
@@ -195,7 +195,7 @@ Vec3 trace_path(const IntegratorContext& ctx, const Ray& ray, SampleStream& samp
 
 Vec3 trace_path(const IntegratorContext& ctx, const Ray& ray, SampleStream& samples, RayCounters& counters,
                 SampleRecord& record) {
-    SampleRecorder recorder(*ctx.scene, *ctx.accel, record);
+    SampleRecorder recorder(*ctx.scene, *ctx.lights, *ctx.accel, record);
     record.path = true;
     return trace_path_recorded(ctx, ray, samples, counters, recorder);
 }

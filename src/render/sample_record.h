@@ -63,7 +63,7 @@ inline constexpr std::size_t kMaxHolesListed = 8;
 // One delta light's term at a vertex (point, spot or directional, spec §4,
 // §16): L += β · incident · f_r · |n_s·ω_i|.
 struct DeltaLightRecord {
-    std::uint32_t light = 0;  // index into Scene::lights
+    std::uint32_t light = 0;  // its identity in the light set (= its index in Scene::lights)
     LightOutcome outcome = LightOutcome::Visible;
     Vec3 wi;                  // unit, towards the light
     float distance = 0;       // |c − x|; +∞ for a directional light
@@ -84,6 +84,7 @@ struct DeltaLightRecord {
 struct SampledLightRecord {
     bool sampled = false;            // false: no light could be sampled (or none carries anything)
     bool environment = false;        // the environment rather than an emitting triangle
+    std::uint32_t light = kNoTriangle;     // its identity in the light set (render/lights.h)
     std::uint32_t triangle = kNoTriangle;
     Vec3 wi;                         // unit, towards the sampled point
     Vec3 target;                     // the sampled point on the emitter

@@ -101,7 +101,7 @@ void SampleRecorder::delta_light(std::uint32_t light, LightOutcome outcome, cons
     r.cos_s = std::fabs(dot(view.si.n_s, wi));
     if (outcome != LightOutcome::OnSurface) {
         // The same arithmetic as add_delta_lights (render/delta_lights.cpp).
-        const PunctualLight& l = scene_.lights[light];
+        const PunctualLight& l = lights_.delta[light];
         if (l.type == LightType::Spot) r.spot_factor = spot_falloff(l, -dot(l.direction, wi));
         r.incident = l.type == LightType::Directional ? l.intensity
                      : l.type == LightType::Spot      ? l.intensity * r.spot_factor / distance_squared
@@ -123,6 +123,7 @@ void SampleRecorder::sampled_light(const LightSample* ls, const ShadingView& vie
     r.sampled = ls != nullptr;
     if (ls) {
         r.environment = ls->at_infinity;
+        r.light = ls->light;
         r.triangle = ls->triangle;
         r.wi = ls->wi;
         r.target = ls->target;

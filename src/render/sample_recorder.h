@@ -45,7 +45,8 @@ struct NoRecorder {
 // (a closest-hit query of its own), which the integrator never needs.
 class SampleRecorder {
 public:
-    SampleRecorder(const Scene& scene, const Accel& accel, SampleRecord& record) : scene_(scene), accel_(accel), record_(record) {}
+    SampleRecorder(const Scene& scene, const LightSet& lights, const Accel& accel, SampleRecord& record)
+        : scene_(scene), lights_(lights), accel_(accel), record_(record) {}
 
     // The ray left the scene: le is what the environment (or background)
     // sends back, weighted by w against next-event estimation.
@@ -77,6 +78,7 @@ private:
     void find_holes(const Ray& ray, float t_end, std::vector<HoleRecord>& holes, std::size_t& crossed) const;
 
     const Scene& scene_;
+    const LightSet& lights_;
     const Accel& accel_;
     SampleRecord& record_;
 };
