@@ -1,8 +1,12 @@
 #include "app/interrupt.h"
 
+#include <poll.h>
 #include <pthread.h>
+#include <sys/eventfd.h>
+#include <sys/signalfd.h>
 #include <unistd.h>
 
+#include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -17,22 +21,46 @@ InterruptWatcher::InterruptWatcher(RenderProgress& progress) : progress_(progres
     sigaddset(&blocked_, SIGINT);
     sigaddset(&blocked_, SIGTERM);
     pthread_sigmask(SIG_BLOCK, &blocked_, &previous_mask_);
+    // The watcher sleeps in poll() on the blocked signals (a signalfd) and on
+    // an eventfd the destructor writes to, so that a run ends the moment its
+    // work is done instead of waiting for a timed wait to run out (a 100 ms
+    // tick cost every run up to 0.1 s at exit). Without the descriptors
+    // (none left), it falls back to that timed wait.
+    signal_fd_ = signalfd(-1, &blocked_, SFD_CLOEXEC);
+    wake_fd_ = eventfd(0, EFD_CLOEXEC);
     thread_ = std::thread([this] { watch(); });
 }
 
 InterruptWatcher::~InterruptWatcher() {
     stop_.store(true);
+    if (wake_fd_ >= 0) {
+        const std::uint64_t one = 1;
+        [[maybe_unused]] const ssize_t written = write(wake_fd_, &one, sizeof one);
+    }
     thread_.join();
+    if (signal_fd_ >= 0) close(signal_fd_);
+    if (wake_fd_ >= 0) close(wake_fd_);
     // A signal that arrives from here on gets its default action again.
     pthread_sigmask(SIG_SETMASK, &previous_mask_, nullptr);
 }
 
+int InterruptWatcher::next_signal() {
+    if (signal_fd_ < 0 || wake_fd_ < 0) {
+        // Waking ten times a second to check stop_ keeps the reaction to a
+        // signal well under a second.
+        const timespec tick{0, 100'000'000};
+        return sigtimedwait(&blocked_, nullptr, &tick);
+    }
+    pollfd fds[2] = {{signal_fd_, POLLIN, 0}, {wake_fd_, POLLIN, 0}};
+    if (poll(fds, 2, -1) <= 0 || (fds[1].revents & POLLIN) != 0) return 0;  // EINTR, or woken to stop
+    signalfd_siginfo info{};
+    if (read(signal_fd_, &info, sizeof info) != static_cast<ssize_t>(sizeof info)) return 0;
+    return static_cast<int>(info.ssi_signo);
+}
+
 void InterruptWatcher::watch() {
-    // Waking ten times a second to check stop_ costs nothing and keeps the
-    // reaction to a signal well under a second.
-    const timespec tick{0, 100'000'000};
     while (!stop_.load()) {
-        const int sig = sigtimedwait(&blocked_, nullptr, &tick);
+        const int sig = next_signal();
         if (sig <= 0) continue;
         signal_.store(sig);
         progress_.cancel.store(true);

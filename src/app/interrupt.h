@@ -2,7 +2,7 @@
 // moment and nothing is written, so an existing image stays as it was.
 //
 // No signal handler and no global: the signals are blocked in every thread
-// and one watcher thread takes them with sigtimedwait, then acts in plain code.
+// and one watcher thread takes them from a signalfd, then acts in plain code.
 #pragma once
 
 #include <atomic>
@@ -34,12 +34,16 @@ public:
 
 private:
     void watch();
+    // Waits for SIGINT or SIGTERM; 0 when woken without one (to stop, or spuriously).
+    int next_signal();
 
     RenderProgress& progress_;
     std::atomic<Phase> phase_{Phase::Preparing};
     std::atomic<int> signal_{0};
     std::atomic<bool> stop_{false};
     sigset_t blocked_{};
+    int signal_fd_ = -1;  // reads the blocked signals
+    int wake_fd_ = -1;    // an eventfd the destructor writes to wake the watcher
     sigset_t previous_mask_{};
     std::thread thread_;
 };

@@ -60,7 +60,8 @@ Vec3 render_pixel(const RenderJob& job, const IntegratorContext& ctx, int i, int
     const auto spp = static_cast<std::uint32_t>(s.spp);
     const std::uint64_t key = pixel_key(s.seed, i, j, s.width);
     Vec3 sum{0.0f};
-    for (std::uint32_t k = 0; k < spp; ++k) sum += trace_sample(job, ctx, key, camera_sample(job, key, i, j, k).ray, k, counters);
+    for (std::uint32_t k = 0; k < spp; ++k)
+        sum += trace_sample(job, ctx, key, camera_sample(job, key, i, j, k).ray, k, counters);
     return sum / static_cast<float>(spp);
 }
 
