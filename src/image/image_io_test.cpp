@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "core/error.h"
+#include "image/srgb8_table.h"
 #include "image/test_folder.h"
 #include "image/writers.h"
 
@@ -116,6 +117,31 @@ TEST(Srgb, EveryCodeIsTheRoundedExactCurve) {
     EXPECT_EQ(encode_srgb8(nan_value), 0);
     EXPECT_EQ(encode_srgb8(1.0f), 255);
     EXPECT_EQ(encode_srgb8(inf_value), 255);
+}
+
+TEST(Srgb, TheTableGivesEncodeSrgb8sCodes) {
+    // Every float within 256 ulps of each of the 255 code boundaries (where
+    // a wrong threshold would show), every 97th float of [0, 1.25], and the
+    // special values: the table's code is encode_srgb8's.
+    const Srgb8Table table;
+    auto check = [&](std::uint32_t bits) {
+        float f = 0;
+        std::memcpy(&f, &bits, sizeof f);
+        ASSERT_EQ(table.encode(f), encode_srgb8(f)) << "at " << f;
+    };
+    for (int k = 1; k < 256; ++k) {
+        float lo = 0.0f, hi = 1.0f;  // the boundary by bisection on floats
+        for (int i = 0; i < 40; ++i) {
+            const float mid = 0.5f * (lo + hi);
+            (encode_srgb8(mid) >= k ? hi : lo) = mid;
+        }
+        std::uint32_t bits = 0;
+        std::memcpy(&bits, &hi, sizeof bits);
+        for (std::uint32_t b = bits - 256; b <= bits + 256; ++b) check(b);
+    }
+    for (std::uint32_t b = 0; b <= 0x3fa00000u; b += 97) check(b);
+    for (const float f : {0.0f, -0.0f, -1.0f, 1.0f, 2.0f, nan_value, inf_value, -inf_value})
+        EXPECT_EQ(table.encode(f), encode_srgb8(f)) << f;
 }
 
 TEST_F(ImageIoTest, PngIsEightBitRgbWithAnSrgbChunk) {
