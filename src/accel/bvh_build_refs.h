@@ -85,7 +85,10 @@ struct Split {
 };
 
 // The blocks of four that `count` triangles fill, as a cost factor.
-inline float blocks_of(std::uint32_t count) { return static_cast<float>((count + 3) / 4); }
+inline float blocks_of(std::uint32_t count) {
+    const std::uint32_t blocks = (count + 3) / 4;
+    return static_cast<float>(blocks);
+}
 
 // Small nodes get fewer bins: about one per reference is resolution enough.
 inline int bin_count(std::uint32_t refs) { return refs < kBins ? static_cast<int>(refs) : kBins; }

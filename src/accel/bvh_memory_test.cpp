@@ -14,12 +14,14 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <cstring>
 #include <filesystem>
 #include <vector>
 
 #include "accel/accel_test_util.h"
 #include "accel/bvh.h"
 #include "accel/bvh_binary.h"
+#include "accel/huge_pages.h"
 #include "scene/mesh_file.h"
 
 namespace sombra {
@@ -89,6 +91,21 @@ TEST(BvhMemory, SerialSubtreesUseAPrefixOfTheirSlots) {
     std::sort(used.begin(), used.end());
     for (std::size_t i = 0; i < used.size(); ++i) ASSERT_EQ(used[i], i) << "slot " << i << " skipped";
     EXPECT_LT(used.size(), binary.nodes.size() / 2);
+}
+
+// The arrays behind the tree: from one huge page on, they start on a 2 MiB
+// boundary (the mapping's two trimmed ends are the rest of it) and every
+// byte is theirs; smaller ones have the alignment asked for.
+TEST(BigArrays, StartOnAHugePageBoundaryAndHoldEveryByte) {
+    for (const std::size_t bytes : {std::size_t{64}, kHugePageBytes - 1, kHugePageBytes, kHugePageBytes + 1,
+                                    3 * kHugePageBytes + 4096}) {
+        void* p = allocate_big_array(bytes, 64);
+        ASSERT_NE(p, nullptr);
+        EXPECT_EQ(reinterpret_cast<std::uintptr_t>(p) % (bytes < kHugePageBytes ? 64 : kHugePageBytes), 0u) << bytes;
+        std::memset(p, 0xab, bytes);
+        EXPECT_EQ(static_cast<const unsigned char*>(p)[bytes - 1], 0xab) << bytes;
+        release_big_array(p, bytes, 64);
+    }
 }
 
 }  // namespace

@@ -215,8 +215,9 @@ TEST(BvhStructure, RootSplitIsTheCheapestBinnedPlane) {
                     side.count += bins[b].count;
                 }
                 if (left.count == 0 || right.count == 0) continue;
-                const float cost = left.half_area() * static_cast<float>((left.count + 3) / 4) +
-                                   right.half_area() * static_cast<float>((right.count + 3) / 4);
+                const int left_blocks = (left.count + 3) / 4, right_blocks = (right.count + 3) / 4;
+                const float cost = left.half_area() * static_cast<float>(left_blocks) +
+                                   right.half_area() * static_cast<float>(right_blocks);
                 if (cost < best_cost) {
                     best_cost = cost;
                     best_left = left;

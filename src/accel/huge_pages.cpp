@@ -20,12 +20,14 @@ void* allocate_big_array(std::size_t bytes, std::size_t align) {
     if (size < bytes || size + kHugePageBytes < size) throw std::bad_alloc();
     void* mapped = mmap(nullptr, size + kHugePageBytes, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
     if (mapped == MAP_FAILED) throw std::bad_alloc();
+    // The pointers are offsets from `mapped` (not integers cast back), so
+    // they keep its provenance.
     const auto start = reinterpret_cast<std::uintptr_t>(mapped);
-    const std::uintptr_t aligned = (start + kHugePageBytes - 1) & ~(std::uintptr_t{kHugePageBytes} - 1);
-    if (aligned > start) munmap(mapped, aligned - start);
-    const std::uintptr_t tail = start + size + kHugePageBytes - (aligned + size);
-    if (tail > 0) munmap(reinterpret_cast<void*>(aligned + size), tail);
-    void* p = reinterpret_cast<void*>(aligned);
+    const std::size_t lead = round_up(start) - start;  // bytes before the first 2 MiB boundary
+    char* const p = static_cast<char*>(mapped) + lead;
+    if (lead > 0) munmap(mapped, lead);
+    const std::size_t tail = kHugePageBytes - lead;  // what is left after size bytes from p
+    if (tail > 0) munmap(p + size, tail);
 #ifdef MADV_HUGEPAGE
     madvise(p, size, MADV_HUGEPAGE);  // a hint: without huge pages the array still works
 #endif

@@ -64,7 +64,9 @@ void add_render_options(CLI::App& command, CliOptions& o) {
 
 CliParse parse_command_line(int argc, const char* const* argv) {
     CLI::App app{"sombra: a ray tracer that is right to the last pixel", "sombra"};
-    app.set_version_flag("--version", std::string("sombra ") + SOMBRA_VERSION);
+    // The contract version it implements, e.g. "sombra 2.0.0 (scene format version 2)".
+    app.set_version_flag("--version", std::string("sombra ") + SOMBRA_VERSION + " (scene format version " +
+                                          SOMBRA_SCENE_FORMAT_VERSION + ")");
     app.require_subcommand(1);
 
     CliOptions o;

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <nlohmann/json.hpp>
+#include <regex>
 
 #include "cli_test_fixture.h"
 
@@ -91,6 +92,19 @@ TEST_F(Cli, WrongCommandLinesExitWithTwo) {
     }
     EXPECT_EQ(run("--help").status, 0);
     EXPECT_EQ(run("--version").status, 0);
+}
+
+// The contract version sombra implements in full (spec §1–§15); the build's
+// major version is the same number (CMakeLists.txt, CHANGELOG.md).
+TEST_F(Cli, VersionNamesTheContractVersion) {
+    const RunResult r = run("--version");
+    ASSERT_EQ(r.status, 0) << r.err;
+    std::smatch m;
+    ASSERT_TRUE(std::regex_match(r.out, m, std::regex(R"(sombra (\d+)\.\d+\.\d+ \(scene format version (\d+)\)\n)")))
+        << r.out;
+    EXPECT_EQ(m[2].str(), "2") << r.out;
+    EXPECT_EQ(m[1].str(), m[2].str()) << r.out;
+    EXPECT_EQ(r.err, "");
 }
 
 TEST_F(Cli, MissingSceneFile) { expect_input_error(run("render missing.json -o out.png"), "missing.json: "); }

@@ -40,7 +40,8 @@ TEST_F(ExplainCli, JsonValueIsTheRenderedPixelBitForBit) {
         ASSERT_EQ(run("render " + cornell() + " -o out.pfm " + args).status, 0);
         const Pfm image = read_pfm(dir_ / "out.pfm");
         ASSERT_EQ(image.width, 24);
-        for (const auto [x, y] : {std::pair{12, 12}, std::pair{3, 20}, std::pair{20, 4}, std::pair{12, 1}, std::pair{0, 23}}) {
+        for (const auto& [x, y] :
+             {std::pair{12, 12}, std::pair{3, 20}, std::pair{20, 4}, std::pair{12, 1}, std::pair{0, 23}}) {
             const std::vector<float> value = explained(x, y, args);
             ASSERT_EQ(value.size(), 3u);
             const float* pixel = &image.rgb[(static_cast<std::size_t>(23 - y) * 24 + static_cast<std::size_t>(x)) * 3];

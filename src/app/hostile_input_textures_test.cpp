@@ -48,7 +48,8 @@ TEST_F(HostileTextures, BadSceneTexturesAreOneLineErrors) {
     write_text(dir_ / "huge.png", sombra::testing::png_claiming(16000, 16000));
     write_text(dir_ / "wide.png", sombra::testing::png_claiming(100000, 1));
     write_text(dir_ / "text.png", "not an image at all\n");
-    write_text(dir_ / "anim.gif", "GIF89a\x02\x00\x02\x00");
+    const char gif[] = "GIF89a\x02\x00\x02\x00";  // a 2x2 GIF's first bytes, NULs included
+    write_text(dir_ / "anim.gif", std::string(gif, sizeof gif - 1));
     write_text(dir_ / "empty.png", "");
     fs::create_directories(dir_ / "folder.png");
     const struct {

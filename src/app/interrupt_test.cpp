@@ -1,7 +1,7 @@
 // Ctrl-C and kill during a render: a prompt stop, no output, and an earlier
 // image left exactly as it was.
 #include <gtest/gtest.h>
-#include <signal.h>
+#include <signal.h>  // NOLINT(modernize-deprecated-headers): kill() is POSIX, declared here, not in <csignal>
 #include <sys/wait.h>
 #include <unistd.h>
 

@@ -1,5 +1,6 @@
 #include "app/progress.h"
 
+#include <cmath>
 #include <cstdio>
 
 namespace sombra {
@@ -41,7 +42,7 @@ void ProgressBar::draw(double elapsed) const {
     bar[kWidth] = '\0';
     char eta[32] = "--";
     if (done > 0.01) {
-        const auto left = static_cast<long>(elapsed * (1.0 - done) / done + 0.5);
+        const long left = std::lround(elapsed * (1.0 - done) / done);
         std::snprintf(eta, sizeof eta, "%ld:%02ld", left / 60, left % 60);
     }
     char count[64];

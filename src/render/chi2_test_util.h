@@ -168,7 +168,11 @@ Result run(const Frame& frame, const SampleFn& sample, const PdfFn& pdf, const O
     constexpr double two_pi = 2.0 * std::numbers::pi;
     const double z0 = o.hemisphere ? 0.0 : -1.0;
     const double dz = (1.0 - z0) / o.cos_bins, dphi = two_pi / o.phi_bins;
-    const auto cells = static_cast<std::size_t>(o.cos_bins * o.phi_bins);
+    // Cell (iz, ip) of the cos_bins × phi_bins grid, row by row.
+    const auto cell = [&](int iz, int ip) {
+        return static_cast<std::size_t>(iz) * static_cast<std::size_t>(o.phi_bins) + static_cast<std::size_t>(ip);
+    };
+    const std::size_t cells = cell(o.cos_bins, 0);
     std::vector<double> observed(cells, 0.0), expected(cells, 0.0);
     Result res;
 
@@ -184,7 +188,7 @@ Result run(const Frame& frame, const SampleFn& sample, const PdfFn& pdf, const O
         if (phi < 0) phi += two_pi;
         const int iz = std::clamp(static_cast<int>((z - z0) / dz), 0, o.cos_bins - 1);
         const int ip = std::clamp(static_cast<int>(phi / dphi), 0, o.phi_bins - 1);
-        observed[static_cast<std::size_t>(iz * o.phi_bins + ip)] += 1.0;
+        observed[cell(iz, ip)] += 1.0;
     }
     res.success_fraction = static_cast<double>(successes) / o.samples;
 
@@ -209,7 +213,7 @@ Result run(const Frame& frame, const SampleFn& sample, const PdfFn& pdf, const O
                                        0.25 * o.integration_rel);
             };
             const double mass = adaptive_simpson(ring, za, zb, eps, o.min_depth, o.max_depth, o.integration_rel);
-            expected[static_cast<std::size_t>(iz * o.phi_bins + ip)] = mass * n;
+            expected[cell(iz, ip)] = mass * n;
             res.pdf_integral += mass;
         }
     }

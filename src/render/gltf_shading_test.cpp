@@ -8,6 +8,7 @@
 
 #include <cmath>
 #include <string>
+#include <utility>
 
 #include "render/interaction.h"
 #include "render/shading.h"
@@ -30,7 +31,7 @@ const std::vector<Vec3> kCorners{{-1, -1, 0}, {1, -1, 0}, {1, 1, 0}, {-1, 1, 0}}
 // The quad with `material` (images 0 base.png, 1 n.png as textures 0 and 1),
 // the attributes `add` writes (names → accessors), placed by node `node`.
 template <class AddAttributes>
-GltfFile shading_quad(nlohmann::json material, AddAttributes add, nlohmann::json node = nlohmann::json::object()) {
+GltfFile shading_quad(const nlohmann::json& material, AddAttributes add, nlohmann::json node = nlohmann::json::object()) {
     GltfFile f;
     nlohmann::json attributes = add(f);
     attributes["POSITION"] = f.add_positions(kCorners);
@@ -49,6 +50,7 @@ nlohmann::json no_attributes(GltfFile&) { return nlohmann::json::object(); }
 
 // The tangent-space normal (0.36, −0.48, 0.8) as a 16-bit texel, and what
 // the renderer decodes from it (2·code/65535 − 1 per channel, not normalised).
+// NOLINTNEXTLINE(bugprone-incorrect-roundings): constexpr, which std::lround is not; n >= -1, so never negative
 constexpr std::uint16_t code(float n) { return static_cast<std::uint16_t>((n + 1) * 0.5f * 65535 + 0.5f); }
 Vec3 decoded_texel() {
     const auto back = [](float n) { return 2 * static_cast<float>(code(n)) / 65535 - 1; };
@@ -161,7 +163,7 @@ GltfFile tangent_quad(float handedness, nlohmann::json node = nlohmann::json::ob
             const std::vector<float> t{0, 1, 0, handedness, 0, 1, 0, handedness, 0, 1, 0, handedness, 0, 1, 0, handedness};
             return nlohmann::json{{"TANGENT", f.add_array(t, gltf_test::kFloat, 4, "VEC4")}};
         },
-        node);
+        std::move(node));
 }
 
 Vec3 shading_normal_at(const Scene& scene, Vec2 p) {

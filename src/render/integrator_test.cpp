@@ -214,7 +214,8 @@ TEST(Integrator, NoSelfShadowingOnLargeOffsetGeometry) {
     RayCounters counters;
     int dark = 0;
     for (int k = 0; k < 2000; ++k) {
-        const float u = static_cast<float>(k % 50) / 50.0f * 60 - 30, v = static_cast<float>(k / 50) / 40.0f * 60 - 30;
+        const int column = k % 50, row = k / 50;  // a 50 x 40 grid of rays
+        const float u = static_cast<float>(column) / 50.0f * 60 - 30, v = static_cast<float>(row) / 40.0f * 60 - 30;
         const Vec3 l = trace_direct(scene, accel, Ray{c + Vec3{u, 10, v}, {0.01f, -1, 0.02f}}, counters);
         if (l.x == 0.0f) ++dark;
     }

@@ -155,8 +155,9 @@ private:
         const std::uint32_t s = shuffle_index(index, count, key);
         const float jx = hash_to_unit(s, key ^ 0x967a889b00000000ull);
         const float jy = hash_to_unit(s, key ^ 0x368cc8b700000000ull);
-        return {to_unit((static_cast<float>(s % m) + jx) / static_cast<float>(m)),
-                to_unit((static_cast<float>(s / m) + jy) / static_cast<float>(n))};
+        const std::uint32_t column = s % m, row = s / m;  // s's cell in the grid of n rows of m
+        return {to_unit((static_cast<float>(column) + jx) / static_cast<float>(m)),
+                to_unit((static_cast<float>(row) + jy) / static_cast<float>(n))};
     }
 
     std::uint64_t dimension_key() {

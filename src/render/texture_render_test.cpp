@@ -106,6 +106,7 @@ TEST_F(TextureRender, TexturedKdScalesTheLitImageByTheTexture) {
 
 // The tangent-space normal (0.36, −0.48, 0.8) as a 16-bit normal map, and
 // what the renderer reads back from it.
+// NOLINTNEXTLINE(bugprone-incorrect-roundings): constexpr, which std::lround is not; n >= -1, so never negative
 constexpr std::uint16_t code(float n) { return static_cast<std::uint16_t>((n + 1) * 0.5f * 65535 + 0.5f); }
 Vec3 decoded_normal() {
     const auto back = [](float n) { return 2 * static_cast<float>(code(n)) / 65535 - 1; };

@@ -18,7 +18,7 @@ namespace sombra::testing {
 // window starts at `origin` (the display window is the same box), with the
 // first channels.size() floats of each pixel stored under those names.
 inline void write_exr(const std::filesystem::path& file, int width, int height, const std::vector<float>& rgb,
-                      Imath::V2i origin = {0, 0}, const std::vector<std::string>& channels = {"R", "G", "B"}) {
+                      const Imath::V2i& origin = {0, 0}, const std::vector<std::string>& channels = {"R", "G", "B"}) {
     const Imath::Box2i window(origin, origin + Imath::V2i(width - 1, height - 1));
     Imf::Header header(window, window);
     Imf::FrameBuffer frame;

@@ -9,6 +9,7 @@
 
 #include <cmath>
 #include <map>
+#include <utility>
 
 #include "scene/gltf_test_files.h"
 #include "scene/mesh_file.h"
@@ -140,7 +141,7 @@ const std::vector<float> kTangents{2, 0, 0, 1, 0, 3, 0, -1, 0.6f, 0.8f, 0, 1, 0,
 GltfFile tangent_quad(nlohmann::json node = nlohmann::json::object()) {
     return quad_with(
         [](GltfFile& f) { return nlohmann::json{{"TANGENT", f.add_array(kTangents, gltf_test::kFloat, 4, "VEC4")}}; },
-        node);
+        std::move(node));
 }
 
 TEST(GltfAttributes, TangentsAreNormalisedAndKeepTheirHandedness) {

@@ -76,7 +76,7 @@ std::vector<float> read_colors(const draco::Mesh& mesh, std::optional<std::uint3
                                const std::string& what) {
     if (!id) return {};
     const bool rgba = find_attribute(mesh, *id, file, what, "COLOR_0")->num_components() >= 4;
-    const std::vector<float> read = read_attribute(mesh, id, rgba ? 4 : 3, file, what, "COLOR_0", true);
+    std::vector<float> read = read_attribute(mesh, id, rgba ? 4 : 3, file, what, "COLOR_0", true);
     if (rgba) return read;
     std::vector<float> out(read.size() / 3 * 4, 1.0f);
     for (std::size_t i = 0; i < read.size() / 3; ++i)

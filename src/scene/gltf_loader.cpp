@@ -41,8 +41,8 @@ Transform local_transform(const tinygltf::Node& n, int index, const std::string&
     Transform t;
     if (!n.matrix.empty()) {
         if (n.matrix.size() != 16) throw Error(file, node_name(index) + ": matrix must have 16 numbers");
-        for (int row = 0; row < 4; ++row)
-            for (int col = 0; col < 4; ++col) t.m[std::size_t(row * 4 + col)] = float(n.matrix[std::size_t(col * 4 + row)]);
+        for (std::size_t row = 0; row < 4; ++row)
+            for (std::size_t col = 0; col < 4; ++col) t.m[row * 4 + col] = float(n.matrix[col * 4 + row]);
         if (t.m[12] != 0 || t.m[13] != 0 || t.m[14] != 0 || t.m[15] != 1)
             throw Error(file, node_name(index) + ": matrix's last row must be [0, 0, 0, 1]");
         return t;
@@ -63,9 +63,9 @@ Transform local_transform(const tinygltf::Node& n, int index, const std::string&
                             {2 * (x * y + z * w), 1 - 2 * (x * x + z * z), 2 * (y * z - x * w)},
                             {2 * (x * z - y * w), 2 * (y * z + x * w), 1 - 2 * (x * x + y * y)}};
     const float scale[3] = {s.x, s.y, s.z};
-    for (int row = 0; row < 3; ++row) {
-        for (int col = 0; col < 3; ++col) t.m[std::size_t(row * 4 + col)] = float(r[row][col]) * scale[col];
-        t.m[std::size_t(row * 4 + 3)] = n.translation.empty() ? 0.0f : float(n.translation[std::size_t(row)]);
+    for (std::size_t row = 0; row < 3; ++row) {
+        for (std::size_t col = 0; col < 3; ++col) t.m[row * 4 + col] = float(r[row][col]) * scale[col];
+        t.m[row * 4 + 3] = n.translation.empty() ? 0.0f : float(n.translation[row]);
     }
     return t;
 }

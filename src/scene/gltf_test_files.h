@@ -9,6 +9,7 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "core/vec2.h"
@@ -61,7 +62,7 @@ struct GltfFile {
         return int(doc["meshes"].size()) - 1;
     }
     int add_node(nlohmann::json node) {
-        doc["nodes"].push_back(node);
+        doc["nodes"].push_back(std::move(node));
         return int(doc["nodes"].size()) - 1;
     }
     // The default scene with these root nodes.

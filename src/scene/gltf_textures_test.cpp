@@ -33,7 +33,7 @@ std::string two_by_two_png(const TempFolder& dir) {
 // A unit quad whose four corners carry, in glTF's convention, the uv of the
 // centre of one texel each: (0, 0) corner → top-left texel (red), (1, 0) →
 // top-right (green), (1, 1) → bottom-right (white), (0, 1) → bottom-left (blue).
-GltfFile textured_quad(nlohmann::json image, const std::string& alpha_mode = "OPAQUE") {
+GltfFile textured_quad(const nlohmann::json& image, const std::string& alpha_mode = "OPAQUE") {
     GltfFile f;
     const int p = f.add_positions({{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}});
     const int uv = f.add_uvs({{0.25f, 0.25f}, {0.75f, 0.25f}, {0.75f, 0.75f}, {0.25f, 0.75f}});

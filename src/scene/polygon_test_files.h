@@ -36,7 +36,7 @@ struct TempFolder {
 
     // Writes `bytes` to NAME in the folder and returns its path.
     std::filesystem::path write(const std::string& name, std::string_view bytes) const {
-        const std::filesystem::path file = path / name;
+        std::filesystem::path file = path / name;
         std::ofstream out(file, std::ios::binary);
         out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
         return file;

@@ -79,7 +79,8 @@ TEST(MipPyramid, EveryLevelKeepsTheTexturesMean) {
     const auto mean = [](const std::vector<float>& v, int channel) {
         double sum = 0;
         for (std::size_t i = static_cast<std::size_t>(channel); i < v.size(); i += 3) sum += v[i];
-        return sum / static_cast<double>(v.size() / 3);
+        const std::size_t texels = v.size() / 3;
+        return sum / static_cast<double>(texels);
     };
     ASSERT_EQ(t.mip_levels.size(), 4u) << "37 x 23 -> 18 x 11 -> 9 x 5 -> 4 x 2 -> 2 x 1";
     for (int c = 0; c < 3; ++c)
