@@ -19,6 +19,7 @@ packages=(
   libembree-dev          # --accel embree, the BVH's yardstick (optional: the build works without it)
   python3-matplotlib python3-numpy  # tools/bench.sh: the big benchmark mesh and the cost-growth plot
   clang-14 libclang-rt-14-dev  # libFuzzer + sanitizer runtimes (tools/fuzz.sh)
+  clang-tidy-14 clang-format-14  # tools/tidy.sh (CI: zero findings), .clang-format
 )
 
 missing=()

@@ -21,7 +21,7 @@ struct Camera {
     // unit_forward is forward / |forward|.
     float lens_radius = 0;
     float focus_distance = 1;
-    Vec3 lens_left, lens_up, unit_forward;
+    Vec3 lens_left{0.0f}, lens_up{0.0f}, unit_forward{0.0f};
 };
 
 // Resolves either form of the scene's camera. The look-at form depends on the
