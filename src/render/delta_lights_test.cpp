@@ -12,6 +12,7 @@
 #include <fstream>
 
 #include "render/render.h"
+#include "render/plane_view_test_util.h"
 #include "render/test_meshes.h"
 #include "scene/scene_file.h"
 
@@ -19,13 +20,11 @@ namespace sombra {
 namespace {
 
 using testing::add_quad;
+using testing::camera_looking_down;
+using testing::plane_hit;
 
 constexpr double kPi = 3.14159265358979323846;
 
-// A camera at height `eye` looking straight down at the plane y = 0.
-Camera camera_looking_down(float eye, float half_extent) {
-    return Camera{{0, eye, 0}, {-half_extent, 0, 0}, {0, 0, -half_extent}, {0, -1, 0}};
-}
 
 RenderOutput render(const Scene& scene, const Camera& camera, RenderSettings settings) {
     const Accel accel = make_accel(scene, AccelKind::Bvh);
@@ -35,16 +34,6 @@ RenderOutput render(const Scene& scene, const Camera& camera, RenderSettings set
     return render_image(job, progress);
 }
 
-// Where the ray through pixel (i, j)'s centre meets the plane y = 0 (in double).
-void plane_hit(const Camera& c, int i, int j, int w, int h, double& x, double& z) {
-    const double s = 1.0 - (2.0 * i + 1.0) / w, t = 1.0 - (2.0 * j + 1.0) / h;
-    const double dx = s * c.left.x + t * c.up.x + c.forward.x;
-    const double dy = s * c.left.y + t * c.up.y + c.forward.y;
-    const double dz = s * c.left.z + t * c.up.z + c.forward.z;
-    const double k = -static_cast<double>(c.origin.y) / dy;
-    x = c.origin.x + k * dx;
-    z = c.origin.z + k * dz;
-}
 
 Scene diffuse_plane(Vec3 kd) {
     Scene scene;
