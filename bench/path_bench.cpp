@@ -17,7 +17,7 @@
 #include "render/integrator.h"
 #include "render/render.h"
 #include "render/sampler.h"
-#include "scene/scene_file.h"
+#include "io/scene_json/scene_file.h"
 
 namespace sombra::bench {
 

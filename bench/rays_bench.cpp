@@ -8,7 +8,7 @@
 #include <random>
 
 #include "core/error.h"
-#include "scene/scene_file.h"
+#include "io/scene_json/scene_file.h"
 
 namespace sombra::bench {
 

@@ -6,7 +6,7 @@
 #include "bench_util.h"
 #include "core/error.h"
 #include "measure.h"
-#include "scene/scene_file.h"
+#include "io/scene_json/scene_file.h"
 
 namespace sombra::bench {
 

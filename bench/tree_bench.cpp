@@ -5,7 +5,7 @@
 
 #include "accel/bvh_binary.h"
 #include "bench_util.h"
-#include "scene/scene_file.h"
+#include "io/scene_json/scene_file.h"
 
 namespace sombra::bench {
 

@@ -13,9 +13,9 @@
 #include <string_view>
 
 #include "core/error.h"
-#include "scene/mesh_file.h"
+#include "io/mesh_file.h"
 #include "scene/scene.h"
-#include "scene/scene_file.h"
+#include "io/scene_json/scene_file.h"
 #include "scene/texture.h"
 
 namespace sombra::fuzz {

@@ -20,7 +20,7 @@
 #include "accel/accel_test_util.h"
 #include "accel/bvh.h"
 #include "accel/bvh_binary.h"
-#include "scene/mesh_file.h"
+#include "io/mesh_file.h"
 
 namespace sombra {
 namespace {

@@ -15,8 +15,8 @@
 #include "accel/accel_test_util.h"
 #include "accel/embree_backend.h"
 #include "render/render.h"
-#include "scene/mesh_file.h"
-#include "scene/scene_file.h"
+#include "io/mesh_file.h"
+#include "io/scene_json/scene_file.h"
 
 namespace sombra {
 namespace {

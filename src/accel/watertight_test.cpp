@@ -17,8 +17,8 @@
 
 #include "accel/accel.h"
 #include "render/camera.h"
-#include "scene/mesh_file.h"
-#include "scene/scene_file.h"
+#include "io/mesh_file.h"
+#include "io/scene_json/scene_file.h"
 
 namespace sombra {
 namespace {

@@ -11,7 +11,7 @@
 #include "core/error.h"
 #include "render/lights.h"
 #include "scene/scene.h"
-#include "scene/scene_file.h"
+#include "io/scene_json/scene_file.h"
 
 namespace sombra {
 

@@ -14,7 +14,7 @@
 
 #include "explain/describe.h"
 #include "render/test_meshes.h"
-#include "scene/scene_file.h"
+#include "io/scene_json/scene_file.h"
 
 namespace sombra {
 namespace {

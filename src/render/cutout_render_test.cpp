@@ -9,9 +9,9 @@
 #include <string>
 
 #include "render/render.h"
-#include "scene/image_test_files.h"
-#include "scene/polygon_test_files.h"
-#include "scene/scene_file.h"
+#include "io/images/image_test_files.h"
+#include "io/polygon_test_files.h"
+#include "io/scene_json/scene_file.h"
 
 namespace sombra {
 namespace {

@@ -13,7 +13,7 @@
 
 #include "render/render.h"
 #include "render/test_meshes.h"
-#include "scene/scene_file.h"
+#include "io/scene_json/scene_file.h"
 
 namespace sombra {
 namespace {

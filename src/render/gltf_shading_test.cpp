@@ -11,10 +11,10 @@
 
 #include "render/interaction.h"
 #include "render/shading.h"
-#include "scene/gltf_test_files.h"
-#include "scene/image_test_files.h"
-#include "scene/polygon_test_files.h"
-#include "scene/scene_file.h"
+#include "io/gltf/gltf_test_files.h"
+#include "io/images/image_test_files.h"
+#include "io/polygon_test_files.h"
+#include "io/scene_json/scene_file.h"
 
 namespace sombra {
 namespace {

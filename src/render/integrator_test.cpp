@@ -6,7 +6,7 @@
 #include <cmath>
 
 #include "render/render.h"
-#include "scene/scene_file.h"
+#include "io/scene_json/scene_file.h"
 #include "render/test_meshes.h"
 
 namespace sombra {

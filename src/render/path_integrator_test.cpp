@@ -12,7 +12,7 @@
 #include "render/integrator.h"
 #include "render/pbr_test_util.h"
 #include "render/render.h"
-#include "scene/scene_file.h"
+#include "io/scene_json/scene_file.h"
 #include "render/test_meshes.h"
 
 namespace sombra {

@@ -5,7 +5,7 @@
 
 #include <filesystem>
 
-#include "scene/scene_file.h"
+#include "io/scene_json/scene_file.h"
 
 namespace sombra {
 namespace {

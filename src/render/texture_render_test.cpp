@@ -11,9 +11,9 @@
 
 #include "render/render.h"
 #include "render/shading.h"
-#include "scene/image_test_files.h"
-#include "scene/polygon_test_files.h"
-#include "scene/scene_file.h"
+#include "io/images/image_test_files.h"
+#include "io/polygon_test_files.h"
+#include "io/scene_json/scene_file.h"
 
 namespace sombra {
 namespace {

@@ -13,7 +13,7 @@
 #include "core/vec3.h"
 #include "scene/light.h"
 #include "scene/material.h"
-#include "scene/texture_refs.h"
+#include "io/gltf/texture_refs.h"
 
 namespace sombra {
 
