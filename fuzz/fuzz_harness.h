@@ -13,6 +13,7 @@
 #include <string_view>
 
 #include "core/error.h"
+#include "core/image_limits.h"
 #include "io/mesh_file.h"
 #include "scene/scene.h"
 #include "io/scene_json/scene_file.h"
@@ -227,8 +228,9 @@ inline std::string loaded_mesh_problem(const LoadedMesh& loaded) {
     return mesh_problem(loaded.mesh, loaded.materials.size());
 }
 
-inline std::string scene_problem(const Scene& scene) {
-    if (std::string problem = render_settings_problem(scene.render); !problem.empty()) return problem;
+inline std::string scene_problem(const LoadedScene& loaded) {
+    if (std::string problem = render_settings_problem(loaded.settings); !problem.empty()) return problem;
+    const Scene& scene = loaded.scene;
     if (!is_finite(scene.background) || min_component(scene.background) < 0) return "bad background";
     const CameraSpec& c = scene.camera;
     if (c.basis.has_value() == c.look_at.has_value()) return "not exactly one camera form";

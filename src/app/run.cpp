@@ -43,9 +43,10 @@ int run_render(const CliOptions& o) {
         RunStats stats;
         Diagnostics diag;
         const auto load_start = Clock::now();
-        Scene scene = load_input(o.input, diag);
+        LoadedScene input = load_input(o.input, diag);
+        Scene& scene = input.scene;
         stats.load_seconds = seconds_since(load_start);
-        const RenderSettings settings = resolve_settings(scene.render, o);
+        const RenderSettings settings = resolve_settings(input.settings, o);
         print_warnings(diag, scene, settings, o);
         const AccelKind kind = *parse_accel_kind(o.accel);  // the command line checked the name
 

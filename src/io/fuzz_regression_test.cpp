@@ -143,10 +143,10 @@ TEST_F(FuzzRegression, HarnessSceneMeshesLoad) {
     const std::string scene = R"({"camera": {"origin": [0, 0, 5], "look_at": [0, 0, 0]},
         "objects": [{"file": "m.obj"}, {"file": "m.ply", "transform": [{"translate": [2, 0, 0]}]}]})";
     Diagnostics diag;
-    const Scene loaded = load_scene_file(fuzz::stage_input(fuzz::Target::Scene, scene, folder), diag);
-    EXPECT_EQ(loaded.geometry.triangles.size(), 3u);  // the OBJ quad and the PLY triangle
-    ASSERT_FALSE(loaded.materials.empty());
-    EXPECT_EQ(loaded.materials[0].name, "red");
+    const LoadedScene loaded = load_scene_file(fuzz::stage_input(fuzz::Target::Scene, scene, folder), diag);
+    EXPECT_EQ(loaded.scene.geometry.triangles.size(), 3u);  // the OBJ quad and the PLY triangle
+    ASSERT_FALSE(loaded.scene.materials.empty());
+    EXPECT_EQ(loaded.scene.materials[0].name, "red");
     EXPECT_EQ(fuzz::scene_problem(loaded), "");
     EXPECT_TRUE(diag.warnings.empty());
 }

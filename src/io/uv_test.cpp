@@ -84,7 +84,7 @@ TEST(Uvs, SceneAssemblyOffsetsUvIndicesAndMarksObjectsWithout) {
             {"file": "quad.obj"},
             {"file": "quad.obj", "transform": [{"translate": [3, 0, 0]}]}]})");
     Diagnostics diag;
-    const TriangleMesh world = load_scene_file(scene_path, diag).geometry;
+    const TriangleMesh world = load_scene_file(scene_path, diag).scene.geometry;
     ASSERT_EQ(world.triangle_count(), 1u + 4u + 4u);
     ASSERT_EQ(world.uv_indices.size(), world.triangles.size());
     EXPECT_EQ(world.uvs.size(), 8u);  // each object's own copy

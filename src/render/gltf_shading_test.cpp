@@ -69,7 +69,7 @@ protected:
             "materials": {"grey": {"type": "diffuse", "kd": [0.5, 0.5, 0.5]}},
             "objects": [{"file": "q.gltf")" + object_extra + "}]}");
         Diagnostics diag;
-        return load_scene_file(dir.path / "s.json", diag);
+        return load_scene_file(dir.path / "s.json", diag).scene;
     }
     TempFolder dir;
 };

@@ -352,7 +352,7 @@ TEST(PathIntegrator, DepthOneEqualsDirectOnPointLightScenes) {
     for (const char* name : {"bunny.json", "phong.json"}) {
         if (!std::filesystem::exists(kShared / "scenes" / name)) GTEST_SKIP() << "shared/ not found at " << kShared;
         Diagnostics diag;
-        Scene scene = load_scene_file(kShared / "scenes" / name, diag);
+        Scene scene = load_scene_file(kShared / "scenes" / name, diag).scene;
         // Spec §10: with a black background (which path tracing would light with).
         scene.background = Vec3{0.0f};
         RenderSettings settings{80, 45, 2, 3};
@@ -397,7 +397,7 @@ TEST(PathIntegrator, NoNonFiniteSamplesOnTheSharedScenes) {
     for (const char* name : {"cornell.json", "phong.json", "bunny.json"}) {
         if (!std::filesystem::exists(kShared / "scenes" / name)) GTEST_SKIP() << "shared/ not found at " << kShared;
         Diagnostics diag;
-        const Scene scene = load_scene_file(kShared / "scenes" / name, diag);
+        const Scene scene = load_scene_file(kShared / "scenes" / name, diag).scene;
         RenderSettings settings{48, 27, 4, 1};
         settings.integrator = IntegratorKind::Path;
         const RenderOutput out = render_with(scene, settings, 0);

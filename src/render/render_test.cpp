@@ -29,7 +29,7 @@ Rendered render_scene(const Scene& scene, AccelKind kind, RenderSettings setting
 
 Scene load_shared_scene(const char* name) {
     Diagnostics diag;
-    return load_scene_file(kShared / "scenes" / name, diag);
+    return load_scene_file(kShared / "scenes" / name, diag).scene;
 }
 
 #define SKIP_WITHOUT_SHARED()                                                                      \

@@ -27,7 +27,7 @@ struct HdrImage {
 //
 // Throws Error(path, what) when the file is missing or unreadable, is not
 // that format (or is truncated), has another extension, has no pixels or more
-// than kMaxImageSide per side or kMaxPixels in all (src/scene/scene.h;
+// than kMaxImageSide per side or kMaxPixels in all (core/image_limits.h;
 // checked from the header, before the pixels are allocated), or holds a
 // negative, NaN or infinite value: the message names the first such pixel in
 // reading order, e.g. "pixel (3, 7) is negative (-0.25)".

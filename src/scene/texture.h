@@ -75,7 +75,7 @@ inline constexpr std::uintmax_t kMaxTextureFileBytes = std::uintmax_t{1} << 30;
 // by extension, through read_hdr_image (scene/hdr_image.h), as 3-channel
 // linear RGB. Throws Error(path, what) with a one-line message for a missing
 // or unreadable file, another format, a truncated or corrupt image, or one
-// larger than kMaxImageSide per side (scene/scene.h) or kMaxTextureValues.
+// larger than kMaxImageSide per side (core/image_limits.h) or kMaxTextureValues.
 Texture read_texture_file(const std::filesystem::path& path, TextureEncoding encoding);
 
 // Decodes an encoded PNG, JPEG, TGA or BMP image held in memory; errors as

@@ -183,7 +183,7 @@ TEST(GltfAttributes, ASceneObjectsMirrorFlipsTangentsAsANodesDoes) {
     dir.write("s.json", R"({"camera": {"origin": [0, 0, 5], "look_at": [0, 0, 0]},
         "objects": [{"file": "m.gltf", "transform": [{"scale": [1, -2, 1]}, {"translate": [0, 0, 1]}]}]})");
     Diagnostics diag;
-    const Scene scene = load_scene_file(dir.path / "s.json", diag);
+    const Scene scene = load_scene_file(dir.path / "s.json", diag).scene;
     const auto by_position = tangents_by_position(scene.geometry);
     expect_near(by_position.at({0, 0, 1}), {1, 0, 0, -1}, "corner 0");
     expect_near(by_position.at({1, 0, 1}), {0, -1, 0, 1}, "corner 1");

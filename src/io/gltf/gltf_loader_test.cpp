@@ -222,7 +222,7 @@ TEST(GltfLoader, LightsAreConvertedFromCandelaAndLuxAndPlacedByTheirNode) {
     dir.write("s.json", R"({"camera": {"origin": [0, 0, 5], "look_at": [0, 0, 0]},
         "objects": [{"file": "m.gltf", "transform": [{"rotate": {"axis": [0, 1, 0], "degrees": 90}},
                                                     {"translate": [0, 0, -1]}]}]})");
-    const Scene scene = load_scene_file(dir.path / "s.json", diag);
+    const Scene scene = load_scene_file(dir.path / "s.json", diag).scene;
     ASSERT_EQ(scene.lights.size(), 3u);
     expect_near(scene.lights[0].position, {0, 2, -2}, 1e-6f);
     expect_near(scene.lights[1].position, {0, 2, -1}, 1e-6f);
@@ -275,19 +275,20 @@ TEST(GltfLoader, QuickLookUsesTheFilesFirstCamera) {
     TempFolder dir;
     f.save(dir.path / "m.gltf");
     Diagnostics diag;
-    const Scene scene = make_quicklook_scene(dir.path / "m.gltf", diag);
+    const LoadedScene loaded = make_quicklook_scene(dir.path / "m.gltf", diag);
+    const Scene& scene = loaded.scene;
     ASSERT_TRUE(scene.camera.look_at);
     expect_near(scene.camera.look_at->origin, {0, 0, 4});
     expect_near(scene.camera.look_at->look_at, {-1, 0, 4});
     expect_near(scene.camera.look_at->up, {0, 1, 0});
     EXPECT_NEAR(scene.camera.look_at->fov_degrees, 0.5 * 180 / 3.14159265358979, 1e-4);
-    EXPECT_EQ(scene.render.height, scene.render.width / 2);
+    EXPECT_EQ(loaded.settings.height, loaded.settings.width / 2);
     ASSERT_EQ(scene.lights.size(), 3u);  // the file's lights replace the automatic ones
 
     // Without a camera, the automatic framing looks at the model from +z.
     f.doc["scenes"][0]["nodes"] = {0};
     f.save(dir.path / "m.gltf");
-    const Scene framed = make_quicklook_scene(dir.path / "m.gltf", diag);
+    const Scene framed = make_quicklook_scene(dir.path / "m.gltf", diag).scene;
     EXPECT_GT(framed.camera.look_at->origin.z, 1.0f);
     EXPECT_EQ(framed.lights.size(), 3u);
 }

@@ -17,7 +17,7 @@
 
 #include "core/error.h"
 #include "core/format.h"
-#include "scene/scene.h"
+#include "core/image_limits.h"
 
 namespace sombra {
 
@@ -35,7 +35,7 @@ std::string one_line(std::string s) {
     return s;
 }
 
-// The size limits of src/scene/scene.h, checked before any pixel is allocated.
+// The size limits of core/image_limits.h, checked before any pixel is allocated.
 void check_size(const std::filesystem::path& path, std::int64_t width, std::int64_t height) {
     if (width < 1 || height < 1)
         throw Error(path.string(), "image has no pixels (" + std::to_string(width) + "×" + std::to_string(height) + ")");

@@ -16,8 +16,8 @@
 #include <vector>
 
 #include "core/error.h"
+#include "core/image_limits.h"
 #include "scene/hdr_image.h"
-#include "scene/scene.h"
 #include "scene/texture.h"
 #include "io/images/texture_image.h"
 

@@ -176,30 +176,18 @@ std::string read_scene_text(const fs::path& path) {
 
 }  // namespace
 
-std::string render_settings_problem(const RenderSettings& r) {
-    const std::string side_range = " must be between 1 and " + std::to_string(kMaxImageSide);
-    if (r.width < 1 || r.width > kMaxImageSide) return "width" + side_range;
-    if (r.height < 1 || r.height > kMaxImageSide) return "height" + side_range;
-    if (r.spp < 1 || r.spp > kMaxSpp) return "spp must be between 1 and " + std::to_string(kMaxSpp);
-    if (r.max_depth < 0 || r.max_depth > kMaxDepth) return "max_depth must be between 0 and " + std::to_string(kMaxDepth);
-    const std::int64_t pixels = std::int64_t{r.width} * r.height;
-    if (pixels > kMaxPixels)
-        return "image of " + std::to_string(r.width) + "x" + std::to_string(r.height) +
-               " pixels exceeds the limit of " + std::to_string(kMaxPixels) + " pixels";
-    return {};
-}
-
-Scene load_scene_file(const fs::path& path, Diagnostics& diag) {
+LoadedScene load_scene_file(const fs::path& path, Diagnostics& diag) {
     return load_scene_text(read_scene_text(path), path, diag);
 }
 
-Scene load_scene_text(const std::string& text, const fs::path& path, Diagnostics& diag) {
+LoadedScene load_scene_text(const std::string& text, const fs::path& path, Diagnostics& diag) {
     const SceneJson s{path.string(), diag};
     const Json root = parse_scene_json(text, s.name);
     expect_keys(s, root, "", {"render", "background", "environment", "camera", "materials", "lights", "objects"});
 
-    Scene scene;
-    if (const Json* v = find_member(root, "render")) scene.render = read_render(s, *v, "/render");
+    LoadedScene out;
+    Scene& scene = out.scene;
+    if (const Json* v = find_member(root, "render")) out.settings = read_render(s, *v, "/render");
     if (const Json* v = find_member(root, "background")) scene.background = read_rgb(s, *v, "/background");
     scene.camera = read_camera(s, require_member(s, root, "", "camera"), "/camera");
     SceneTextures textures{path.parent_path(), &scene.textures};
@@ -307,7 +295,7 @@ Scene load_scene_text(const std::string& text, const fs::path& path, Diagnostics
     }
     for (std::size_t i = 0; i < quad_meshes.size(); ++i) append_object(scene, quad_meshes[i], quad_specs[i], s);
     mark_complete_corners(scene.geometry);
-    return scene;
+    return out;
 }
 
 namespace {
@@ -338,11 +326,12 @@ Sphere bounding_sphere(const TriangleMesh& mesh) {
 
 }  // namespace
 
-Scene make_quicklook_scene(const std::filesystem::path& model, Diagnostics& diag) {
+LoadedScene make_quicklook_scene(const std::filesystem::path& model, Diagnostics& diag) {
     LoadedMesh loaded = load_mesh_file(model, diag);
     const Sphere sphere = bounding_sphere(loaded.mesh);
 
-    Scene scene;
+    LoadedScene out;
+    Scene& scene = out.scene;
     scene.background = Vec3{0.02f};
     scene.materials = std::move(loaded.materials);
     scene.textures = std::move(loaded.textures);
@@ -359,8 +348,8 @@ Scene make_quicklook_scene(const std::filesystem::path& model, Diagnostics& diag
         const ModelCamera& c = *loaded.camera;
         scene.camera.look_at = CameraLookAt{c.origin, c.origin + c.forward, c.up, c.yfov_degrees};
         if (c.aspect > 0) {
-            const float height = std::round(static_cast<float>(scene.render.width) / c.aspect);
-            scene.render.height = static_cast<int>(std::clamp(height, 1.0f, static_cast<float>(kMaxImageSide)));
+            const float height = std::round(static_cast<float>(out.settings.width) / c.aspect);
+            out.settings.height = static_cast<int>(std::clamp(height, 1.0f, static_cast<float>(kMaxImageSide)));
         }
     }
     scene.lights = std::move(loaded.lights);
@@ -372,7 +361,7 @@ Scene make_quicklook_scene(const std::filesystem::path& model, Diagnostics& diag
     const Vec3 view_dir = normalize(Vec3{0.0f, 0.35f, 1.0f});  // front, a little above
     if (!scene.camera.look_at)
         scene.camera.look_at = CameraLookAt{sphere.centre + distance * view_dir, sphere.centre, Vec3{0, 1, 0}, kFovDegrees};
-    if (!scene.lights.empty()) return scene;
+    if (!scene.lights.empty()) return out;
 
     // Three-point lighting around the camera, at a few radii from the model.
     auto light_at = [&](Vec3 direction, float distance_in_radii, float share) {
@@ -383,7 +372,7 @@ Scene make_quicklook_scene(const std::filesystem::path& model, Diagnostics& diag
     scene.lights.push_back(light_at({-1.0f, 1.4f, 1.3f}, 4.0f, 1.0f));   // key: upper left, front
     scene.lights.push_back(light_at({1.2f, 0.3f, 1.0f}, 4.0f, 0.35f));   // fill: right, low
     scene.lights.push_back(light_at({0.3f, 1.2f, -1.2f}, 4.0f, 0.5f));   // rim: behind, above
-    return scene;
+    return out;
 }
 
 }  // namespace sombra

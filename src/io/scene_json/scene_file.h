@@ -7,7 +7,7 @@
 #include <string>
 
 #include "core/error.h"
-#include "scene/scene.h"
+#include "io/loaded_scene.h"
 
 namespace sombra {
 
@@ -15,12 +15,13 @@ namespace sombra {
 // to the scene's folder), applies transforms and material overrides, and
 // concatenates all objects into Scene::geometry. Throws Error with WHERE as
 // "scene.json:line:col" for malformed JSON and "scene.json: /json/path" (the
-// JSON pointer of the offending value) for semantic errors.
-Scene load_scene_file(const std::filesystem::path& path, Diagnostics& diag);
+// JSON pointer of the offending value) for semantic errors. The settings are
+// the file's "render" section, checked against render_settings_problem.
+LoadedScene load_scene_file(const std::filesystem::path& path, Diagnostics& diag);
 
 // The same from JSON text already in memory; `path` names it in messages and
 // anchors relative mesh paths.
-Scene load_scene_text(const std::string& text, const std::filesystem::path& path, Diagnostics& diag);
+LoadedScene load_scene_text(const std::string& text, const std::filesystem::path& path, Diagnostics& diag);
 
 // Loads the model and frames it: a look-at camera with a 40° vertical field
 // of view, in front of the model (+z) and a little above, at the distance
@@ -30,6 +31,6 @@ Scene load_scene_text(const std::string& text, const std::filesystem::path& path
 // file's first perspective camera replaces the framing (its aspect ratio
 // sets the default image's height), and its point lights, when it has any,
 // replace the three lights (spec §7, §13).
-Scene make_quicklook_scene(const std::filesystem::path& model, Diagnostics& diag);
+LoadedScene make_quicklook_scene(const std::filesystem::path& model, Diagnostics& diag);
 
 }  // namespace sombra

@@ -39,7 +39,8 @@ protected:
     }
     static void write(const fs::path& path, const std::string& text) { std::ofstream(path, std::ios::binary) << text; }
 
-    Scene load(const std::string& text) { return load_scene_text(text, scene_path, diag); }
+    Scene load(const std::string& text) { return load_scene_text(text, scene_path, diag).scene; }
+    RenderSettings settings_of(const std::string& text) { return load_scene_text(text, scene_path, diag).settings; }
 
     Diagnostics diag;
 };
@@ -201,11 +202,13 @@ TEST_F(SceneFile, MissingSceneFileIsAnError) {
 }
 
 TEST_F(SceneFile, DefaultsApply) {
-    const Scene s = load(scene(""));
-    EXPECT_EQ(s.render.width, 640);
-    EXPECT_EQ(s.render.height, 480);
-    EXPECT_EQ(s.render.spp, 1);
-    EXPECT_EQ(s.render.seed, 0u);
+    const LoadedScene loaded = load_scene_text(scene(""), scene_path, diag);
+    const RenderSettings& r = loaded.settings;
+    EXPECT_EQ(r.width, 640);
+    EXPECT_EQ(r.height, 480);
+    EXPECT_EQ(r.spp, 1);
+    EXPECT_EQ(r.seed, 0u);
+    const Scene& s = loaded.scene;
     EXPECT_EQ(s.background, Vec3(0.0f));
     EXPECT_TRUE(s.lights.empty());
     ASSERT_TRUE(s.camera.look_at.has_value());
@@ -220,15 +223,18 @@ TEST_F(SceneFile, DefaultsApply) {
 }
 
 TEST_F(SceneFile, SettingsAndSectionsAreRead) {
-    const Scene s = load(scene(
+    const LoadedScene loaded = load_scene_text(scene(
         R"("render": {"width": 320, "height": 200, "spp": 16, "seed": 18446744073709551615},
            "background": [0.1, 0.2, 0.3],
            "materials": {"gold": {"type": "phong", "kd": [0.4, 0.3, 0.1], "ks": [0.5, 0.4, 0.2], "shininess": 0, "ke": [0, 0, 7]}},
-           "lights": [{"type": "point", "position": [1, 2, 3], "intensity": [10, 20, 30]}, {"position": [0, 9, 0], "intensity": [0, 0, 0]}])"));
-    EXPECT_EQ(s.render.width, 320);
-    EXPECT_EQ(s.render.height, 200);
-    EXPECT_EQ(s.render.spp, 16);
-    EXPECT_EQ(s.render.seed, 18446744073709551615ull);
+           "lights": [{"type": "point", "position": [1, 2, 3], "intensity": [10, 20, 30]}, {"position": [0, 9, 0], "intensity": [0, 0, 0]}])"),
+        scene_path, diag);
+    const RenderSettings& r = loaded.settings;
+    EXPECT_EQ(r.width, 320);
+    EXPECT_EQ(r.height, 200);
+    EXPECT_EQ(r.spp, 16);
+    EXPECT_EQ(r.seed, 18446744073709551615ull);
+    const Scene& s = loaded.scene;
     EXPECT_EQ(s.background, Vec3(0.1f, 0.2f, 0.3f));
     ASSERT_EQ(s.lights.size(), 2u);
     EXPECT_EQ(s.lights[0].position, Vec3(1, 2, 3));
@@ -326,7 +332,7 @@ TEST_F(SceneFile, ObjectsConcatenateWithOffsetsAndMaterials) {
 TEST_F(SceneFile, RelativeMeshPathsFollowTheSceneFolder) {
     const fs::path sub = dir / "models" / "nested.json";
     std::ofstream(sub) << scene_with_object(R"({"file": "../tri.obj"})");
-    const Scene s = load_scene_file(sub, diag);
+    const Scene s = load_scene_file(sub, diag).scene;
     EXPECT_EQ(s.geometry.triangle_count(), 1u);
 }
 
@@ -342,7 +348,7 @@ TEST(SharedScenes, LoadWithTheirTriangleCounts) {
     for (const auto& [name, triangles] : expected) {
         SCOPED_TRACE(name);
         Diagnostics diag;
-        const Scene s = load_scene_file(scenes / name, diag);
+        const Scene s = load_scene_file(scenes / name, diag).scene;
         EXPECT_EQ(s.geometry.triangle_count(), triangles);
         EXPECT_EQ(s.geometry.material_ids.size(), triangles);
         for (const Index3& t : s.geometry.triangles)
@@ -370,7 +376,7 @@ TEST(RepositoryScenes, AllLoad) {
             continue;
         }
         Diagnostics diag;
-        const Scene s = load_scene_file(entry.path(), diag);
+        const Scene s = load_scene_file(entry.path(), diag).scene;
         EXPECT_GT(s.geometry.triangle_count(), 0u);
         for (const std::string& w : diag.warnings) {
             const bool asked_for = text.find("\"clamp_negative\": true") != std::string::npos &&
@@ -386,7 +392,7 @@ TEST(SharedScenes, CornellKeepsItsMtlMaterials) {
     const fs::path path = fs::path(SOMBRA_SHARED_DIR) / "scenes" / "cornell.json";
     if (!fs::exists(path)) GTEST_SKIP() << "shared/ not found at " << SOMBRA_SHARED_DIR;
     Diagnostics diag;
-    const Scene s = load_scene_file(path, diag);
+    const Scene s = load_scene_file(path, diag).scene;
     // The light quad (2 triangles) emits Ke 17 12 4; nothing else does.
     int emitting = 0;
     for (std::uint32_t id : s.geometry.material_ids) emitting += s.materials.at(id).ke == Vec3(17, 12, 4) ? 1 : 0;
@@ -397,7 +403,7 @@ TEST(SharedScenes, BunnyPlacementMatchesItsReadme) {
     const fs::path path = fs::path(SOMBRA_SHARED_DIR) / "scenes" / "bunny.json";
     if (!fs::exists(path)) GTEST_SKIP() << "shared/ not found at " << SOMBRA_SHARED_DIR;
     Diagnostics diag;
-    const Scene s = load_scene_file(path, diag);
+    const Scene s = load_scene_file(path, diag).scene;
     // Scaled by 10 and moved to stand on y = 0 (bunny's base at y = 0.03299 in the file).
     float min_y = INFINITY;
     for (std::size_t i = 0; i + 2 < s.geometry.triangle_count(); ++i)

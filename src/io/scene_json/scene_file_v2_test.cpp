@@ -44,7 +44,8 @@ protected:
     }
     static void write(const fs::path& path, const std::string& text) { std::ofstream(path, std::ios::binary) << text; }
 
-    Scene load(const std::string& text) { return load_scene_text(text, scene_path, diag); }
+    Scene load(const std::string& text) { return load_scene_text(text, scene_path, diag).scene; }
+    RenderSettings settings_of(const std::string& text) { return load_scene_text(text, scene_path, diag).settings; }
 
     // The Error message of loading `text` ("" when it loads).
     std::string error_of(const std::string& text) {
@@ -79,21 +80,21 @@ Vec3 winding_normal(const TriangleMesh& m, std::size_t t) {
 }
 
 TEST_F(SceneV2, RenderIntegratorAndMaxDepth) {
-    const Scene path = load(scene(R"("render": {"integrator": "path", "max_depth": 1024})"));
-    EXPECT_EQ(path.render.integrator, IntegratorKind::Path);
-    EXPECT_EQ(path.render.max_depth, 1024);
-    const Scene direct = load(scene(R"("render": {"integrator": "direct", "max_depth": 0})"));
-    EXPECT_EQ(direct.render.integrator, IntegratorKind::Direct);
-    EXPECT_EQ(direct.render.max_depth, 0);
-    const Scene defaults = load(scene(""));
-    EXPECT_EQ(defaults.render.integrator, IntegratorKind::Direct);
-    EXPECT_EQ(defaults.render.max_depth, 8);
+    const RenderSettings path = settings_of(scene(R"("render": {"integrator": "path", "max_depth": 1024})"));
+    EXPECT_EQ(path.integrator, IntegratorKind::Path);
+    EXPECT_EQ(path.max_depth, 1024);
+    const RenderSettings direct = settings_of(scene(R"("render": {"integrator": "direct", "max_depth": 0})"));
+    EXPECT_EQ(direct.integrator, IntegratorKind::Direct);
+    EXPECT_EQ(direct.max_depth, 0);
+    const RenderSettings defaults = settings_of(scene(""));
+    EXPECT_EQ(defaults.integrator, IntegratorKind::Direct);
+    EXPECT_EQ(defaults.max_depth, 8);
 }
 
 TEST_F(SceneV2, RenderTextureFilter) {
-    EXPECT_EQ(load(scene("")).render.texture_filter, TextureFilter::Bilinear);
-    EXPECT_EQ(load(scene(R"("render": {"texture_filter": "bilinear"})")).render.texture_filter, TextureFilter::Bilinear);
-    EXPECT_EQ(load(scene(R"("render": {"texture_filter": "mipmap"})")).render.texture_filter, TextureFilter::Mipmap);
+    EXPECT_EQ(settings_of(scene("")).texture_filter, TextureFilter::Bilinear);
+    EXPECT_EQ(settings_of(scene(R"("render": {"texture_filter": "bilinear"})")).texture_filter, TextureFilter::Bilinear);
+    EXPECT_EQ(settings_of(scene(R"("render": {"texture_filter": "mipmap"})")).texture_filter, TextureFilter::Mipmap);
 }
 
 TEST_F(SceneV2, MaterialsOfVersionTwo) {

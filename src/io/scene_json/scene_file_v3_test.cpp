@@ -32,7 +32,7 @@ protected:
         fs::remove_all(dir, ec);
     }
 
-    Scene load(const std::string& text) { return load_scene_text(text, scene_path, diag); }
+    Scene load(const std::string& text) { return load_scene_text(text, scene_path, diag).scene; }
     std::string error_of(const std::string& text) {
         try {
             load(text);

@@ -30,7 +30,8 @@ protected:
     }
     Scene load(const std::string& materials, const std::string& objects = R"([{"file": "quad.obj", "material": "m"}])") {
         return load_scene_text(kHead + R"("materials": )" + materials + R"(, "objects": )" + objects + "}",
-                               tmp.path / "scene.json", diag);
+                               tmp.path / "scene.json", diag)
+            .scene;
     }
     std::string error_of(const std::string& materials) {
         try {
