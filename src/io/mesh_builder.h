@@ -1,4 +1,4 @@
-// What the OBJ and PLY loaders share, private to src/scene: reading the
+// What the OBJ and PLY loaders share, private to src/io: reading the
 // file whole with the file-level errors both report the same way; splitting
 // one polygon into triangles; and MeshBuilder, which turns checked faces
 // into a LoadedMesh, dropping data that would poison the renderer
@@ -17,6 +17,7 @@
 
 #include "core/error.h"
 #include "core/vec3.h"
+#include "io/mesh_file.h"
 #include "scene/mesh.h"
 
 namespace sombra {

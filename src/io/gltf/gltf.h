@@ -1,4 +1,4 @@
-// What the glTF 2.0 loader's parts share, private to src/scene (spec §13):
+// What the glTF 2.0 loader's parts share, private to src/io/gltf (spec §13):
 // parsing with tinygltf behind guards (gltf_file.cpp) and the JSON types
 // checked before it (gltf_json_types.cpp), reading accessors
 // with every bound checked (gltf_accessors.cpp), decoding Draco-compressed
@@ -25,8 +25,12 @@
 #include "core/error.h"
 #include "core/vec2.h"
 #include "core/vec3.h"
-#include "scene/mesh.h"
 #include "io/gltf/texture_refs.h"
+#include "io/mesh_file.h"
+#include "scene/light.h"
+#include "scene/material.h"
+#include "scene/mesh.h"
+#include "scene/texture.h"
 
 namespace sombra::gltf {
 

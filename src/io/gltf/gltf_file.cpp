@@ -1,7 +1,7 @@
 // glTF file → tinygltf::Model, with the guards that tinygltf lacks on
 // hostile input. This is the one translation unit that compiles tinygltf's
 // implementation (header-only, Debian's libtinygltf-dev; JSON through
-// nlohmann-json), configured in scene/gltf.h.
+// nlohmann-json), configured in io/gltf/gltf.h.
 #define TINYGLTF_IMPLEMENTATION
 #include "io/gltf/gltf.h"
 

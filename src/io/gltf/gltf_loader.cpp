@@ -359,7 +359,6 @@ LoadedMesh load_gltf(const std::filesystem::path& path, Diagnostics& diag) {
     LoadedMesh out = builder.finish(std::move(materials.materials), diag);
     materials.texture_refs.resize(out.materials.size());  // the default material, if added, has none
     gltf::apply_textures(model, path, materials.texture_refs, out.materials, out.textures, diag);
-    out.texture_refs = std::move(materials.texture_refs);
     out.lights = std::move(lights);
     if (camera) out.camera = camera->second;
     return out;

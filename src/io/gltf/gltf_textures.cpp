@@ -6,6 +6,7 @@
 #include <span>
 
 #include "io/gltf/gltf.h"
+#include "io/images/texture_image.h"
 #include "scene/texture.h"
 
 namespace sombra::gltf {

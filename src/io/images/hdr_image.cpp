@@ -1,4 +1,4 @@
-#include "scene/hdr_image.h"
+#include "io/images/hdr_image.h"
 
 #include <ImfChannelList.h>
 #include <ImfFrameBuffer.h>

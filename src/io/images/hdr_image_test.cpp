@@ -1,6 +1,6 @@
 // read_hdr_image: EXR and Radiance files written here read back as written;
 // every broken file is one Error, never a crash or a huge allocation.
-#include "scene/hdr_image.h"
+#include "io/images/hdr_image.h"
 
 #include <ImfChannelList.h>
 #include <ImfFrameBuffer.h>

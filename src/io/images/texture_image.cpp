@@ -4,6 +4,8 @@
 // before any pixel is decoded, and the decoder reads through callbacks that
 // notice when it wants bytes beyond the end (a truncated file; stb would
 // quietly read zeros).
+#include "io/images/texture_image.h"
+
 #include <stb_image.h>
 
 #include <algorithm>
@@ -17,9 +19,9 @@
 
 #include "core/error.h"
 #include "core/image_limits.h"
-#include "scene/hdr_image.h"
+#include "io/images/hdr_image.h"
+#include "io/images/stb_guards.h"
 #include "scene/texture.h"
-#include "io/images/texture_image.h"
 
 namespace sombra {
 

@@ -1,21 +1,34 @@
-// Private to the texture decoder (texture_image.cpp): checks made on an
-// image's bytes before stb_image reads them.
+// Decoding texture images (spec §12) into the model's Texture
+// (scene/texture.h): PNG, JPEG, TGA and BMP through stb_image behind the
+// guards of stb_guards.h, EXR and Radiance HDR through read_hdr_image. What
+// every reader with material textures calls (OBJ's MTL, scene files, glTF).
 #pragma once
 
-#include <optional>
+#include <cstdint>
+#include <filesystem>
 #include <span>
 #include <string>
-#include <vector>
+
+#include "scene/texture.h"
 
 namespace sombra {
 
-// "" unless the JPEG `bytes` hold a Huffman table that stb_image would read
-// past its arrays (code counts adding up to more than 256): then what is wrong.
-std::string jpeg_huffman_problem(std::span<const unsigned char> bytes);
+// The most values (width × height × channels) one texture may hold: 1 GiB of
+// floats. Checked from the image's header, before any pixel is decoded.
+inline constexpr std::int64_t kMaxTextureValues = std::int64_t{1} << 28;
+// The largest image file read (its encoded bytes, all in memory at once).
+inline constexpr std::uintmax_t kMaxTextureFileBytes = std::uintmax_t{1} << 30;
 
-// The PNG `bytes` without the empty IDAT chunks that come before its first
-// IDAT with data (stb_image would memcpy zero bytes to a null buffer for
-// them); nullopt when there is none, the usual case, so nothing is copied.
-std::optional<std::vector<unsigned char>> png_without_leading_empty_idat(std::span<const unsigned char> bytes);
+// Reads an image file: PNG (8 or 16 bit), JPEG, TGA or BMP, recognised by
+// their content whatever the extension; .exr (OpenEXR) and .hdr (Radiance)
+// by extension, through read_hdr_image (io/images/hdr_image.h), as 3-channel
+// linear RGB. Throws Error(path, what) with a one-line message for a missing
+// or unreadable file, another format, a truncated or corrupt image, or one
+// larger than kMaxImageSide per side (core/image_limits.h) or kMaxTextureValues.
+Texture read_texture_file(const std::filesystem::path& path, TextureEncoding encoding);
+
+// Decodes an encoded PNG, JPEG, TGA or BMP image held in memory; errors as
+// read_texture_file's, Error(source, what). The result's source is `source`.
+Texture decode_texture(std::span<const unsigned char> bytes, TextureEncoding encoding, const std::string& source);
 
 }  // namespace sombra

@@ -10,6 +10,7 @@
 
 #include "core/error.h"
 #include "io/images/image_test_files.h"
+#include "io/images/stb_guards.h"
 #include "io/images/texture_image.h"
 #include "io/polygon_test_files.h"
 

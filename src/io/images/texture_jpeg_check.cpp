@@ -7,7 +7,7 @@
 #include <cstdint>
 #include <string>
 
-#include "io/images/texture_image.h"
+#include "io/images/stb_guards.h"
 
 namespace sombra {
 

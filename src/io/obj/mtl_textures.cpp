@@ -2,6 +2,8 @@
 
 #include <algorithm>
 
+#include "io/images/texture_image.h"
+
 namespace sombra {
 
 namespace fs = std::filesystem;

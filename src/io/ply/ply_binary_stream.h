@@ -1,5 +1,5 @@
 // The cursor for a binary PLY body (either byte order), private to
-// src/scene: it reads the file in slices of kPlyStreamSlice bytes as the
+// src/io/ply: it reads the file in slices of kPlyStreamSlice bytes as the
 // element readers move on, instead of holding the whole file in memory
 // beside the mesh made from it (2 GB for a 100 M-triangle file). Every read
 // is checked against the end of the file, and every count the header claims

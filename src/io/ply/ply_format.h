@@ -1,4 +1,4 @@
-// The PLY format for the loader (spec §9), private to src/scene: the header
+// The PLY format for the loader (spec §9), private to src/io/ply: the header
 // (format, elements and their properties in file order), and the cursor
 // that reads values from an ascii body, with every read checked against the
 // end of the file and errors that say where: "file.ply:LINE". Binary bodies

@@ -15,6 +15,7 @@
 #include "core/error.h"
 #include "core/vec3.h"
 #include "core/vec3d.h"
+#include "io/mesh_file.h"
 #include "render/render_settings.h"
 #include "scene/scene.h"
 #include "scene/transform.h"

@@ -4,7 +4,7 @@
 #include <cmath>
 
 #include "core/format.h"
-#include "scene/hdr_image.h"
+#include "io/images/hdr_image.h"
 #include "io/scene_json/scene_json.h"
 
 namespace sombra {

@@ -6,6 +6,7 @@
 #include <cstring>
 #include <string>
 
+#include "io/images/texture_image.h"
 #include "io/scene_json/scene_json.h"
 
 namespace sombra {
