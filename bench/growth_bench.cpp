@@ -7,7 +7,7 @@
 #include "bench_util.h"
 #include "core/error.h"
 #include "measure.h"
-#include "io/scene_json/scene_file.h"
+#include "io/quicklook.h"
 
 namespace sombra::bench {
 

@@ -4,6 +4,8 @@
 #include <iostream>
 
 #include "core/error.h"
+#include "io/quicklook.h"
+#include "io/scene_json/scene_file.h"
 #include "scene/texture_mipmap.h"
 
 namespace sombra {

@@ -9,7 +9,7 @@
 
 #include "app/cli.h"
 #include "core/error.h"
-#include "io/scene_json/scene_file.h"
+#include "io/loaded_scene.h"
 #include "render/lights.h"
 #include "render/render_settings.h"
 #include "scene/scene.h"

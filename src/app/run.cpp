@@ -16,7 +16,6 @@
 #include "core/peak_rss.h"
 #include "image/image_io.h"
 #include "render/render.h"
-#include "io/scene_json/scene_file.h"
 
 namespace sombra {
 

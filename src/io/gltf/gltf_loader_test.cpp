@@ -13,6 +13,7 @@
 #include "io/gltf/gltf_test_files.h"
 #include "io/mesh_file.h"
 #include "io/polygon_test_files.h"
+#include "io/quicklook.h"
 #include "io/scene_json/scene_file.h"
 #include "scene/transform.h"
 

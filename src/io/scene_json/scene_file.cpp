@@ -1,22 +1,19 @@
 // Scene file → Scene: reads the JSON sections, checks every object's file
 // before loading any mesh (a typo in the last object should not wait for the
-// first one's million triangles), then loads the meshes and concatenates them
-// into world-space geometry.
+// first one's million triangles), then loads the meshes and hands them to the
+// scene's builder (scene/scene_builder.h), which places them in world space.
 #include "io/scene_json/scene_file.h"
 
-#include <algorithm>
-#include <cmath>
 #include <fstream>
 #include <limits>
 #include <map>
-#include <numbers>
 #include <optional>
 #include <sstream>
 #include <utility>
 
-#include "scene/corner_attributes.h"
 #include "io/mesh_file.h"
 #include "io/scene_json/scene_json.h"
+#include "scene/scene_builder.h"
 #include "scene/transform.h"
 
 namespace sombra {
@@ -71,70 +68,18 @@ ObjectSpec read_object(const SceneJson& s, const Json& v, std::string_view point
     return spec;
 }
 
-// Appends one loaded mesh to the world geometry (capacity already reserved):
-// positions and the per-corner attributes to world space, indices offset,
-// materials remapped.
-void append_object(Scene& scene, const LoadedMesh& loaded, const ObjectSpec& spec, const SceneJson& s) {
-    TriangleMesh& out = scene.geometry;
-    const TriangleMesh& in = loaded.mesh;
+// One object joins the scene: placed by its transform, with the scene's
+// material when it names one, else its file's own. The builder's problems
+// become errors naming the object's transform or its file.
+void add_object(SceneBuilder& builder, const LoadedMesh& loaded, const ObjectSpec& spec, const SceneJson& s) {
     const std::string mesh_name = spec.path.string();
-
-    scene.objects.push_back(SceneObject{spec.pointer, spec.is_quad_light ? std::string{} : mesh_name,
-                                        static_cast<std::uint32_t>(out.triangles.size()),
-                                        static_cast<std::uint32_t>(in.triangles.size())});
-    const auto position_base = static_cast<std::uint32_t>(out.positions.size());
-    for (const Vec3 p : in.positions) {
-        const Vec3 q = transform_point(spec.transform, p);
-        // Non-finite input positions are the loader's to drop (their triangles
-        // are gone); finite ones must stay finite.
-        if (is_finite(p) && !is_finite(q))
+    const MeshPlacement placement{spec.pointer, spec.is_quad_light ? std::string{} : mesh_name, spec.transform,
+                                  spec.material};
+    switch (builder.add_mesh(loaded.mesh, loaded.materials, loaded.textures, placement)) {
+        case MeshProblem::None: return;
+        case MeshProblem::NonFinitePlacement:
             json_fail(s, json_child(spec.pointer, "transform"), "a transformed vertex is not finite");
-        out.positions.push_back(q);
-    }
-
-    // A mirroring transform (negative determinant) reverses every triangle's
-    // winding; swapping two corners restores it, so the winding normal keeps
-    // its side of the surface (spec §11, "sides for glass"). The normal, uv,
-    // tangent and colour corners swap with them (append_corner_attributes).
-    const bool mirrored = determinant3(spec.transform) < 0;
-    const std::uint32_t vertex_count = static_cast<std::uint32_t>(in.positions.size());
-    for (Index3 t : in.triangles) {
-        if (t[0] >= vertex_count || t[1] >= vertex_count || t[2] >= vertex_count)
-            throw Error(mesh_name, "a triangle refers to a vertex that does not exist");
-        if (mirrored) std::swap(t[1], t[2]);
-        out.triangles.push_back({t[0] + position_base, t[1] + position_base, t[2] + position_base});
-    }
-    append_corner_attributes(out, in, spec.transform);
-
-    if (spec.material) {
-        out.material_ids.insert(out.material_ids.end(), in.triangles.size(), *spec.material);
-        return;
-    }
-    const auto material_base = static_cast<std::uint32_t>(scene.materials.size());
-    scene.materials.insert(scene.materials.end(), loaded.materials.begin(), loaded.materials.end());
-    // The file's textures join the scene's table (shared by source), its materials' references renumbered.
-    std::vector<std::uint32_t> texture_index(loaded.textures.size());
-    for (std::size_t i = 0; i < loaded.textures.size(); ++i) texture_index[i] = add_texture(scene.textures, loaded.textures[i]);
-    for (std::size_t i = material_base; i < scene.materials.size(); ++i) {
-        MaterialTextures& t = scene.materials[i].textures;
-        for_each_texture_ref(t, [&](TextureRef& r) {
-            if (r.is_set()) r.texture = r.texture < texture_index.size() ? texture_index[r.texture] : kNoTexture;
-        });
-        scene.materials[i].textured = any_texture(t);
-    }
-    // Loaders give every face a material; guard against one that did not.
-    std::optional<std::uint32_t> fallback;
-    const auto fallback_id = [&] {
-        if (!fallback) {
-            fallback = static_cast<std::uint32_t>(scene.materials.size());
-            scene.materials.push_back(default_material());
-        }
-        return *fallback;
-    };
-    const auto file_material_count = static_cast<std::uint32_t>(loaded.materials.size());
-    for (std::size_t i = 0; i < in.triangles.size(); ++i) {
-        const bool known = i < in.material_ids.size() && in.material_ids[i] < file_material_count;
-        out.material_ids.push_back(known ? material_base + in.material_ids[i] : fallback_id());
+        case MeshProblem::BadVertexIndex: throw Error(mesh_name, "a triangle refers to a vertex that does not exist");
     }
 }
 
@@ -186,24 +131,28 @@ LoadedScene load_scene_text(const std::string& text, const fs::path& path, Diagn
     expect_keys(s, root, "", {"render", "background", "environment", "camera", "materials", "lights", "objects"});
 
     LoadedScene out;
-    Scene& scene = out.scene;
+    SceneBuilder builder;
     if (const Json* v = find_member(root, "render")) out.settings = read_render(s, *v, "/render");
-    if (const Json* v = find_member(root, "background")) scene.background = read_rgb(s, *v, "/background");
-    scene.camera = read_camera(s, require_member(s, root, "", "camera"), "/camera");
-    SceneTextures textures{path.parent_path(), &scene.textures};
-    if (const Json* v = find_member(root, "materials")) scene.materials = read_materials(s, *v, "/materials", textures);
+    if (const Json* v = find_member(root, "background")) builder.set_background(read_rgb(s, *v, "/background"));
+    builder.set_camera(read_camera(s, require_member(s, root, "", "camera"), "/camera"));
+    // The file's materials name their textures in the file's own table, which joins the scene's.
+    std::vector<Material> materials;
+    std::vector<Texture> material_textures;
+    SceneTextures textures{path.parent_path(), &material_textures};
+    if (const Json* v = find_member(root, "materials")) materials = read_materials(s, *v, "/materials", textures);
+    builder.add_materials(materials, material_textures);
     SceneLights lights;
     if (const Json* v = find_member(root, "lights")) lights = read_lights(s, *v, "/lights");
-    scene.lights = std::move(lights.punctual);
+    for (const PunctualLight& light : lights.punctual) builder.add_light(light);
     if (const Json* v = find_member(root, "environment")) {
         if (find_member(root, "background"))
             json_fail(s, "/environment", "give either 'background' or 'environment', not both (the map replaces the background)");
-        scene.environment = read_environment(s, *v, "/environment", path.parent_path());
+        builder.set_environment(read_environment(s, *v, "/environment", path.parent_path()));
     }
 
     std::map<std::string, std::uint32_t, std::less<>> material_index;
-    for (std::size_t i = 0; i < scene.materials.size(); ++i)
-        material_index.emplace(scene.materials[i].name, static_cast<std::uint32_t>(i));
+    for (std::size_t i = 0; i < materials.size(); ++i)
+        material_index.emplace(materials[i].name, static_cast<std::uint32_t>(i));
 
     const Json& objects = require_member(s, root, "", "objects");
     expect_array(s, objects, "/objects");
@@ -228,8 +177,7 @@ LoadedScene load_scene_text(const std::string& text, const fs::path& path, Diagn
     std::vector<std::size_t> mesh_of(specs.size());
     std::vector<std::size_t> last_use;
     std::map<fs::path, std::size_t> loaded_index;
-    std::size_t positions = 0, triangles = 0, normals = 0, uvs = 0, tangents = 0, colors = 0;
-    bool any_normals = false, any_uvs = false, any_tangents = false, any_colors = false;
+    MeshSizes sizes;
     for (std::size_t i = 0; i < specs.size(); ++i) {
         const ObjectSpec& spec = specs[i];
         std::error_code ec;
@@ -244,134 +192,26 @@ LoadedScene load_scene_text(const std::string& text, const fs::path& path, Diagn
         last_use[it->second] = i;
         const TriangleMesh& m = meshes[it->second].mesh;
         if (m.triangles.empty()) json_warn(s, json_child(spec.pointer, "file"), "the mesh has no triangles");
-        positions += m.positions.size();
-        triangles += m.triangles.size();
-        normals += m.normals.size();
-        any_normals = any_normals || m.has_normals();
-        uvs += m.uvs.size();
-        any_uvs = any_uvs || m.has_uvs();
-        tangents += m.tangents.size();
-        any_tangents = any_tangents || m.has_tangents();
-        colors += m.colors.size();
-        any_colors = any_colors || m.has_colors();
+        sizes += sizes_of(m);
     }
-    for (const LoadedMesh& q : quad_meshes) {
-        positions += q.mesh.positions.size();
-        triangles += q.mesh.triangles.size();
-    }
+    for (const LoadedMesh& q : quad_meshes) sizes += sizes_of(q.mesh);
     // Indices are 32-bit; kNoNormal is reserved.
     constexpr std::size_t kMaxIndex = std::numeric_limits<std::uint32_t>::max() - 1;
-    if (positions > kMaxIndex || normals > kMaxIndex || uvs > kMaxIndex || tangents > kMaxIndex ||
-        colors > kMaxIndex || triangles > kMaxIndex)
+    if (sizes.positions > kMaxIndex || sizes.normals > kMaxIndex || sizes.uvs > kMaxIndex ||
+        sizes.tangents > kMaxIndex || sizes.colors > kMaxIndex || sizes.triangles > kMaxIndex)
         json_fail(s, "/objects", "the scene has more than " + std::to_string(kMaxIndex) + " vertices or triangles");
 
-    TriangleMesh& world = scene.geometry;
-    world.positions.reserve(positions);
-    world.triangles.reserve(triangles);
-    world.material_ids.reserve(triangles);
-    if (any_normals) {
-        world.normals.reserve(normals);
-        world.normal_indices.reserve(triangles);
-    }
-    if (any_uvs) {
-        world.uvs.reserve(uvs);
-        world.uv_indices.reserve(triangles);
-    }
-    if (any_tangents) {
-        world.tangents.reserve(tangents);
-        world.tangent_indices.reserve(triangles);
-    }
-    if (any_colors) {
-        world.colors.reserve(colors);
-        world.color_indices.reserve(triangles);
-    }
+    builder.reserve(sizes);
     for (std::size_t i = 0; i < specs.size(); ++i) {
         // Lights a glTF file places move with its object (§13, §16).
         for (const PunctualLight& light : meshes[mesh_of[i]].lights)
-            scene.lights.push_back(transform_light(light, specs[i].transform, s, specs[i].pointer));
-        append_object(scene, meshes[mesh_of[i]], specs[i], s);
+            builder.add_light(transform_light(light, specs[i].transform, s, specs[i].pointer));
+        add_object(builder, meshes[mesh_of[i]], specs[i], s);
         // Free each file's mesh after its last object: peak memory stays near two copies.
         if (last_use[mesh_of[i]] == i) meshes[mesh_of[i]] = LoadedMesh{};
     }
-    for (std::size_t i = 0; i < quad_meshes.size(); ++i) append_object(scene, quad_meshes[i], quad_specs[i], s);
-    mark_complete_corners(scene.geometry);
-    return out;
-}
-
-namespace {
-
-constexpr float kFovDegrees = 40.0f;
-
-// Radiance of a grey kd = 0.8 Lambertian surface facing the key light at the
-// sphere's centre: L = I/d² · kd/π. 0.45 leaves headroom for light from the
-// fill and rim lights overlapping it.
-constexpr float kKeyRadiance = 0.45f;
-
-struct Sphere {
-    Vec3 centre;
-    float radius;
-};
-
-Sphere bounding_sphere(const TriangleMesh& mesh) {
-    Vec3 lo{INFINITY}, hi{-INFINITY};
-    for (const Index3& tri : mesh.triangles)
-        for (std::uint32_t v : tri) {
-            lo = min(lo, mesh.positions[v]);
-            hi = max(hi, mesh.positions[v]);
-        }
-    const float radius = 0.5f * length(hi - lo);
-    // A single point (all triangles degenerate) still gets a usable frame.
-    return {(lo + hi) * 0.5f, radius > 0.0f ? radius : 1.0f};
-}
-
-}  // namespace
-
-LoadedScene make_quicklook_scene(const std::filesystem::path& model, Diagnostics& diag) {
-    LoadedMesh loaded = load_mesh_file(model, diag);
-    const Sphere sphere = bounding_sphere(loaded.mesh);
-
-    LoadedScene out;
-    Scene& scene = out.scene;
-    scene.background = Vec3{0.02f};
-    scene.materials = std::move(loaded.materials);
-    scene.textures = std::move(loaded.textures);
-    for (Material& m : scene.materials) m.textured = any_texture(m.textures);
-    scene.geometry = std::move(loaded.mesh);
-    mark_complete_corners(scene.geometry);
-    scene.objects.push_back(SceneObject{model.filename().string(), model.string(), 0,
-                                        static_cast<std::uint32_t>(scene.geometry.triangle_count())});
-
-    // A glTF file's own camera (its first) and point lights replace the
-    // automatic framing and lighting; its aspect ratio sets the image's
-    // height for the default width.
-    if (loaded.camera) {
-        const ModelCamera& c = *loaded.camera;
-        scene.camera.look_at = CameraLookAt{c.origin, c.origin + c.forward, c.up, c.yfov_degrees};
-        if (c.aspect > 0) {
-            const float height = std::round(static_cast<float>(out.settings.width) / c.aspect);
-            out.settings.height = static_cast<int>(std::clamp(height, 1.0f, static_cast<float>(kMaxImageSide)));
-        }
-    }
-    scene.lights = std::move(loaded.lights);
-
-    // Far enough that the sphere fits the vertical field of view (the
-    // horizontal one is wider for landscape images), with a 10 % margin.
-    const float half_fov = kFovDegrees * 0.5f * std::numbers::pi_v<float> / 180.0f;
-    const float distance = 1.1f * sphere.radius / std::sin(half_fov);
-    const Vec3 view_dir = normalize(Vec3{0.0f, 0.35f, 1.0f});  // front, a little above
-    if (!scene.camera.look_at)
-        scene.camera.look_at = CameraLookAt{sphere.centre + distance * view_dir, sphere.centre, Vec3{0, 1, 0}, kFovDegrees};
-    if (!scene.lights.empty()) return out;
-
-    // Three-point lighting around the camera, at a few radii from the model.
-    auto light_at = [&](Vec3 direction, float distance_in_radii, float share) {
-        const float d = distance_in_radii * sphere.radius;
-        const float intensity = share * kKeyRadiance * std::numbers::pi_v<float> / 0.8f * d * d;
-        return make_point_light(sphere.centre + d * normalize(direction), Vec3{intensity});
-    };
-    scene.lights.push_back(light_at({-1.0f, 1.4f, 1.3f}, 4.0f, 1.0f));   // key: upper left, front
-    scene.lights.push_back(light_at({1.2f, 0.3f, 1.0f}, 4.0f, 0.35f));   // fill: right, low
-    scene.lights.push_back(light_at({0.3f, 1.2f, -1.2f}, 4.0f, 0.5f));   // rim: behind, above
+    for (std::size_t i = 0; i < quad_meshes.size(); ++i) add_object(builder, quad_meshes[i], quad_specs[i], s);
+    out.scene = builder.finish();
     return out;
 }
 
