@@ -8,8 +8,8 @@
 
 #include "bench_util.h"
 #include "load_bench.h"
-#include "scene/gltf.h"
-#include "scene/mesh_file.h"
+#include "io/gltf/gltf.h"
+#include "io/mesh_file.h"
 
 namespace sombra::bench {
 

@@ -7,7 +7,7 @@
 #include "bench_util.h"
 #include "core/error.h"
 #include "measure.h"
-#include "scene/scene_file.h"
+#include "io/quicklook.h"
 
 namespace sombra::bench {
 
@@ -55,7 +55,7 @@ void run_growth_bench(const std::vector<std::string>& model_files, const GrowthO
         Diagnostics diag;
         const bool peak_reset = reset_peak_rss();
         const auto load_start = Clock::now();
-        const Scene scene = make_quicklook_scene(file, diag);
+        const Scene scene = make_quicklook_scene(file, diag).scene;
         p.load_seconds = seconds_since(load_start);
         p.load_peak_rss = peak_reset ? peak_rss_since_reset_bytes() : 0;
         std::cerr << "sombra-bench: " << p.name << ": " << thousands(scene.geometry.triangle_count())

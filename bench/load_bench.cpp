@@ -8,7 +8,7 @@
 
 #include "bench_util.h"
 #include "core/error.h"
-#include "scene/mesh_file.h"
+#include "io/mesh_file.h"
 
 namespace sombra::bench {
 

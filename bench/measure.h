@@ -12,6 +12,7 @@
 
 #include "accel/accel.h"
 #include "bench_util.h"
+#include "render/render_settings.h"
 #include "scene/scene.h"
 
 namespace sombra::bench {

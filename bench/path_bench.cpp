@@ -17,7 +17,7 @@
 #include "render/integrator.h"
 #include "render/render.h"
 #include "render/sampler.h"
-#include "scene/scene_file.h"
+#include "io/scene_json/scene_file.h"
 
 namespace sombra::bench {
 
@@ -75,8 +75,9 @@ PairedTest paired_test(const Film& a, const Film& b) {
     return t;
 }
 
-RenderSettings path_settings(const Scene& scene, int width, int height, int spp, int max_depth, const std::string& name) {
-    RenderSettings s = scene.render;
+RenderSettings path_settings(const RenderSettings& file_settings, int width, int height, int spp, int max_depth,
+                             const std::string& name) {
+    RenderSettings s = file_settings;
     s.width = width;
     s.height = height;
     s.spp = spp;
@@ -133,8 +134,9 @@ void run_path_bench(const std::vector<std::string>& scene_files, const PathBench
         const std::string name = std::filesystem::path(file).stem().string();
         std::cerr << "sombra-bench: " << name << ": loading\n";
         Diagnostics diag;
-        const Scene scene = load_scene_file(file, diag);
-        const RenderSettings settings = path_settings(scene, o.width, o.height, o.spp, o.max_depth, file);
+        const LoadedScene loaded = load_scene_file(file, diag);
+        const Scene& scene = loaded.scene;
+        const RenderSettings settings = path_settings(loaded.settings, o.width, o.height, o.spp, o.max_depth, file);
         const double samples = double(settings.width) * double(settings.height) * double(settings.spp);
 
         std::vector<Accel> accels;
@@ -344,11 +346,12 @@ void run_path_error_bench(const std::string& file, const PathErrorOptions& o, st
     const std::string name = std::filesystem::path(file).stem().string();
     std::cerr << "sombra-bench: " << name << ": loading\n";
     Diagnostics diag;
-    const Scene scene = load_scene_file(file, diag);
+    const LoadedScene loaded = load_scene_file(file, diag);
+    const Scene& scene = loaded.scene;
     const Accel bvh = make_accel(scene, AccelKind::Bvh);
     const double pixels = double(o.width) * double(o.height);
 
-    RenderSettings ref_settings = path_settings(scene, o.width, o.height, o.reference_spp, o.max_depth, file);
+    RenderSettings ref_settings = path_settings(loaded.settings, o.width, o.height, o.reference_spp, o.max_depth, file);
     ref_settings.seed = 1;  // independent of the measured renders' seed 0
     const std::uint64_t key = reference_key(file, scene, ref_settings);
     char hex[17];
@@ -372,7 +375,7 @@ void run_path_error_bench(const std::string& file, const PathErrorOptions& o, st
     double largest_rel_mse = 0;
     int largest_spp = 0;
     auto measure = [&](int spp, const std::string& label) {
-        const RenderSettings s = path_settings(scene, o.width, o.height, spp, o.max_depth, file);
+        const RenderSettings s = path_settings(loaded.settings, o.width, o.height, spp, o.max_depth, file);
         const RenderJob job = make_render_job(scene, bvh, s);
         const Timed t = timed_render(job);
         const ErrorFigures e = error_against(t.output.film, reference);
@@ -387,7 +390,7 @@ void run_path_error_bench(const std::string& file, const PathErrorOptions& o, st
         return sps;
     };
     // Warm-up (thread pool, caches), not reported.
-    timed_render(make_render_job(scene, bvh, path_settings(scene, o.width, o.height, 1, o.max_depth, file)));
+    timed_render(make_render_job(scene, bvh, path_settings(loaded.settings, o.width, o.height, 1, o.max_depth, file)));
     double rate = 0;
     for (const int spp : o.fixed_spp) {
         std::cerr << "sombra-bench: " << name << ": " << spp << " spp\n";

@@ -8,7 +8,7 @@
 #include <random>
 
 #include "core/error.h"
-#include "scene/scene_file.h"
+#include "io/scene_json/scene_file.h"
 
 namespace sombra::bench {
 
@@ -98,7 +98,7 @@ void run_rays_bench(const std::vector<std::string>& scene_files, const RaysBench
         const std::string name = std::filesystem::path(file).stem().string();
         std::cerr << "sombra-bench: " << name << ": loading\n";
         Diagnostics diag;
-        const Scene scene = load_scene_file(file, diag);
+        const Scene scene = load_scene_file(file, diag).scene;
         const RayBatches batches = make_batches(scene, o.rays);
         if (batches.closest.empty()) throw Error(file, "no triangle can be hit: nothing to trace");
         std::vector<Accel> accels;

@@ -6,7 +6,7 @@
 #include "bench_util.h"
 #include "core/error.h"
 #include "measure.h"
-#include "scene/scene_file.h"
+#include "io/scene_json/scene_file.h"
 
 namespace sombra::bench {
 
@@ -34,8 +34,9 @@ void run_scene_bench(const std::vector<std::string>& scene_files, const SceneBen
         const std::string name = std::filesystem::path(file).stem().string();
         std::cerr << "sombra-bench: " << name << ": loading\n";
         Diagnostics diag;
-        const Scene scene = load_scene_file(file, diag);
-        const RenderSettings settings = resolve(scene.render, o, file);
+        const LoadedScene loaded = load_scene_file(file, diag);
+        const Scene& scene = loaded.scene;
+        const RenderSettings settings = resolve(loaded.settings, o, file);
         std::cerr << "sombra-bench: " << name << ": checking the images agree, then " << o.reps
                   << " rounds of build + render\n";
         const SceneMeasurement m = measure_scene(scene, settings, o.reps, file, o.embree);

@@ -5,7 +5,7 @@
 
 #include "accel/bvh_binary.h"
 #include "bench_util.h"
-#include "scene/scene_file.h"
+#include "io/scene_json/scene_file.h"
 
 namespace sombra::bench {
 
@@ -83,7 +83,7 @@ void run_tree_bench(const std::vector<std::string>& scene_files, int reps, std::
         const std::string name = std::filesystem::path(file).stem().string();
         std::cerr << "sombra-bench: " << name << ": loading, then " << reps << " builds\n";
         Diagnostics diag;
-        const Scene scene = load_scene_file(file, diag);
+        const Scene scene = load_scene_file(file, diag).scene;
         std::vector<double> build_seconds;
         for (int rep = 0; rep < reps; ++rep) {
             const auto start = Clock::now();

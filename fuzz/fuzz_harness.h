@@ -1,5 +1,5 @@
 // What each fuzz target does with one input, shared with the regression test
-// (src/scene/fuzz_regression_test.cpp) so that a reproducer replays exactly as
+// (src/io/fuzz_regression_test.cpp) so that a reproducer replays exactly as
 // the fuzzer ran it: the bytes become files in a scratch folder, the loader
 // reads them by path, and the result is checked against the invariants the
 // renderer relies on. A sombra::Error is the expected outcome for a bad input;
@@ -13,9 +13,11 @@
 #include <string_view>
 
 #include "core/error.h"
-#include "scene/mesh_file.h"
+#include "core/image_limits.h"
+#include "io/images/texture_image.h"
+#include "io/mesh_file.h"
+#include "io/scene_json/scene_file.h"
 #include "scene/scene.h"
-#include "scene/scene_file.h"
 #include "scene/texture.h"
 
 namespace sombra::fuzz {
@@ -221,14 +223,13 @@ inline std::string loaded_mesh_problem(const LoadedMesh& loaded) {
                c->yfov_degrees < 180 && std::isfinite(c->aspect) && c->aspect >= 0 &&
                std::fabs(length(c->forward) - 1) < 1e-3f && std::fabs(length(c->up) - 1) < 1e-3f))
         return "bad camera";
-    if (!loaded.texture_refs.empty() && loaded.texture_refs.size() != loaded.materials.size())
-        return "texture_refs and materials differ in size";
     if (std::string problem = textures_problem(loaded.materials, loaded.textures); !problem.empty()) return problem;
     return mesh_problem(loaded.mesh, loaded.materials.size());
 }
 
-inline std::string scene_problem(const Scene& scene) {
-    if (std::string problem = render_settings_problem(scene.render); !problem.empty()) return problem;
+inline std::string scene_problem(const LoadedScene& loaded) {
+    if (std::string problem = render_settings_problem(loaded.settings); !problem.empty()) return problem;
+    const Scene& scene = loaded.scene;
     if (!is_finite(scene.background) || min_component(scene.background) < 0) return "bad background";
     const CameraSpec& c = scene.camera;
     if (c.basis.has_value() == c.look_at.has_value()) return "not exactly one camera form";

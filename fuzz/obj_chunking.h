@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "core/error.h"
-#include "scene/obj_parse.h"
+#include "io/obj/obj_parse.h"
 
 namespace sombra::fuzz {
 

@@ -14,7 +14,7 @@
 # nothing is written into the repository). Exits non-zero when a target finds
 # a crash, leak, timeout or out-of-memory, and prints the reproducer's path:
 # replay it with  build/fuzz/fuzz/fuzz_TARGET REPRODUCER  and, once fixed, add it
-# to fuzz/regressions/TARGET/ (src/scene/fuzz_regression_test.cpp replays those).
+# to fuzz/regressions/TARGET/ (src/io/fuzz_regression_test.cpp replays those).
 # Every run is appended to build/fuzz/runs.tsv (date, target, seconds run, result, inputs run).
 set -euo pipefail
 

@@ -22,7 +22,7 @@
 #include "accel/bvh.h"
 #include "accel/bvh_binary.h"
 #include "accel/huge_pages.h"
-#include "scene/mesh_file.h"
+#include "io/mesh_file.h"
 
 namespace sombra {
 namespace {

@@ -8,7 +8,7 @@
 
 #include "accel/accel.h"
 #include "accel/accel_test_util.h"
-#include "scene/mesh_file.h"
+#include "io/mesh_file.h"
 
 namespace sombra {
 namespace {

@@ -15,8 +15,8 @@
 #include "accel/accel_test_util.h"
 #include "accel/embree_backend.h"
 #include "render/render.h"
-#include "scene/mesh_file.h"
-#include "scene/scene_file.h"
+#include "io/mesh_file.h"
+#include "io/scene_json/scene_file.h"
 
 namespace sombra {
 namespace {
@@ -269,12 +269,13 @@ TEST_P(EmbreeOnScene, ImageEqualsTheBvhImage) {
     const std::filesystem::path path = kShared / "scenes" / (GetParam() + ".json");
     if (!std::filesystem::exists(path)) GTEST_SKIP() << "shared/ not found at " << kShared;
     Diagnostics diag;
-    const Scene scene = load_scene_file(path, diag);
+    const LoadedScene loaded = load_scene_file(path, diag);
+    const Scene& scene = loaded.scene;
     RenderJob job;
     job.scene = &scene;
-    job.settings = scene.render;
+    job.settings = loaded.settings;
     job.settings.width = 192;
-    job.settings.height = scene.render.height * 192 / scene.render.width;
+    job.settings.height = loaded.settings.height * 192 / loaded.settings.width;
     job.camera = make_camera(scene.camera, job.settings.width, job.settings.height);
     job.lights = make_light_set(scene, make_constant_environment(scene.background), false);
     std::vector<RenderOutput> images;

@@ -17,8 +17,8 @@
 
 #include "accel/accel.h"
 #include "render/camera.h"
-#include "scene/mesh_file.h"
-#include "scene/scene_file.h"
+#include "io/mesh_file.h"
+#include "io/scene_json/scene_file.h"
 
 namespace sombra {
 namespace {
@@ -252,10 +252,11 @@ TEST(Watertight, ManylightsPixelHitsTheTeapotsNearSide) {
     const std::filesystem::path path = kShared / "scenes" / "manylights.json";
     if (!std::filesystem::exists(path)) GTEST_SKIP() << path << " is missing";
     Diagnostics diag;
-    const Scene scene = load_scene_file(path, diag);
-    const Camera camera = make_camera(scene.camera, scene.render.width, scene.render.height);
-    const Ray ray = camera_ray(camera, image_plane_s(711.5f, scene.render.width),
-                               image_plane_t(420.5f, scene.render.height));
+    const LoadedScene loaded = load_scene_file(path, diag);
+    const Scene& scene = loaded.scene;
+    const RenderSettings& settings = loaded.settings;
+    const Camera camera = make_camera(scene.camera, settings.width, settings.height);
+    const Ray ray = camera_ray(camera, image_plane_s(711.5f, settings.width), image_plane_t(420.5f, settings.height));
     for (const AccelKind kind : {AccelKind::Bvh, AccelKind::Brute}) {
         const Accel accel = make_accel(scene, kind);
         Hit hit;

@@ -4,7 +4,7 @@
 #include <iostream>
 
 #include "accel/accel.h"
-#include "scene/scene.h"
+#include "render/render_settings.h"
 
 namespace sombra {
 

@@ -44,8 +44,9 @@ int run_explain(const CliOptions& o) {
     return reporting_errors(o, [&] {
         if (!o.svg.empty()) check_svg_path(o.svg);
         Diagnostics diag;
-        Scene scene = load_input(o.input, diag);
-        const RenderSettings settings = resolve_settings(scene.render, o);
+        LoadedScene input = load_input(o.input, diag);
+        Scene& scene = input.scene;
+        const RenderSettings settings = resolve_settings(input.settings, o);
         print_warnings(diag, scene, settings, o);
         check_pixel(o, settings);
         prepare_textures(scene, settings);  // the lookups must be the render's

@@ -7,8 +7,8 @@
 #include <cmath>
 
 #include "cli_test_fixture.h"
-#include "scene/gltf_test_files.h"
-#include "scene/mesh_file.h"
+#include "io/gltf/gltf_test_files.h"
+#include "io/mesh_file.h"
 
 namespace sombra {
 namespace {

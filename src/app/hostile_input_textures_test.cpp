@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "cli_test_fixture.h"
-#include "scene/image_test_files.h"
+#include "io/images/image_test_files.h"
 
 namespace {
 

@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "cli_test_fixture.h"
-#include "scene/exr_test_file.h"
+#include "io/images/exr_test_file.h"
 
 namespace {
 

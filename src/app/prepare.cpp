@@ -4,6 +4,8 @@
 #include <iostream>
 
 #include "core/error.h"
+#include "io/quicklook.h"
+#include "io/scene_json/scene_file.h"
 #include "scene/texture_mipmap.h"
 
 namespace sombra {
@@ -27,7 +29,7 @@ std::string one_line(std::string text) {
     return text;
 }
 
-Scene load_input(const std::filesystem::path& input, Diagnostics& diag) {
+LoadedScene load_input(const std::filesystem::path& input, Diagnostics& diag) {
     const std::string ext = lower_extension(input);
     if (ext == ".json") return load_scene_file(input, diag);
     if (ext == ".obj" || ext == ".ply" || ext == ".gltf" || ext == ".glb") return make_quicklook_scene(input, diag);

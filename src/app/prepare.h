@@ -9,9 +9,10 @@
 
 #include "app/cli.h"
 #include "core/error.h"
+#include "io/loaded_scene.h"
 #include "render/lights.h"
+#include "render/render_settings.h"
 #include "scene/scene.h"
-#include "scene/scene_file.h"
 
 namespace sombra {
 
@@ -27,9 +28,9 @@ std::string lower_extension(const std::filesystem::path& path);
 void check_side_file_path(const std::filesystem::path& path);
 
 // A scene .json, or a model for the quick look (spec §7). Throws Error.
-Scene load_input(const std::filesystem::path& input, Diagnostics& diag);
+LoadedScene load_input(const std::filesystem::path& input, Diagnostics& diag);
 
-// The scene's render settings with the command line's overrides applied,
+// The input's render settings with the command line's overrides applied,
 // each checked against the same limits as the scene file's values (a problem
 // names the option that caused it). Throws Error.
 RenderSettings resolve_settings(const RenderSettings& scene_settings, const CliOptions& options);

@@ -16,7 +16,6 @@
 #include "core/peak_rss.h"
 #include "image/image_io.h"
 #include "render/render.h"
-#include "scene/scene_file.h"
 
 namespace sombra {
 
@@ -43,9 +42,10 @@ int run_render(const CliOptions& o) {
         RunStats stats;
         Diagnostics diag;
         const auto load_start = Clock::now();
-        Scene scene = load_input(o.input, diag);
+        LoadedScene input = load_input(o.input, diag);
+        Scene& scene = input.scene;
         stats.load_seconds = seconds_since(load_start);
-        const RenderSettings settings = resolve_settings(scene.render, o);
+        const RenderSettings settings = resolve_settings(input.settings, o);
         print_warnings(diag, scene, settings, o);
         const AccelKind kind = *parse_accel_kind(o.accel);  // the command line checked the name
 

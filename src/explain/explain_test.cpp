@@ -14,7 +14,7 @@
 
 #include "explain/describe.h"
 #include "render/test_meshes.h"
-#include "scene/scene_file.h"
+#include "io/scene_json/scene_file.h"
 
 namespace sombra {
 namespace {
@@ -93,9 +93,9 @@ TEST_P(ExplainSharedScene, ValueIsTheRenderedSampleBitForBit) {
     const std::filesystem::path file = kShared / "scenes" / GetParam();
     if (!std::filesystem::exists(file)) GTEST_SKIP() << "shared/ not found at " << kShared << ": " << file << " is missing";
     Diagnostics diag;
-    const Scene scene = load_scene_file(file, diag);
-    expect_explain_matches_render(scene, scaled_down(scene.render, 8, IntegratorKind::Direct, 1), 1000, "direct, 1 spp");
-    expect_explain_matches_render(scene, scaled_down(scene.render, 8, IntegratorKind::Path, 3), 1000, "path, 3 spp");
+    const auto [scene, file_settings] = load_scene_file(file, diag);
+    expect_explain_matches_render(scene, scaled_down(file_settings, 8, IntegratorKind::Direct, 1), 1000, "direct, 1 spp");
+    expect_explain_matches_render(scene, scaled_down(file_settings, 8, IntegratorKind::Path, 3), 1000, "path, 3 spp");
 }
 
 INSTANTIATE_TEST_SUITE_P(SharedScenes, ExplainSharedScene,
@@ -105,17 +105,17 @@ INSTANTIATE_TEST_SUITE_P(SharedScenes, ExplainSharedScene,
 // both integrators: every delta light's factor and every lens sample.
 TEST(ExplainRepoScene, SpotSunAndLensMatchTheRender) {
     Diagnostics diag;
-    const Scene scene = load_scene_file(kSource / "scenes" / "spot-sun-dof.json", diag);
-    expect_explain_matches_render(scene, scaled_down(scene.render, 8, IntegratorKind::Direct, 3), 1000, "direct, 3 spp");
-    expect_explain_matches_render(scene, scaled_down(scene.render, 8, IntegratorKind::Path, 3), 1000, "path, 3 spp");
+    const auto [scene, file_settings] = load_scene_file(kSource / "scenes" / "spot-sun-dof.json", diag);
+    expect_explain_matches_render(scene, scaled_down(file_settings, 8, IntegratorKind::Direct, 3), 1000, "direct, 3 spp");
+    expect_explain_matches_render(scene, scaled_down(file_settings, 8, IntegratorKind::Path, 3), 1000, "path, 3 spp");
 }
 
 // The repository's path-tracing scenes: quad lights (MIS), glass, metal, Russian roulette.
 TEST(ExplainRepoScene, PathTracedScenesMatchTheRender) {
     for (const char* name : {"cornell-box-path.json", "spheres.json", "cutouts.json"}) {
         Diagnostics diag;
-        const Scene scene = load_scene_file(kSource / "scenes" / name, diag);
-        expect_explain_matches_render(scene, scaled_down(scene.render, 8, IntegratorKind::Path, 4), 1000, name);
+        const auto [scene, file_settings] = load_scene_file(kSource / "scenes" / name, diag);
+        expect_explain_matches_render(scene, scaled_down(file_settings, 8, IntegratorKind::Path, 4), 1000, name);
     }
 }
 
@@ -125,8 +125,8 @@ TEST(ExplainRecord, ListsTheCutOutsARayWentThrough) {
     // below the cutoff; the first crossing is what the ray would hit if the
     // screen had no holes.
     Diagnostics diag;
-    const Scene scene = load_scene_file(kSource / "scenes" / "cutouts.json", diag);
-    const RenderSettings settings = scaled_down(scene.render, 8, IntegratorKind::Direct, 1);
+    const auto [scene, file_settings] = load_scene_file(kSource / "scenes" / "cutouts.json", diag);
+    const RenderSettings settings = scaled_down(file_settings, 8, IntegratorKind::Direct, 1);
     const Accel accel = make_accel(scene, AccelKind::Bvh);
     const Accel solid = make_accel(scene.geometry, AccelKind::Bvh);  // the same surfaces without cut-outs
     const RenderJob job = make_render_job(scene, accel, settings, 1);
@@ -176,7 +176,6 @@ Scene blocked_scene() {
     scene.objects = {SceneObject{"/objects/0", "ground.obj", 0, 2}, SceneObject{"/objects/1", "blocker.obj", 2, 2}};
     scene.lights = {make_point_light({0, 3, 0}, Vec3{10.0f}), make_point_light({0, -1, 0}, Vec3{10.0f}), make_point_light({1.5f, 2, 0}, Vec3{8.0f})};
     scene.camera.look_at = CameraLookAt{{3, 2, 0.1f}, {0.1f, 0, 0.1f}, {0, 1, 0}, 10};
-    scene.render = RenderSettings{1, 1, 1, 0};
     return scene;
 }
 
@@ -184,7 +183,7 @@ Scene blocked_scene() {
 struct BlockedStory {
     Scene scene;
     Accel accel = make_accel(scene, AccelKind::Bvh);
-    RenderJob job = make_render_job(scene, accel, scene.render, 1);
+    RenderJob job = make_render_job(scene, accel, RenderSettings{1, 1, 1, 0}, 1);
     SampleRecord record;
     explicit BlockedStory(Scene s = blocked_scene()) : scene(std::move(s)) {
         RayCounters counters;
@@ -288,8 +287,8 @@ namespace {
 // is what f_r's diffuse term was made of, not the material's constant.
 TEST(ExplainRecord, TexturedMaterialShowsItsValuesAtTheHit) {
     Diagnostics diag;
-    const Scene scene = load_scene_file(kSource / "scenes" / "textured.json", diag);
-    RenderSettings settings = scene.render;
+    const auto [scene, file_settings] = load_scene_file(kSource / "scenes" / "textured.json", diag);
+    RenderSettings settings = file_settings;
     settings.spp = 1;
     settings.integrator = IntegratorKind::Direct;
     const Accel accel = make_accel(scene, AccelKind::Bvh);

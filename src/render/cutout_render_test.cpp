@@ -9,9 +9,9 @@
 #include <string>
 
 #include "render/render.h"
-#include "scene/image_test_files.h"
-#include "scene/polygon_test_files.h"
-#include "scene/scene_file.h"
+#include "io/images/image_test_files.h"
+#include "io/polygon_test_files.h"
+#include "io/scene_json/scene_file.h"
 
 namespace sombra {
 namespace {
@@ -51,9 +51,10 @@ TEST(CutoutRender, CameraRaysSeeThroughTheStripAndTheShadowHasItsOutline) {
                           "vt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\nf 1/1 2/2 3/3 4/4\n");
     tmp.write("s.json", kScene);
     Diagnostics diag;
-    const Scene scene = load_scene_file(tmp.path / "s.json", diag);
+    const LoadedScene loaded = load_scene_file(tmp.path / "s.json", diag);
+    const Scene& scene = loaded.scene;
     const Accel accel = make_accel(scene, AccelKind::Bvh);
-    const RenderJob job = make_render_job(scene, accel, scene.render, 1);
+    const RenderJob job = make_render_job(scene, accel, loaded.settings, 1);
     RenderProgress progress;
     const Film film = render_image(job, progress).film;
 

@@ -14,7 +14,7 @@
 #include "render/render.h"
 #include "render/plane_view_test_util.h"
 #include "render/test_meshes.h"
-#include "scene/scene_file.h"
+#include "io/scene_json/scene_file.h"
 
 namespace sombra {
 namespace {
@@ -193,11 +193,12 @@ TEST(DeltaLights, GltfSpotAndSunRenderLikeTheEquivalentSceneFile) {
          "inner_angle": 11.459155902616464, "outer_angle": 34.37746770784939},
         {"type": "directional", "direction": [0.6, -0.8, 0], "irradiance": [0.5, 1, 1]}]})";
     Diagnostics diag;
-    const Scene from_gltf = load_scene_file(dir / "gltf.json", diag);
-    const Scene from_json = load_scene_file(dir / "json.json", diag);
+    const Scene from_gltf = load_scene_file(dir / "gltf.json", diag).scene;
+    const LoadedScene json = load_scene_file(dir / "json.json", diag);
+    const Scene& from_json = json.scene;
     std::filesystem::remove_all(dir);
     ASSERT_EQ(from_gltf.lights.size(), 2u);
-    const RenderSettings settings = from_json.render;
+    const RenderSettings settings = json.settings;
     const Accel accel_a = make_accel(from_gltf, AccelKind::Bvh), accel_b = make_accel(from_json, AccelKind::Bvh);
     RenderProgress progress;
     const Film a = render_image(make_render_job(from_gltf, accel_a, settings, 0), progress).film;

@@ -12,10 +12,10 @@
 
 #include "render/interaction.h"
 #include "render/shading.h"
-#include "scene/gltf_test_files.h"
-#include "scene/image_test_files.h"
-#include "scene/polygon_test_files.h"
-#include "scene/scene_file.h"
+#include "io/gltf/gltf_test_files.h"
+#include "io/images/image_test_files.h"
+#include "io/polygon_test_files.h"
+#include "io/scene_json/scene_file.h"
 
 namespace sombra {
 namespace {
@@ -71,7 +71,7 @@ protected:
             "materials": {"grey": {"type": "diffuse", "kd": [0.5, 0.5, 0.5]}},
             "objects": [{"file": "q.gltf")" + object_extra + "}]}");
         Diagnostics diag;
-        return load_scene_file(dir.path / "s.json", diag);
+        return load_scene_file(dir.path / "s.json", diag).scene;
     }
     TempFolder dir;
 };

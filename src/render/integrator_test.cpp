@@ -6,7 +6,7 @@
 #include <cmath>
 
 #include "render/render.h"
-#include "scene/scene_file.h"
+#include "io/scene_json/scene_file.h"
 #include "render/plane_view_test_util.h"
 #include "render/test_meshes.h"
 
@@ -39,14 +39,14 @@ RenderOutput render(const Scene& scene, AccelKind kind, const Camera& camera, in
     return render_image(job, progress);
 }
 
-
 Scene plane_under_point_light(Vec3 light_pos, Vec3 intensity, Vec3 kd) {
-    Scene scene;
-    scene.materials.push_back(Material{"plane", MaterialType::Diffuse, kd, {}, 1, {}});
     const float e = 1000;
-    add_quad(scene.geometry, {-e, 0, -e}, {e, 0, -e}, {e, 0, e}, {-e, 0, e}, 0);
-    scene.lights.push_back(make_point_light(light_pos, intensity));
-    return scene;
+    TriangleMesh plane;
+    add_quad(plane, {-e, 0, -e}, {e, 0, -e}, {e, 0, e}, {-e, 0, e}, 0);
+    SceneBuilder b;
+    testing::add_world_mesh(b, plane, {Material{"plane", MaterialType::Diffuse, kd, {}, 1, {}}});
+    b.add_light(make_point_light(light_pos, intensity));
+    return b.finish();
 }
 
 TEST(Integrator, PlaneUnderPointLightMatchesInverseSquareCosineLaw) {
@@ -193,12 +193,14 @@ TEST(Integrator, ShadingNormalsAreInterpolated) {
 TEST(Integrator, NoSelfShadowingOnLargeOffsetGeometry) {
     // A plane far from the origin, lit at a grazing angle: the shadow ray's
     // offset must keep it from hitting its own surface (no "acne").
-    Scene scene;
-    scene.materials.push_back(Material{"d", MaterialType::Diffuse, Vec3{0.5f}, {}, 1, {}});
     const float e = 50;
     const Vec3 c{1000, 500, -700};
-    add_quad(scene.geometry, c + Vec3{-e, 0, -e}, c + Vec3{e, 0.01f, -e}, c + Vec3{e, 0.02f, e}, c + Vec3{-e, 0.01f, e}, 0);
-    scene.lights.push_back(make_point_light(c + Vec3{-40, 1.5f, 3}, {100, 100, 100}));
+    TriangleMesh plane;
+    add_quad(plane, c + Vec3{-e, 0, -e}, c + Vec3{e, 0.01f, -e}, c + Vec3{e, 0.02f, e}, c + Vec3{-e, 0.01f, e}, 0);
+    SceneBuilder b;
+    testing::add_world_mesh(b, plane, {Material{"d", MaterialType::Diffuse, Vec3{0.5f}, {}, 1, {}}});
+    b.add_light(make_point_light(c + Vec3{-40, 1.5f, 3}, {100, 100, 100}));
+    const Scene scene = b.finish();
     const Accel accel = make_accel(scene, AccelKind::Bvh);
     RayCounters counters;
     int dark = 0;

@@ -177,20 +177,21 @@ TEST(LightTree, OneSidedEmittersFacingAwayGetNothing) {
 // triangles) at heights 0.3–3, tilted at random, a third one-sided, in
 // three colours over two decades of brightness.
 Scene many_lights_scene() {
-    Scene scene;
+    std::vector<Material> materials;
     Material floor;
     floor.kd = Vec3{0.5f};
-    scene.materials.push_back(floor);
+    materials.push_back(floor);
     for (int m = 0; m < 6; ++m) {
         Material light;
         light.kd = Vec3{0.0f};
         const float scale = std::pow(10.0f, static_cast<float>(m % 3) - 1.0f);
         light.ke = scale * (m < 3 ? Vec3{20, 12, 6} : Vec3{6, 12, 20});
         light.emits_front_only = m % 2 == 1;
-        scene.materials.push_back(light);
+        materials.push_back(light);
     }
-    add_triangle(scene.geometry, {-30, 0, -30}, {-30, 0, 30}, {30, 0, 30}, 0);
-    add_triangle(scene.geometry, {-30, 0, -30}, {30, 0, 30}, {30, 0, -30}, 0);
+    TriangleMesh mesh;
+    add_triangle(mesh, {-30, 0, -30}, {-30, 0, 30}, {30, 0, 30}, 0);
+    add_triangle(mesh, {-30, 0, -30}, {30, 0, 30}, {30, 0, -30}, 0);
     std::uint32_t c = 0;
     for (int i = 0; i < 40; ++i)
         for (int j = 0; j < 25; ++j) {
@@ -205,10 +206,12 @@ Scene many_lights_scene() {
             const Vec3 p0 = centre - h * t - h * b, p1 = centre + h * t - h * b, p2 = centre + h * t + h * b, p3 = centre - h * t + h * b;
             // Wound so that the front faces along nrm.
             const bool along = dot(cross(p1 - p0, p2 - p0), nrm) > 0.0f;
-            add_triangle(scene.geometry, p0, along ? p1 : p2, along ? p2 : p1, material);
-            add_triangle(scene.geometry, p0, along ? p2 : p3, along ? p3 : p2, material);
+            add_triangle(mesh, p0, along ? p1 : p2, along ? p2 : p1, material);
+            add_triangle(mesh, p0, along ? p2 : p3, along ? p3 : p2, material);
         }
-    return scene;
+    SceneBuilder builder;
+    testing::add_world_mesh(builder, mesh, materials);
+    return builder.finish();
 }
 
 struct Estimate {

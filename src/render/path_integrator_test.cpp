@@ -12,7 +12,7 @@
 #include "render/integrator.h"
 #include "render/pbr_test_util.h"
 #include "render/render.h"
-#include "scene/scene_file.h"
+#include "io/scene_json/scene_file.h"
 #include "render/test_meshes.h"
 
 namespace sombra {
@@ -20,6 +20,7 @@ namespace {
 
 using testing::add_quad;
 using testing::add_triangle;
+using testing::add_world_mesh;
 
 constexpr double kPi = std::numbers::pi;
 // |z| beyond this fails: about 1 in 10^6 for a correct estimator, so the
@@ -111,10 +112,12 @@ struct PathRun {
 TEST(PathIntegrator, WhiteFurnaceDiffuseSphere) {
     // Albedo 1 inside a uniform environment of radiance 1: every path
     // carries 1, so every pixel is 1 (up to MIS noise).
-    Scene scene;
-    scene.background = Vec3{1.0f};
-    scene.materials.push_back(diffuse(Vec3{1.0f}));
-    add_sphere(scene.geometry, {0, 0, 0}, 1.0f, 3, 0);
+    SceneBuilder b;
+    b.set_background(Vec3{1.0f});
+    TriangleMesh sphere;
+    add_sphere(sphere, {0, 0, 0}, 1.0f, 3, 0);
+    add_world_mesh(b, sphere, {diffuse(Vec3{1.0f})});
+    const Scene scene = b.finish();
     const PathRun run{scene, 64};
     for (const Vec3 target : {Vec3{0, 0, 0}, Vec3{0.6f, 0.5f, 0}, Vec3{0.95f, 0, 0.2f}}) {
         const Estimate e = run.estimate({0.1f, 0.2f, 5}, target, 4000, 11);
@@ -124,15 +127,17 @@ TEST(PathIntegrator, WhiteFurnaceDiffuseSphere) {
 
 TEST(PathIntegrator, WhiteFurnaceMirrorAndGlassSpheres) {
     for (const MaterialType type : {MaterialType::Mirror, MaterialType::Dielectric}) {
-        Scene scene;
-        scene.background = Vec3{1.0f};
+        SceneBuilder b;
+        b.set_background(Vec3{1.0f});
         Material m;
         m.type = type;
         m.kr = Vec3{1.0f};
         m.kt = Vec3{1.0f};
         m.ior = 1.5f;
-        scene.materials.push_back(m);
-        add_sphere(scene.geometry, {0, 0, 0}, 1.0f, 3, 0);
+        TriangleMesh sphere;
+        add_sphere(sphere, {0, 0, 0}, 1.0f, 3, 0);
+        add_world_mesh(b, sphere, {m});
+        const Scene scene = b.finish();
         const PathRun run{scene, 1024};
         for (const Vec3 target : {Vec3{0, 0, 0}, Vec3{0.5f, 0.3f, 0}, Vec3{0.9f, 0.1f, 0}}) {
             const Estimate e = run.estimate({0.1f, 0.2f, 5}, target, 2000, 5);
@@ -154,15 +159,17 @@ TEST(PathIntegrator, PbrPlaneUnderAConstantSkyShowsItsAlbedo) {
                           {Vec3{0.9f}, 1.0f, 1.0f}};
     std::uint64_t seed = 40;
     for (const Case& c : cases) {
-        Scene scene;
-        scene.background = Vec3{1.0f};
+        SceneBuilder b;
+        b.set_background(Vec3{1.0f});
         Material m;
         m.type = MaterialType::Pbr;
         m.base_color = c.base;
         m.metallic = c.metallic;
         m.roughness = c.roughness;
-        scene.materials.push_back(m);
-        add_quad(scene.geometry, {-50, 0, -50}, {-50, 0, 50}, {50, 0, 50}, {50, 0, -50}, 0);
+        TriangleMesh plane;
+        add_quad(plane, {-50, 0, -50}, {-50, 0, 50}, {50, 0, 50}, {50, 0, -50}, 0);
+        add_world_mesh(b, plane, {m});
+        const Scene scene = b.finish();
         const PathRun run{scene, 8};
         for (const double theta : {10.0, 50.0, 75.0}) {
             const double t = theta * kPi / 180;
@@ -183,19 +190,20 @@ TEST(PathIntegrator, PbrPlaneUnderAConstantSkyShowsItsAlbedo) {
 // emitted light, reduced by a.
 TEST(PathIntegrator, ClosedEmittingBoxSumsTheGeometricSeries) {
     const float a = 0.5f, le = 0.7f;
-    Scene scene;
     Material m = diffuse(Vec3{a});
     m.ke = Vec3{le};
-    scene.materials.push_back(m);
     const Vec3 p000{-1, -1, -1}, p100{1, -1, -1}, p110{1, 1, -1}, p010{-1, 1, -1};
     const Vec3 p001{-1, -1, 1}, p101{1, -1, 1}, p111{1, 1, 1}, p011{-1, 1, 1};
-    TriangleMesh& g = scene.geometry;
+    TriangleMesh g;
     add_quad(g, p000, p010, p110, p100, 0);
     add_quad(g, p001, p101, p111, p011, 0);
     add_quad(g, p000, p100, p101, p001, 0);
     add_quad(g, p010, p011, p111, p110, 0);
     add_quad(g, p000, p001, p011, p010, 0);
     add_quad(g, p100, p110, p111, p101, 0);
+    SceneBuilder b;
+    add_world_mesh(b, g, {m});
+    const Scene scene = b.finish();
     for (const int depth : {0, 1, 2, 5, 12}) {
         const PathRun run{scene, depth};
         const Estimate e = run.estimate({0.1f, -0.2f, 0.3f}, {0.5f, 0.4f, -1}, 3000, 3 + static_cast<std::uint64_t>(depth));
@@ -222,13 +230,14 @@ TEST(PathIntegrator, PlaneUnderTriangleLightMatchesLambertsPolygonFormula) {
     const Vec3 kd{0.6f}, le{5, 3, 1};
     const std::vector<Vec3> light = {{-0.5f, 1, -0.3f}, {0.4f, 1.2f, -0.4f}, {0.1f, 0.9f, 0.6f}};
     for (const LightStrategy strategy : {LightStrategy::Mis, LightStrategy::LightOnly, LightStrategy::BsdfOnly}) {
-        Scene scene;
-        scene.materials.push_back(diffuse(kd));
         Material emitter = diffuse(Vec3{0.0f});
         emitter.ke = le;
-        scene.materials.push_back(emitter);
-        add_quad(scene.geometry, {-50, 0, -50}, {-50, 0, 50}, {50, 0, 50}, {50, 0, -50}, 0);
-        add_triangle(scene.geometry, light[0], light[1], light[2], 1);
+        TriangleMesh mesh;
+        add_quad(mesh, {-50, 0, -50}, {-50, 0, 50}, {50, 0, 50}, {50, 0, -50}, 0);
+        add_triangle(mesh, light[0], light[1], light[2], 1);
+        SceneBuilder b;
+        add_world_mesh(b, mesh, {diffuse(kd), emitter});
+        const Scene scene = b.finish();
         const PathRun run{scene, 1, strategy};
         for (const Vec3 x : {Vec3{0, 0, 0}, Vec3{0.7f, 0, 0.2f}, Vec3{-1.5f, 0, 1}}) {
             const double expected = kd.x / kPi * le.x * polygon_irradiance(light, x, {0, 1, 0});
@@ -257,19 +266,18 @@ TEST(PathIntegrator, CutOutPartsOfAnEmitterGiveNoLight) {
         {{-0.6f, 1, -0.6f}, {-0.3f, 1, -0.6f}, {-0.3f, 1, 0.6f}, {-0.6f, 1, 0.6f}},
         {{0.3f, 1, -0.6f}, {0.6f, 1, -0.6f}, {0.6f, 1, 0.6f}, {0.3f, 1, 0.6f}}};
     for (const LightStrategy strategy : {LightStrategy::Mis, LightStrategy::LightOnly, LightStrategy::BsdfOnly}) {
-        Scene scene;
-        scene.textures.push_back(strip);
-        scene.materials.push_back(diffuse(kd));
         Material emitter = diffuse(Vec3{0.0f});
         emitter.ke = le;
         emitter.textures.alpha_test = true;
-        emitter.textures.alpha.texture = 0;
-        emitter.textured = true;
-        scene.materials.push_back(emitter);
-        add_quad(scene.geometry, {-50, 0, -50}, {-50, 0, 50}, {50, 0, 50}, {50, 0, -50}, 0);
-        add_quad(scene.geometry, {-0.6f, 1, -0.6f}, {0.6f, 1, -0.6f}, {0.6f, 1, 0.6f}, {-0.6f, 1, 0.6f}, 1);
-        scene.geometry.uvs = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
-        scene.geometry.uv_indices = {{kNoUv, kNoUv, kNoUv}, {kNoUv, kNoUv, kNoUv}, {0, 1, 2}, {0, 2, 3}};
+        emitter.textures.alpha.texture = 0;  // the strip
+        TriangleMesh mesh;
+        add_quad(mesh, {-50, 0, -50}, {-50, 0, 50}, {50, 0, 50}, {50, 0, -50}, 0);
+        add_quad(mesh, {-0.6f, 1, -0.6f}, {0.6f, 1, -0.6f}, {0.6f, 1, 0.6f}, {-0.6f, 1, 0.6f}, 1);
+        mesh.uvs = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+        mesh.uv_indices = {{kNoUv, kNoUv, kNoUv}, {kNoUv, kNoUv, kNoUv}, {0, 1, 2}, {0, 2, 3}};
+        SceneBuilder b;
+        add_world_mesh(b, mesh, {diffuse(kd), emitter}, {strip});
+        const Scene scene = b.finish();
         const PathRun run{scene, 1, strategy};
         for (const Vec3 x : {Vec3{0, 0, 0}, Vec3{0.45f, 0, 0.2f}, Vec3{-1.2f, 0, 0.5f}}) {
             double expected = 0;
@@ -284,10 +292,12 @@ TEST(PathIntegrator, CutOutPartsOfAnEmitterGiveNoLight) {
 TEST(PathIntegrator, PointLightInsideADiffuseSphereAtDepthOne) {
     // Depth 1 under a point light is deterministic: L = kd/π · I/d² · cos θ
     // at the hit point of a flat facet (no randomness, no tolerance but rounding).
-    Scene scene;
-    scene.materials.push_back(diffuse(Vec3{0.5f}));
-    add_sphere(scene.geometry, {0, 0, 0}, 2.0f, 4, 0);
-    scene.lights.push_back(make_point_light({0, 0, 0}, {3, 3, 3}));
+    SceneBuilder b;
+    TriangleMesh sphere;
+    add_sphere(sphere, {0, 0, 0}, 2.0f, 4, 0);
+    add_world_mesh(b, sphere, {diffuse(Vec3{0.5f})});
+    b.add_light(make_point_light({0, 0, 0}, {3, 3, 3}));
+    const Scene scene = b.finish();
     const Accel accel = make_accel(scene, AccelKind::Bvh);
     const LightSet lights = make_light_set(scene, make_constant_environment(scene.background), true);
     const IntegratorContext ctx{&scene, &accel, &lights, 1};
@@ -311,17 +321,18 @@ TEST(PathIntegrator, PointLightInsideADiffuseSphereAtDepthOne) {
 TEST(PathIntegrator, StrategiesAgreeUnderAnEnvironment) {
     // A diffuse and a glossy sphere on a plane under a coloured constant sky:
     // light sampling alone, BSDF sampling alone and MIS estimate the same value.
-    Scene scene;
-    scene.background = Vec3{0.8f, 0.9f, 1.2f};
-    scene.materials.push_back(diffuse(Vec3{0.7f}));
+    SceneBuilder b;
+    b.set_background(Vec3{0.8f, 0.9f, 1.2f});
     Material phong;
     phong.type = MaterialType::Phong;
     phong.kd = Vec3{0.3f};
     phong.ks = Vec3{0.5f};
     phong.shininess = 20;
-    scene.materials.push_back(phong);
-    add_quad(scene.geometry, {-20, 0, -20}, {-20, 0, 20}, {20, 0, 20}, {20, 0, -20}, 0);
-    add_sphere(scene.geometry, {0, 1, 0}, 1.0f, 3, 1);
+    TriangleMesh mesh;
+    add_quad(mesh, {-20, 0, -20}, {-20, 0, 20}, {20, 0, 20}, {20, 0, -20}, 0);
+    add_sphere(mesh, {0, 1, 0}, 1.0f, 3, 1);
+    add_world_mesh(b, mesh, {diffuse(Vec3{0.7f}), phong});
+    const Scene scene = b.finish();
     double means[3];
     int k = 0;
     for (const LightStrategy strategy : {LightStrategy::Mis, LightStrategy::LightOnly, LightStrategy::BsdfOnly}) {
@@ -352,7 +363,7 @@ TEST(PathIntegrator, DepthOneEqualsDirectOnPointLightScenes) {
     for (const char* name : {"bunny.json", "phong.json"}) {
         if (!std::filesystem::exists(kShared / "scenes" / name)) GTEST_SKIP() << "shared/ not found at " << kShared;
         Diagnostics diag;
-        Scene scene = load_scene_file(kShared / "scenes" / name, diag);
+        Scene scene = load_scene_file(kShared / "scenes" / name, diag).scene;
         // Spec §10: with a black background (which path tracing would light with).
         scene.background = Vec3{0.0f};
         RenderSettings settings{80, 45, 2, 3};
@@ -368,20 +379,22 @@ TEST(PathIntegrator, DepthOneEqualsDirectOnPointLightScenes) {
 }
 
 TEST(PathIntegrator, SameImageForAnyThreadCount) {
-    Scene scene;
-    scene.background = Vec3{0.2f, 0.3f, 0.5f};
-    scene.materials.push_back(diffuse(Vec3{0.6f, 0.5f, 0.4f}));
+    SceneBuilder b;
+    b.set_background(Vec3{0.2f, 0.3f, 0.5f});
     Material glass;
     glass.type = MaterialType::Dielectric;
-    scene.materials.push_back(glass);
     Material light = diffuse(Vec3{0.0f});
     light.ke = Vec3{8.0f};
-    scene.materials.push_back(light);
-    add_quad(scene.geometry, {-5, 0, -5}, {-5, 0, 5}, {5, 0, 5}, {5, 0, -5}, 0);
-    add_sphere(scene.geometry, {0, 1, 0}, 1.0f, 2, 1);
-    add_quad(scene.geometry, {-1, 4, -1}, {1, 4, -1}, {1, 4, 1}, {-1, 4, 1}, 2);
-    scene.lights.push_back(make_point_light({2, 3, 2}, {5, 5, 5}));
-    scene.camera.look_at = CameraLookAt{{0, 2, 6}, {0, 1, 0}, {0, 1, 0}, 45};
+    TriangleMesh mesh;
+    add_quad(mesh, {-5, 0, -5}, {-5, 0, 5}, {5, 0, 5}, {5, 0, -5}, 0);
+    add_sphere(mesh, {0, 1, 0}, 1.0f, 2, 1);
+    add_quad(mesh, {-1, 4, -1}, {1, 4, -1}, {1, 4, 1}, {-1, 4, 1}, 2);
+    add_world_mesh(b, mesh, {diffuse(Vec3{0.6f, 0.5f, 0.4f}), glass, light});
+    b.add_light(make_point_light({2, 3, 2}, {5, 5, 5}));
+    CameraSpec camera;
+    camera.look_at = CameraLookAt{{0, 2, 6}, {0, 1, 0}, {0, 1, 0}, 45};
+    b.set_camera(camera);
+    const Scene scene = b.finish();
     RenderSettings settings{40, 30, 8, 5};
     settings.integrator = IntegratorKind::Path;
     const RenderOutput one = render_with(scene, settings, 1);
@@ -397,7 +410,7 @@ TEST(PathIntegrator, NoNonFiniteSamplesOnTheSharedScenes) {
     for (const char* name : {"cornell.json", "phong.json", "bunny.json"}) {
         if (!std::filesystem::exists(kShared / "scenes" / name)) GTEST_SKIP() << "shared/ not found at " << kShared;
         Diagnostics diag;
-        const Scene scene = load_scene_file(kShared / "scenes" / name, diag);
+        const Scene scene = load_scene_file(kShared / "scenes" / name, diag).scene;
         RenderSettings settings{48, 27, 4, 1};
         settings.integrator = IntegratorKind::Path;
         const RenderOutput out = render_with(scene, settings, 0);

@@ -10,6 +10,7 @@
 #include "render/film.h"
 #include "render/integrator.h"
 #include "render/lights.h"
+#include "render/render_settings.h"
 #include "scene/scene.h"
 
 namespace sombra {

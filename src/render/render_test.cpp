@@ -5,7 +5,8 @@
 
 #include <filesystem>
 
-#include "scene/scene_file.h"
+#include "io/scene_json/scene_file.h"
+#include "render/test_meshes.h"
 
 namespace sombra {
 namespace {
@@ -29,7 +30,7 @@ Rendered render_scene(const Scene& scene, AccelKind kind, RenderSettings setting
 
 Scene load_shared_scene(const char* name) {
     Diagnostics diag;
-    return load_scene_file(kShared / "scenes" / name, diag);
+    return load_scene_file(kShared / "scenes" / name, diag).scene;
 }
 
 #define SKIP_WITHOUT_SHARED()                                                                      \
@@ -91,12 +92,16 @@ TEST(Render, SeedChangesTheSamplesButNotTheExpectation) {
 }
 
 TEST(Render, CancelStopsEarly) {
-    Scene scene;
-    scene.materials.push_back(default_material());
-    scene.geometry.positions = {{-1, -1, -5}, {1, -1, -5}, {0, 1, -5}};
-    scene.geometry.triangles = {{0, 1, 2}};
-    scene.geometry.material_ids = {0};
-    scene.camera.look_at = CameraLookAt{{0, 0, 0}, {0, 0, -1}, {0, 1, 0}, 45};
+    TriangleMesh triangle;
+    triangle.positions = {{-1, -1, -5}, {1, -1, -5}, {0, 1, -5}};
+    triangle.triangles = {{0, 1, 2}};
+    triangle.material_ids = {0};
+    SceneBuilder b;
+    testing::add_world_mesh(b, triangle, {default_material()});
+    CameraSpec camera;
+    camera.look_at = CameraLookAt{{0, 0, 0}, {0, 0, -1}, {0, 1, 0}, 45};
+    b.set_camera(camera);
+    const Scene scene = b.finish();
     const Accel accel = make_accel(scene, AccelKind::Bvh);
     const RenderJob job = make_render_job(scene, accel, RenderSettings{256, 256, 1, 0});
     RenderProgress progress;

@@ -1,9 +1,16 @@
-// Test helper: building the small meshes the render tests light and trace.
+// Test helper: building the small meshes the render tests light and trace,
+// and adding them to a scene through its builder, as every scene is made.
 #pragma once
 
+#include <gtest/gtest.h>
+
 #include <cstdint>
+#include <optional>
+#include <utility>
+#include <vector>
 
 #include "scene/mesh.h"
+#include "scene/scene_builder.h"
 
 namespace sombra::testing {
 
@@ -23,6 +30,15 @@ inline void add_quad(TriangleMesh& mesh, Vec3 a, Vec3 b, Vec3 c, Vec3 d, std::ui
     mesh.triangles.push_back({base, base + 1, base + 2});
     mesh.triangles.push_back({base, base + 2, base + 3});
     mesh.material_ids.insert(mesh.material_ids.end(), {material, material});
+}
+
+// Adds `mesh`, in world space as it is, with the materials its
+// material_ids index (and the textures their TextureRefs index) to `builder`
+// as one object.
+inline void add_world_mesh(SceneBuilder& builder, const TriangleMesh& mesh, const std::vector<Material>& materials,
+                           const std::vector<Texture>& textures = {}) {
+    EXPECT_EQ(builder.add_mesh(mesh, materials, textures, MeshPlacement{"test mesh", "", std::nullopt, std::nullopt}),
+              MeshProblem::None);
 }
 
 }  // namespace sombra::testing

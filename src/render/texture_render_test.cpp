@@ -11,9 +11,9 @@
 
 #include "render/render.h"
 #include "render/shading.h"
-#include "scene/image_test_files.h"
-#include "scene/polygon_test_files.h"
-#include "scene/scene_file.h"
+#include "io/images/image_test_files.h"
+#include "io/polygon_test_files.h"
+#include "io/scene_json/scene_file.h"
 
 namespace sombra {
 namespace {
@@ -28,9 +28,10 @@ const std::string kQuadObj = "v -1 -1 0\nv 1 -1 0\nv 1 1 0\nv -1 1 0\nvt 0 0\nvt
 
 Film render_file(const std::filesystem::path& scene_file) {
     Diagnostics diag;
-    const Scene scene = load_scene_file(scene_file, diag);
+    const LoadedScene loaded = load_scene_file(scene_file, diag);
+    const Scene& scene = loaded.scene;
     const Accel accel = make_accel(scene, AccelKind::Bvh);
-    const RenderJob job = make_render_job(scene, accel, scene.render, 1);
+    const RenderJob job = make_render_job(scene, accel, loaded.settings, 1);
     RenderProgress progress;
     return render_image(job, progress).film;
 }
@@ -79,7 +80,7 @@ TEST_F(TextureRender, ObjQuadShowsEachTexelWhereTheGeometryPutsIt) {
     // Light sampling reads the same texture at a sampled point: (0.6, −0.4)
     // on the first triangle of the fan is uv (0.8, 0.3).
     Diagnostics diag;
-    const Scene scene = load_scene_file(tmp.path / "s.json", diag);
+    const Scene scene = load_scene_file(tmp.path / "s.json", diag).scene;
     ASSERT_EQ(scene.geometry.triangle_count(), 2u);
     const Material& glow = scene.materials[scene.geometry.material_ids[0]];
     expect_near(emission_at(scene, glow, 0, {0.6f, -0.4f, 0.0f}), rgb_of(eval_texture(expected, {0.8f, 0.3f})), 1e-5f,

@@ -74,13 +74,17 @@ TEST(ThinLens, AnOffFocusPointSpreadsOverTheCircleOfConfusion) {
     // disc): 256 samples miss it all with probability below 1e-4.
     const int w = 96, h = 96;
     const float r = 0.5f, d = 5, z = 2.5f, half = 0.05f;
-    Scene scene;
     Material light{"light", MaterialType::Diffuse, Vec3{0.0f}, {}, 1, {}};
     light.ke = Vec3{1.0f};
-    scene.materials.push_back(light);
-    add_quad(scene.geometry, {-half, -half, -z}, {half, -half, -z}, {half, half, -z}, {-half, half, -z}, 0);
-    scene.camera.look_at = CameraLookAt{{0, 0, 0}, {0, 0, -d}, {0, 1, 0}, 40};
-    scene.camera.aperture_radius = r;
+    TriangleMesh square;
+    add_quad(square, {-half, -half, -z}, {half, -half, -z}, {half, half, -z}, {-half, half, -z}, 0);
+    SceneBuilder b;
+    testing::add_world_mesh(b, square, {light});
+    CameraSpec camera;
+    camera.look_at = CameraLookAt{{0, 0, 0}, {0, 0, -d}, {0, 1, 0}, 40};
+    camera.aperture_radius = r;
+    b.set_camera(camera);
+    Scene scene = b.finish();
     RenderSettings settings{w, h, 256, 1};
     const Accel accel = make_accel(scene, AccelKind::Bvh);
     const RenderJob job = make_render_job(scene, accel, settings, 0);
@@ -118,12 +122,16 @@ TEST(ThinLens, AnOffFocusPointSpreadsOverTheCircleOfConfusion) {
 }
 
 TEST(ThinLens, SameImageForAnyThreadCountAndSeedDependent) {
-    Scene scene;
-    scene.materials.push_back(Material{"grey", MaterialType::Diffuse, Vec3{0.7f}, {}, 1, {}});
-    add_quad(scene.geometry, {-3, -1, -8}, {3, -1, -8}, {3, 2, -1}, {-3, 2, -1}, 0);
-    scene.lights.push_back(make_point_light({0, 0, -0.5f}, Vec3{5}));  // on the camera's side of the slope
-    scene.camera.look_at = CameraLookAt{{0, 0, 0}, {0, 0, -3}, {0, 1, 0}, 50};
-    scene.camera.aperture_radius = 0.1f;
+    TriangleMesh slope;
+    add_quad(slope, {-3, -1, -8}, {3, -1, -8}, {3, 2, -1}, {-3, 2, -1}, 0);
+    SceneBuilder b;
+    testing::add_world_mesh(b, slope, {Material{"grey", MaterialType::Diffuse, Vec3{0.7f}, {}, 1, {}}});
+    b.add_light(make_point_light({0, 0, -0.5f}, Vec3{5}));  // on the camera's side of the slope
+    CameraSpec camera;
+    camera.look_at = CameraLookAt{{0, 0, 0}, {0, 0, -3}, {0, 1, 0}, 50};
+    camera.aperture_radius = 0.1f;
+    b.set_camera(camera);
+    Scene scene = b.finish();
     const Accel accel = make_accel(scene, AccelKind::Bvh);
     RenderProgress progress;
     const RenderSettings settings{40, 30, 8, 3};

@@ -80,6 +80,16 @@ void append_corner_attributes(TriangleMesh& out, const TriangleMesh& in, const T
                      [](const Rgba& c) { return std::optional<Rgba>(c); });
 }
 
+void append_corner_attributes(TriangleMesh& out, const TriangleMesh& in) {
+    const std::size_t count = in.triangles.size();
+    const std::size_t before = out.triangles.size() - count;
+    const auto as_is = [](const auto& value) { return std::optional(value); };
+    append_attribute(out.normals, out.normal_indices, in.normals, in.normal_indices, count, before, false, as_is);
+    append_attribute(out.uvs, out.uv_indices, in.uvs, in.uv_indices, count, before, false, as_is);
+    append_attribute(out.tangents, out.tangent_indices, in.tangents, in.tangent_indices, count, before, false, as_is);
+    append_attribute(out.colors, out.color_indices, in.colors, in.color_indices, count, before, false, as_is);
+}
+
 void mark_complete_corners(TriangleMesh& mesh) {
     mesh.complete_normals = complete_corner_bits(mesh.normal_indices);
     mesh.complete_uvs = complete_corner_bits(mesh.uv_indices);

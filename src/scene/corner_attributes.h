@@ -1,5 +1,5 @@
-// The per-corner vertex attributes of a mesh file joining the scene's world
-// geometry (scene_file.cpp): normals, texture coordinates, tangents and
+// The per-corner vertex attributes of a mesh joining the scene's world
+// geometry (scene_builder.cpp): normals, texture coordinates, tangents and
 // colours, each placed by the object's transform as what it is, their
 // indices offset and wound like the triangles.
 #pragma once
@@ -18,6 +18,10 @@ namespace sombra {
 // the placed surface; uvs and colours are copied. Where only one side has an
 // attribute the other's triangles get none (kNoNormal …).
 void append_corner_attributes(TriangleMesh& out, const TriangleMesh& in, const Transform& transform);
+
+// The same for a mesh already in world space: every value copied as it is,
+// not renormalised (nor dropped).
+void append_corner_attributes(TriangleMesh& out, const TriangleMesh& in);
 
 // Derives mesh.complete_normals and complete_uvs from normal_indices and
 // uv_indices: a bit a triangle, set when all three corners have the

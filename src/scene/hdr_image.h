@@ -1,11 +1,8 @@
-// High-dynamic-range images as the environment map (spec §10) and, later, HDR
-// textures (§12) need them: linear RGB floats read from OpenEXR or Radiance
-// .hdr files, checked so that the renderer can trust every pixel.
+// High-dynamic-range images as the environment map (spec §10) needs them:
+// linear RGB floats, every one finite and non-negative. Reading them from
+// OpenEXR or Radiance .hdr files is io/'s (io/images/hdr_image.h).
 #pragma once
 
-#include <cstddef>
-#include <filesystem>
-#include <string>
 #include <vector>
 
 namespace sombra {
@@ -13,39 +10,10 @@ namespace sombra {
 // A linear RGB image. Pixel (x, y) is column x = 0 … width−1 from the left,
 // row y = 0 … height−1 from the top; its red, green and blue lie at
 // rgb[3·(y·width + x) + 0, 1, 2]. An empty image (0 × 0, no floats) is what a
-// default-constructed one holds; read_hdr_image never returns one.
+// default-constructed one holds; a reader never returns one.
 struct HdrImage {
     int width = 0, height = 0;
     std::vector<float> rgb;  // row-major, top row first, 3 floats per pixel, linear
 };
-
-// Reads an OpenEXR (.exr) or Radiance (.hdr) file; the extension, in any
-// case, decides which. EXR: the R, G and B channels (a missing one reads as
-// 0), or a single Y channel as grey; the data window becomes the image (its
-// top-left corner is pixel (0, 0)). HDR: stb_image's decoder (RLE or flat
-// RGBE scanlines, "-Y H +X W" layout).
-//
-// Throws Error(path, what) when the file is missing or unreadable, is not
-// that format (or is truncated), has another extension, has no pixels or more
-// than kMaxImageSide per side or kMaxPixels in all (src/scene/scene.h;
-// checked from the header, before the pixels are allocated), or holds a
-// negative, NaN or infinite value: the message names the first such pixel in
-// reading order, e.g. "pixel (3, 7) is negative (-0.25)".
-HdrImage read_hdr_image(const std::filesystem::path& path);
-
-// How read_hdr_image treats negative values. NaN and infinity are errors whatever these say.
-struct HdrReadOptions {
-    // Read negative values as 0 instead of failing (resampled maps often ring
-    // slightly below 0); the count of values so read is returned.
-    bool clamp_negative = false;
-    // Appended to the "is negative" message when clamp_negative is off, e.g.
-    // the way to opt in ("; add ... to read negative values as 0").
-    std::string negative_hint;
-};
-
-// read_hdr_image with options; `clamped_values`, when given, receives the
-// number of channel values read as 0 (always 0 unless clamp_negative).
-HdrImage read_hdr_image(const std::filesystem::path& path, const HdrReadOptions& options,
-                        std::size_t* clamped_values = nullptr);
 
 }  // namespace sombra

@@ -1,19 +1,16 @@
-// Triangle meshes as structure-of-arrays vectors: what the loaders produce and,
-// once transformed to world space and concatenated, what the acceleration
-// structures and the integrator read.
+// Triangle meshes as structure-of-arrays vectors: what the readers produce
+// (io/mesh_file.h) and, once transformed to world space and concatenated,
+// what the acceleration structures and the integrator read.
 #pragma once
 
 #include <array>
 #include <cmath>
 #include <cstdint>
-#include <optional>
 #include <vector>
 
 #include "core/vec2.h"
 #include "core/vec3.h"
-#include "scene/light.h"
-#include "scene/material.h"
-#include "scene/texture_refs.h"
+#include "scene/texture.h"
 
 namespace sombra {
 
@@ -171,34 +168,5 @@ inline bool interpolate_tangent(const TriangleMesh& mesh, std::uint32_t triangle
     handedness = b0 * t0.handedness + b1 * t1.handedness + b2 * t2.handedness < 0.0f ? -1.0f : 1.0f;
     return true;
 }
-
-// A pinhole camera that a model file places (glTF), in the file's
-// coordinates: at `origin`, looking along `forward`, with `up` (both unit,
-// perpendicular), a vertical field of view, and the image aspect (width /
-// height) the file asks for, 0 when it leaves that to the image.
-struct ModelCamera {
-    Vec3 origin, forward, up;
-    float yfov_degrees = 45;
-    float aspect = 0;
-};
-
-// A mesh file as read from disk: geometry in the file's own coordinates and
-// the materials its faces refer to. Loaders always leave at least one
-// material when there are triangles (the default one for faces without).
-// Materials' TextureRefs index `textures`, the file's own table.
-struct LoadedMesh {
-    TriangleMesh mesh;
-    std::vector<Material> materials;
-    std::vector<Texture> textures{};
-
-    // What only glTF files carry (empty for OBJ and PLY): the lights
-    // and the first camera the file's scene places, in the file's
-    // coordinates; and per material (parallel to `materials`, or empty) the
-    // glTF texture references as the file gives them (what the materials'
-    // TextureRefs were made from; alpha mode and cutoff for cut-outs).
-    std::vector<PunctualLight> lights;
-    std::optional<ModelCamera> camera;
-    std::vector<GltfMaterialTextures> texture_refs;
-};
 
 }  // namespace sombra

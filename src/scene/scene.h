@@ -1,4 +1,6 @@
-// The loaded scene of spec §2: everything the renderer needs, in world space.
+// The scene model of spec §2: the world the renderer works on, in world
+// space. How to render it (image size, samples, integrator) is not part of
+// it: render/render_settings.h, which a scene file's reader returns beside it.
 #pragma once
 
 #include <cstdint>
@@ -14,42 +16,6 @@
 #include "scene/texture.h"
 
 namespace sombra {
-
-// Which estimator computes each sample (spec §10).
-enum class IntegratorKind {
-    Direct,  // point lights' direct light, emission and background seen (spec §4)
-    Path,    // the whole rendering equation by path tracing
-};
-
-// How material textures are looked up (spec §12).
-enum class TextureFilter {
-    Bilinear,  // the default: bilinear at full resolution for every ray; supersampling antialiases
-    Mipmap,    // trilinear in a mip pyramid at the level of the camera ray's cone footprint (render/ray_cone.h)
-};
-
-struct RenderSettings {
-    int width = 640;
-    int height = 480;
-    int spp = 1;
-    std::uint64_t seed = 0;
-    IntegratorKind integrator = IntegratorKind::Direct;
-    int max_depth = 8;  // path: the most scattering events on a path, 0 … kMaxDepth
-    // Mipmap needs the textures' pyramids (build_mip_pyramids, scene/texture_mipmap.h)
-    // built before rendering; without them lookups stay at full resolution.
-    TextureFilter texture_filter = TextureFilter::Bilinear;
-};
-
-// Limits on what a render may ask for: anything beyond is a mistake, not a
-// request (a 100000-pixel-wide image, a billion samples). The scene loader and
-// the command-line overrides check against the same numbers.
-inline constexpr int kMaxImageSide = 32768;
-inline constexpr std::int64_t kMaxPixels = std::int64_t{1} << 28;
-inline constexpr int kMaxSpp = 65536;
-inline constexpr int kMaxDepth = 1024;
-
-// "" when the settings lie within the limits above, else a short message
-// naming the offending field, e.g. "width must be between 1 and 32768".
-std::string render_settings_problem(const RenderSettings& r);
 
 // The camera as written in the scene file (spec §3): exactly one form is set.
 struct CameraBasis {
@@ -91,7 +57,6 @@ struct SceneObject {
 };
 
 struct Scene {
-    RenderSettings render;
     Vec3 background{0.0f};
     std::optional<EnvironmentMap> environment;  // when set, replaces `background`
     CameraSpec camera;

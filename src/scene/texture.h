@@ -1,14 +1,14 @@
 // Image textures (spec §12) as plain data: decoded once, at load, into
 // contiguous float arrays; looked up bilinearly at render time. The scene
-// holds one table of them (Scene::textures, LoadedMesh::textures for a mesh
-// file's own); materials name entries by index (TextureRef, scene/material.h).
+// holds one table of them (Scene::textures; a mesh file's reader fills its
+// own, LoadedMesh::textures in io/mesh_file.h); materials name entries by
+// index (TextureRef, scene/material.h).
 //
-// For a loader (OBJ/MTL, scene files, glTF): read_texture_file for a file,
-// decode_texture for an encoded image already in memory (a glTF buffer view
-// or data: URI), each told whether the image holds colours (sRGB-decoded when
-// 8 or 16 bit) or data (used as stored). Append the result to the mesh's
-// LoadedMesh::textures and point a material's TextureRef at its index, with
-// the sampler's wrap modes. Texture coordinates follow OBJ: v = 0 is the
+// For a reader (OBJ/MTL, scene files, glTF): decode the image with
+// io/images/texture_image.h, told whether it holds colours (sRGB-decoded when
+// 8 or 16 bit) or data (used as stored), append the result to the table
+// (add_texture) and point a material's TextureRef at its index, with the
+// sampler's wrap modes. Texture coordinates follow OBJ: v = 0 is the
 // image's BOTTOM row. glTF's TEXCOORD_0 has v = 0 at the top: its loader
 // stores (u, 1 − v) in TriangleMesh::uvs, which also keeps the tangent
 // frame's +y toward increasing (stored) v as normal maps expect (KHR_texture_
@@ -17,8 +17,6 @@
 
 #include <array>
 #include <cstdint>
-#include <filesystem>
-#include <span>
 #include <string>
 #include <vector>
 
@@ -63,24 +61,6 @@ struct Texture {
     // (scene/texture_mipmap.h) ran: only renders with mip-mapping build it.
     std::vector<TextureLevel> mip_levels;
 };
-
-// The most values (width × height × channels) one texture may hold: 1 GiB of
-// floats. Checked from the image's header, before any pixel is decoded.
-inline constexpr std::int64_t kMaxTextureValues = std::int64_t{1} << 28;
-// The largest image file read (its encoded bytes, all in memory at once).
-inline constexpr std::uintmax_t kMaxTextureFileBytes = std::uintmax_t{1} << 30;
-
-// Reads an image file: PNG (8 or 16 bit), JPEG, TGA or BMP, recognised by
-// their content whatever the extension; .exr (OpenEXR) and .hdr (Radiance)
-// by extension, through read_hdr_image (scene/hdr_image.h), as 3-channel
-// linear RGB. Throws Error(path, what) with a one-line message for a missing
-// or unreadable file, another format, a truncated or corrupt image, or one
-// larger than kMaxImageSide per side (scene/scene.h) or kMaxTextureValues.
-Texture read_texture_file(const std::filesystem::path& path, TextureEncoding encoding);
-
-// Decodes an encoded PNG, JPEG, TGA or BMP image held in memory; errors as
-// read_texture_file's, Error(source, what). The result's source is `source`.
-Texture decode_texture(std::span<const unsigned char> bytes, TextureEncoding encoding, const std::string& source);
 
 // sRGB's electro-optical transfer function, exactly as IEC 61966-2-1 writes
 // it: c/12.92 up to 0.04045, else ((c + 0.055)/1.055)^2.4; c in [0, 1].

@@ -1,0 +1,165 @@
+// What the glTF 2.0 loader's parts share, private to src/io/gltf (spec §13):
+// parsing with tinygltf behind guards (gltf_file.cpp) and the JSON types
+// checked before it (gltf_json_types.cpp), reading accessors
+// with every bound checked (gltf_accessors.cpp), decoding Draco-compressed
+// primitives (gltf_draco.cpp), materials and lights (gltf_materials.cpp);
+// gltf_loader.cpp walks the node tree and assembles the LoadedMesh.
+#pragma once
+
+// tinygltf's configuration, the same in every translation unit that sees
+// its classes (their default members depend on it): no stb_image in
+// tinygltf (sombra's texture module decodes the images, gltf_textures.cpp),
+// no external images read by tinygltf.
+#define TINYGLTF_NO_STB_IMAGE
+#define TINYGLTF_NO_STB_IMAGE_WRITE
+#define TINYGLTF_NO_EXTERNAL_IMAGE
+#include <tiny_gltf.h>
+
+#include <cstdint>
+#include <filesystem>
+#include <optional>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "core/error.h"
+#include "core/vec2.h"
+#include "core/vec3.h"
+#include "io/gltf/texture_refs.h"
+#include "io/mesh_file.h"
+#include "scene/light.h"
+#include "scene/material.h"
+#include "scene/mesh.h"
+#include "scene/texture.h"
+
+namespace sombra::gltf {
+
+// The extensions sombra reads. Any other listed in extensionsRequired is an
+// error; in extensionsUsed, a warning.
+inline constexpr const char* kDraco = "KHR_draco_mesh_compression";
+inline constexpr const char* kQuantization = "KHR_mesh_quantization";
+inline constexpr const char* kLights = "KHR_lights_punctual";
+inline constexpr const char* kIor = "KHR_materials_ior";
+inline constexpr const char* kEmissiveStrength = "KHR_materials_emissive_strength";
+inline constexpr const char* kTextureTransform = "KHR_texture_transform";
+
+// Reads and parses a .gltf or .glb file with tinygltf, after the checks that
+// keep hostile input away from it: the file's size, the GLB header and chunk
+// layout, at most one buffer in the BIN chunk, external files only inside the
+// file's folder and within a byte budget; images are not read; every
+// member's JSON type (check_json_types), an unsupported extension in
+// extensionsRequired named first. Then checks asset.version and
+// extensionsRequired. Throws Error(path, ...), or Error("PATH: /pointer", ...)
+// for a member of the wrong type.
+tinygltf::Model parse_file(const std::filesystem::path& path, Diagnostics& diag);
+
+// Thrown for a feature that makes one primitive unusable but not the file
+// (sparse accessors): the loader skips the primitive with one warning.
+struct Unsupported {
+    std::string feature;
+};
+
+// The vertex attributes and indices a primitive needs, by what they mean:
+// which component types and counts each may have (glTF 2.0 §3.7.2.1, with
+// KHR_mesh_quantization's additions when the file uses it).
+enum class Semantic { Position, Normal, Tangent, Texcoord, Color };
+
+struct AccessorReader {
+    const tinygltf::Model& model;
+    std::string file;         // the path, for messages
+    bool quantized = false;   // the file lists KHR_mesh_quantization in extensionsUsed
+};
+
+// Accessor `index` as `components` floats per element (3 for positions and
+// normals, 2 for texture coordinates, 4 for tangents, 4 for colours: RGB
+// colours get alpha 1), normalised integers converted as glTF says. Checks
+// the index, the accessor's type and component type for `semantic`, and that
+// every byte read lies inside its buffer view and buffer, with the alignment
+// glTF requires. Throws Error(file, "accessor N (WHAT): ...") or Unsupported.
+std::vector<float> read_floats(const AccessorReader& r, int index, Semantic semantic, const std::string& what);
+
+// Accessor `index` as vertex indices (SCALAR, unsigned byte, short or int),
+// each checked < vertex_count. Same checks and errors as read_floats.
+std::vector<std::uint32_t> read_indices(const AccessorReader& r, int index, std::size_t vertex_count,
+                                        const std::string& what);
+
+// The bytes of buffer view `index`, checked: the view exists, names an
+// existing buffer and lies inside it. Throws Error(file, "WHAT: bufferView N ...").
+std::span<const unsigned char> buffer_view_bytes(const tinygltf::Model& model, int index, const std::string& file,
+                                                 const std::string& what);
+
+// The element count of accessor `index` (checked to exist), for Draco
+// primitives, whose accessors have no data of their own.
+std::size_t accessor_count(const AccessorReader& r, int index, const std::string& what);
+
+// One triangle primitive in the file's coordinates, read and checked.
+struct PrimitiveData {
+    std::vector<Vec3> positions;
+    std::vector<Vec3> normals;           // empty, or one per position
+    std::vector<Vec2> uvs;               // empty, or one per position; sombra's convention (v = 0 at the bottom)
+    std::vector<VertexTangent> tangents; // empty, or one per position (TANGENT; not yet normalised)
+    std::vector<Rgba> colors;            // empty, or one per position (COLOR_0, clamped to [0, 1])
+    std::vector<std::uint32_t> indices;  // three per triangle, each < positions.size()
+    int material = -1;                   // index into the file's materials; -1: none
+    std::size_t clamped_colors = 0;      // colour components the file gave outside [0, 1]
+};
+
+// TANGENT as read (x, y, z, w per vertex) → tangents, the handedness the
+// sign of w (glTF asks for ±1 exactly; its sign is what the frame needs).
+std::vector<VertexTangent> tangents_of(const std::vector<float>& xyzw);
+// COLOR_0 as read (RGBA per vertex) → colours clamped to [0, 1], counting
+// the components clamped into `clamped`.
+std::vector<Rgba> colors_of(const std::vector<float>& rgba, std::size_t& clamped);
+
+// Decodes a KHR_draco_mesh_compression primitive with Draco: the
+// extension's bufferView holds the compressed mesh, its "attributes" object
+// maps POSITION, NORMAL, TEXCOORD_0, TANGENT and COLOR_0 to Draco attribute
+// ids (those the primitive lists). Throws Error.
+PrimitiveData decode_draco(const AccessorReader& r, const tinygltf::Primitive& primitive,
+                           const tinygltf::Value& extension, const std::string& what);
+
+// Every material of the file as sombra's `pbr` (spec §11), in file order,
+// with its texture references as the file gives them (apply_textures
+// turns them into texture slots).
+struct Materials {
+    std::vector<Material> materials;
+    std::vector<GltfMaterialTextures> texture_refs;
+};
+Materials convert_materials(const tinygltf::Model& model, const std::string& file, Diagnostics& diag);
+
+// Decodes the images that `refs` (one per material) name and points each
+// material's texture slots (scene/material.h) at them in `textures`: base
+// colour (sRGB; its A channel the cut-out of MASK and BLEND materials),
+// metallic-roughness (roughness from G, metallic from B), normal, emissive,
+// with the samplers' wrap modes; occlusion is ignored (spec §13). Images come
+// from buffer views (checked against their buffers), data: URIs, or files
+// beside the model (a missing one is a warning and the constant is used; a
+// path leaving the model's folder is an error). A KHR_texture_transform other
+// than the identity becomes the slot's uv transform (uv_transform_of). A
+// reference with a texCoord other than 0 (its own or the extension's) is not
+// applied: the constant is used, with one warning. Throws Error(file, ...)
+// for a broken image or a transform that overflows.
+void apply_textures(const tinygltf::Model& model, const std::filesystem::path& path,
+                    const std::vector<GltfMaterialTextures>& refs, std::vector<Material>& materials,
+                    std::vector<Texture>& textures, Diagnostics& diag);
+
+// KHR_texture_transform's offset, rotation (radians) and scale, which map
+// glTF texture coordinates (v = 0 at the image's top), as the same map of
+// sombra's stored coordinates (u, 1 − v): the transform a TextureRef applies.
+UvTransform uv_transform_of(Vec2 offset, float rotation, Vec2 scale);
+
+// The KHR_lights_punctual light `index` (spec §13, §16) at its node's
+// origin, looking down its −z axis, in the node's own coordinates: point and
+// spot lights with I = colour × intensity / 683 W/sr, directional lights with
+// E = colour × intensity / 683 W/m². Other types give nothing, their name in
+// `skipped_type`. Throws Error for a bad index, non-finite or negative
+// values, or cone angles outside 0 ≤ inner, 0 < outer ≤ π/2; inner ≥ outer
+// reads as inner = outer (with a warning unless they are equal).
+std::optional<PunctualLight> punctual_light(const tinygltf::Model& model, int index, const std::string& file,
+                                            std::string& skipped_type, Diagnostics& diag);
+
+// A JSON number that must be an integer in [lo, hi] (tinygltf's own
+// conversion of a huge double to int is undefined behaviour).
+std::optional<int> value_int(const tinygltf::Value& v, int lo, int hi);
+
+}  // namespace sombra::gltf

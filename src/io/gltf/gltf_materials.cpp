@@ -1,0 +1,210 @@
+// glTF materials → sombra's `pbr` material (spec §11, §13), their texture
+// references (as the file gives them; gltf_textures.cpp applies them), and
+// KHR_lights_punctual lights (point, spot, directional).
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+#include "io/gltf/gltf.h"
+
+#include "core/format.h"
+
+namespace sombra::gltf {
+
+std::optional<int> value_int(const tinygltf::Value& v, int lo, int hi) {
+    if (!v.IsNumber()) return std::nullopt;
+    const double d = v.GetNumberAsDouble();  // exact for every int tinygltf stores
+    if (!(d >= lo && d <= hi) || d != std::floor(d)) return std::nullopt;
+    return static_cast<int>(d);
+}
+
+namespace {
+
+// Lumens per watt: the luminous efficacy that turns glTF's photometric
+// intensity (candela) into radiant intensity (W/sr), as Blender's importer does.
+constexpr float kLumensPerWatt = 683.0f;
+
+struct MaterialContext {
+    const tinygltf::Model& model;
+    const std::string& file;
+    std::string what;  // "material 3"
+    Diagnostics& diag;
+};
+
+// A colour of 3 (or more: alpha ignored) finite components; `fallback` when absent.
+Vec3 read_colour(const MaterialContext& c, const std::vector<double>& v, Vec3 fallback, const char* name) {
+    if (v.empty()) return fallback;
+    if (v.size() < 3) throw Error(c.file, c.what + ": " + name + " has fewer than 3 components");
+    const Vec3 colour{float(v[0]), float(v[1]), float(v[2])};
+    if (!is_finite(colour)) throw Error(c.file, c.what + ": " + name + " is not finite");
+    return colour;
+}
+
+float clamped(const MaterialContext& c, double value, const char* name) {
+    const float x = static_cast<float>(value);
+    if (!std::isfinite(x)) throw Error(c.file, c.what + ": " + name + " is not finite");
+    if (x < 0.0f || x > 1.0f) c.diag.warn(c.file, c.what + ": " + name + " outside [0, 1] clamped");
+    return std::clamp(x, 0.0f, 1.0f);
+}
+
+GltfWrap wrap_mode(int gl) {
+    switch (gl) {
+        case TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE: return GltfWrap::ClampToEdge;
+        case TINYGLTF_TEXTURE_WRAP_MIRRORED_REPEAT: return GltfWrap::MirroredRepeat;
+        default: return GltfWrap::Repeat;
+    }
+}
+
+float finite_number(const tinygltf::Value& v, float fallback) {
+    if (!v.IsNumber()) return fallback;
+    const auto x = static_cast<float>(v.GetNumberAsDouble());
+    return std::isfinite(x) ? x : fallback;
+}
+
+// One textureInfo (index, texCoord, extensions) as a GltfTextureRef; an empty
+// one when index is -1. A texture or image index out of range is an error.
+GltfTextureRef texture_ref(const MaterialContext& c, int index, int texcoord, const tinygltf::ExtensionMap& extensions,
+                       const char* slot) {
+    GltfTextureRef ref;
+    if (index < 0) return ref;
+    const tinygltf::Model& m = c.model;
+    if (static_cast<std::size_t>(index) >= m.textures.size())
+        throw Error(c.file, c.what + ": " + slot + " names texture " + std::to_string(index) + ", but the file has " +
+                                std::to_string(m.textures.size()));
+    const tinygltf::Texture& t = m.textures[static_cast<std::size_t>(index)];
+    ref.texture = index;
+    ref.texcoord = std::max(texcoord, 0);
+    if (t.source >= 0) {
+        if (static_cast<std::size_t>(t.source) >= m.images.size())
+            throw Error(c.file, "texture " + std::to_string(index) + " names image " + std::to_string(t.source) +
+                                    ", but the file has " + std::to_string(m.images.size()));
+        ref.image = t.source;
+        ref.uri = m.images[static_cast<std::size_t>(t.source)].uri;
+    }
+    if (t.sampler >= 0) {
+        if (static_cast<std::size_t>(t.sampler) >= m.samplers.size())
+            throw Error(c.file, "texture " + std::to_string(index) + " names sampler " + std::to_string(t.sampler) +
+                                    ", but the file has " + std::to_string(m.samplers.size()));
+        const tinygltf::Sampler& s = m.samplers[static_cast<std::size_t>(t.sampler)];
+        ref.wrap_s = wrap_mode(s.wrapS);
+        ref.wrap_t = wrap_mode(s.wrapT);
+    }
+    if (const auto it = extensions.find(kTextureTransform); it != extensions.end() && it->second.IsObject()) {
+        const tinygltf::Value& x = it->second;
+        if (x.Has("offset") && x.Get("offset").ArrayLen() == 2)
+            ref.offset = {finite_number(x.Get("offset").Get(0), 0), finite_number(x.Get("offset").Get(1), 0)};
+        if (x.Has("scale") && x.Get("scale").ArrayLen() == 2)
+            ref.scale = {finite_number(x.Get("scale").Get(0), 1), finite_number(x.Get("scale").Get(1), 1)};
+        if (x.Has("rotation")) ref.rotation = finite_number(x.Get("rotation"), 0);
+        if (x.Has("texCoord")) ref.texcoord = value_int(x.Get("texCoord"), 0, 255).value_or(ref.texcoord);
+    }
+    return ref;
+}
+
+// The number `name` of extension `extension` on the material, if present.
+std::optional<double> extension_number(const tinygltf::Material& m, const char* extension, const char* name) {
+    const auto it = m.extensions.find(extension);
+    if (it == m.extensions.end() || !it->second.IsObject() || !it->second.Has(name)) return std::nullopt;
+    const tinygltf::Value& v = it->second.Get(name);
+    if (!v.IsNumber()) return std::nullopt;
+    return v.GetNumberAsDouble();
+}
+
+}  // namespace
+
+Materials convert_materials(const tinygltf::Model& model, const std::string& file, Diagnostics& diag) {
+    Materials out;
+    for (std::size_t i = 0; i < model.materials.size(); ++i) {
+        const tinygltf::Material& g = model.materials[i];
+        const MaterialContext c{model, file, "material " + std::to_string(i), diag};
+        const tinygltf::PbrMetallicRoughness& pbr = g.pbrMetallicRoughness;
+
+        Material m;
+        m.name = g.name.empty() ? "gltf material " + std::to_string(i) : g.name;
+        m.type = MaterialType::Pbr;
+        const Vec3 base = read_colour(c, pbr.baseColorFactor, Vec3{1.0f}, "baseColorFactor");
+        m.base_color = {clamped(c, base.x, "baseColorFactor"), clamped(c, base.y, "baseColorFactor"),
+                        clamped(c, base.z, "baseColorFactor")};
+        // The base colour doubles as the diffuse albedo for code that reads
+        // kd regardless of the type (the version-1 BRDF terms).
+        m.kd = m.base_color;
+        m.metallic = clamped(c, pbr.metallicFactor, "metallicFactor");
+        m.roughness = clamped(c, pbr.roughnessFactor, "roughnessFactor");
+        if (const std::optional<double> ior = extension_number(g, kIor, "ior")) {
+            if (std::isfinite(*ior) && *ior > 1.0)
+                m.ior = static_cast<float>(*ior);
+            else
+                diag.warn(file, c.what + ": " + kIor + " ior " + std::to_string(*ior) + " is not > 1: 1.5 used");
+        }
+        const Vec3 emissive = read_colour(c, g.emissiveFactor, Vec3{0.0f}, "emissiveFactor");
+        const float strength = static_cast<float>(extension_number(g, kEmissiveStrength, "emissiveStrength").value_or(1.0));
+        if (!std::isfinite(strength) || strength < 0.0f)
+            throw Error(file, c.what + ": emissiveStrength must be finite and >= 0");
+        m.ke = max(emissive, Vec3{0.0f}) * strength;
+        if (!is_finite(m.ke)) throw Error(file, c.what + ": emission is not finite");
+
+        GltfMaterialTextures refs;
+        refs.base_color = texture_ref(c, pbr.baseColorTexture.index, pbr.baseColorTexture.texCoord,
+                                      pbr.baseColorTexture.extensions, "baseColorTexture");
+        refs.metallic_roughness = texture_ref(c, pbr.metallicRoughnessTexture.index, pbr.metallicRoughnessTexture.texCoord,
+                                              pbr.metallicRoughnessTexture.extensions, "metallicRoughnessTexture");
+        refs.normal = texture_ref(c, g.normalTexture.index, g.normalTexture.texCoord, g.normalTexture.extensions,
+                                  "normalTexture");
+        refs.normal.strength = finite_number(tinygltf::Value(g.normalTexture.scale), 1);
+        refs.emissive = texture_ref(c, g.emissiveTexture.index, g.emissiveTexture.texCoord, g.emissiveTexture.extensions,
+                                    "emissiveTexture");
+        refs.occlusion = texture_ref(c, g.occlusionTexture.index, g.occlusionTexture.texCoord,
+                                     g.occlusionTexture.extensions, "occlusionTexture");
+        refs.occlusion.strength = finite_number(tinygltf::Value(g.occlusionTexture.strength), 1);
+        refs.alpha_mode = g.alphaMode == "MASK" ? AlphaMode::Mask : g.alphaMode == "BLEND" ? AlphaMode::Blend : AlphaMode::Opaque;
+        refs.alpha_cutoff = finite_number(tinygltf::Value(g.alphaCutoff), 0.5f);
+        refs.base_alpha = pbr.baseColorFactor.size() == 4 ? finite_number(tinygltf::Value(pbr.baseColorFactor[3]), 1) : 1;
+        out.materials.push_back(std::move(m));
+        out.texture_refs.push_back(std::move(refs));
+    }
+    return out;
+}
+
+std::optional<PunctualLight> punctual_light(const tinygltf::Model& model, int index, const std::string& file,
+                                            std::string& skipped_type, Diagnostics& diag) {
+    if (index < 0 || static_cast<std::size_t>(index) >= model.lights.size())
+        throw Error(file, std::string(kLights) + ": a node names light " + std::to_string(index) + ", but the file has " +
+                              std::to_string(model.lights.size()));
+    const tinygltf::Light& light = model.lights[static_cast<std::size_t>(index)];
+    if (light.type != "point" && light.type != "spot" && light.type != "directional") {
+        skipped_type = light.type.empty() ? "untyped" : light.type;
+        return std::nullopt;
+    }
+    const std::string what = std::string(kLights) + " light " + std::to_string(index);
+    Vec3 colour{1.0f};
+    if (!light.color.empty()) {
+        if (light.color.size() != 3) throw Error(file, what + ": color must have 3 components");
+        colour = {float(light.color[0]), float(light.color[1]), float(light.color[2])};
+    }
+    // Candela (point, spot) or lux (directional) to watts, as Blender imports them.
+    const Vec3 intensity = colour * static_cast<float>(light.intensity) / kLumensPerWatt;
+    if (!is_finite(intensity) || min_component(colour) < 0.0f || light.intensity < 0.0)
+        throw Error(file, what + ": color and intensity must be finite and >= 0");
+    // Every light looks down its node's −z axis; the node's transform places it.
+    const Vec3 down_z{0, 0, -1};
+    if (light.type == "point") return make_point_light(Vec3{0.0f}, intensity);
+    if (light.type == "directional") return make_directional_light(down_z, intensity);
+
+    double inner = light.spot.innerConeAngle, outer = light.spot.outerConeAngle;
+    constexpr double kHalfPi = std::numbers::pi / 2;
+    if (!(outer > 0.0 && outer <= kHalfPi))
+        throw Error(file, what + ": spot.outerConeAngle must lie in (0, pi/2], not " + format_number(outer));
+    if (!(inner >= 0.0)) throw Error(file, what + ": spot.innerConeAngle must be >= 0, not " + format_number(inner));
+    if (inner >= outer) {
+        // Blender writes equal angles for a spot without blend (spec §16).
+        if (inner > outer)
+            diag.warn(file, what + ": spot.innerConeAngle " + format_number(inner) + " >= outerConeAngle " +
+                                format_number(outer) + ", read as equal");
+        inner = outer;
+    }
+    constexpr double kDegrees = 180.0 / std::numbers::pi;
+    return make_spot_light(Vec3{0.0f}, down_z, intensity, static_cast<float>(outer * kDegrees),
+                           static_cast<float>(inner * kDegrees));
+}
+
+}  // namespace sombra::gltf

@@ -1,0 +1,64 @@
+// Mesh files → LoadedMesh: OBJ (+MTL), PLY and glTF 2.0. LoadedMesh is
+// what the readers of every mesh format produce, and what the scene readers
+// place in a scene.
+#pragma once
+
+#include <filesystem>
+#include <optional>
+#include <vector>
+
+#include "core/error.h"
+#include "core/vec3.h"
+#include "scene/light.h"
+#include "scene/material.h"
+#include "scene/mesh.h"
+#include "scene/texture.h"
+
+namespace sombra {
+
+// A pinhole camera that a model file places (glTF), in the file's
+// coordinates: at `origin`, looking along `forward`, with `up` (both unit,
+// perpendicular), a vertical field of view, and the image aspect (width /
+// height) the file asks for, 0 when it leaves that to the image.
+struct ModelCamera {
+    Vec3 origin, forward, up;
+    float yfov_degrees = 45;
+    float aspect = 0;
+};
+
+// A mesh file as read from disk: geometry in the file's own coordinates and
+// the materials its faces refer to. Loaders always leave at least one
+// material when there are triangles (the default one for faces without).
+// Materials' TextureRefs index `textures`, the file's own table.
+struct LoadedMesh {
+    TriangleMesh mesh;
+    std::vector<Material> materials;
+    std::vector<Texture> textures{};
+
+    // The lights and the first camera the file's scene places, in the
+    // file's coordinates (glTF; none for OBJ and PLY).
+    std::vector<PunctualLight> lights;
+    std::optional<ModelCamera> camera;
+};
+
+// Reads an OBJ file and the MTL files it names (spec §5, §9). Polygons are
+// fan-triangulated from their first corner (concave ones ear-clipped); faces
+// with fewer than 3 corners, triangles touching non-finite positions and
+// out-of-range normal indices are dropped or ignored with a warning.
+// Throws Error("file:line", ...) for a file that cannot be read or is invalid.
+LoadedMesh load_obj(const std::filesystem::path& path, Diagnostics& diag);
+
+// Reads an ascii or binary (little/big endian) PLY file (spec §9).
+LoadedMesh load_ply(const std::filesystem::path& path, Diagnostics& diag);
+
+// Reads a glTF 2.0 file, .gltf (JSON, external or embedded buffers) or .glb
+// (spec §13): the default scene's meshes in the file's world space (node
+// transforms applied), its materials as `pbr`, its point lights and first
+// perspective camera. Throws Error(path, ...) for a broken file.
+LoadedMesh load_gltf(const std::filesystem::path& path, Diagnostics& diag);
+
+// Dispatches on the extension (.obj, .ply, .gltf or .glb, case-insensitive); throws
+// Error(path, ...) for any other, for a missing file, or a folder.
+LoadedMesh load_mesh_file(const std::filesystem::path& path, Diagnostics& diag);
+
+}  // namespace sombra

@@ -1,0 +1,98 @@
+// The quick look of spec §7: a scene made on the fly for a lone model file,
+// framed and lit so that any model shows (or placed as its glTF file says).
+#include "io/quicklook.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <optional>
+#include <utility>
+
+#include "core/image_limits.h"
+#include "io/mesh_file.h"
+#include "scene/scene_builder.h"
+
+namespace sombra {
+
+namespace {
+
+constexpr float kFovDegrees = 40.0f;
+
+// Radiance of a grey kd = 0.8 Lambertian surface facing the key light at the
+// sphere's centre: L = I/d² · kd/π. 0.45 leaves headroom for light from the
+// fill and rim lights overlapping it.
+constexpr float kKeyRadiance = 0.45f;
+
+struct Sphere {
+    Vec3 centre;
+    float radius;
+};
+
+Sphere bounding_sphere(const TriangleMesh& mesh) {
+    Vec3 lo{INFINITY}, hi{-INFINITY};
+    for (const Index3& tri : mesh.triangles)
+        for (std::uint32_t v : tri) {
+            lo = min(lo, mesh.positions[v]);
+            hi = max(hi, mesh.positions[v]);
+        }
+    const float radius = 0.5f * length(hi - lo);
+    // A single point (all triangles degenerate) still gets a usable frame.
+    return {(lo + hi) * 0.5f, radius > 0.0f ? radius : 1.0f};
+}
+
+}  // namespace
+
+LoadedScene make_quicklook_scene(const std::filesystem::path& model, Diagnostics& diag) {
+    LoadedMesh loaded = load_mesh_file(model, diag);
+    const Sphere sphere = bounding_sphere(loaded.mesh);
+
+    LoadedScene out;
+    SceneBuilder builder;
+    builder.set_background(Vec3{0.02f});
+    // The model is the world, in its own coordinates: it moves in as it is.
+    const MeshPlacement placement{model.filename().string(), model.string(), std::nullopt, std::nullopt};
+    if (builder.add_mesh(std::move(loaded.mesh), std::move(loaded.materials), std::move(loaded.textures), placement) !=
+        MeshProblem::None)
+        throw Error(model.string(), "a triangle refers to a vertex that does not exist");
+
+    // A glTF file's own camera (its first) and point lights replace the
+    // automatic framing and lighting; its aspect ratio sets the image's
+    // height for the default width.
+    CameraSpec camera;
+    if (loaded.camera) {
+        const ModelCamera& c = *loaded.camera;
+        camera.look_at = CameraLookAt{c.origin, c.origin + c.forward, c.up, c.yfov_degrees};
+        if (c.aspect > 0) {
+            const float height = std::round(static_cast<float>(out.settings.width) / c.aspect);
+            out.settings.height = static_cast<int>(std::clamp(height, 1.0f, static_cast<float>(kMaxImageSide)));
+        }
+    }
+    for (const PunctualLight& light : loaded.lights) builder.add_light(light);
+
+    // Far enough that the sphere fits the vertical field of view (the
+    // horizontal one is wider for landscape images), with a 10 % margin.
+    const float half_fov = kFovDegrees * 0.5f * std::numbers::pi_v<float> / 180.0f;
+    const float distance = 1.1f * sphere.radius / std::sin(half_fov);
+    const Vec3 view_dir = normalize(Vec3{0.0f, 0.35f, 1.0f});  // front, a little above
+    if (!camera.look_at)
+        camera.look_at = CameraLookAt{sphere.centre + distance * view_dir, sphere.centre, Vec3{0, 1, 0}, kFovDegrees};
+    builder.set_camera(camera);
+    if (!loaded.lights.empty()) {
+        out.scene = builder.finish();
+        return out;
+    }
+
+    // Three-point lighting around the camera, at a few radii from the model.
+    auto light_at = [&](Vec3 direction, float distance_in_radii, float share) {
+        const float d = distance_in_radii * sphere.radius;
+        const float intensity = share * kKeyRadiance * std::numbers::pi_v<float> / 0.8f * d * d;
+        return make_point_light(sphere.centre + d * normalize(direction), Vec3{intensity});
+    };
+    builder.add_light(light_at({-1.0f, 1.4f, 1.3f}, 4.0f, 1.0f));   // key: upper left, front
+    builder.add_light(light_at({1.2f, 0.3f, 1.0f}, 4.0f, 0.35f));   // fill: right, low
+    builder.add_light(light_at({0.3f, 1.2f, -1.2f}, 4.0f, 0.5f));   // rim: behind, above
+    out.scene = builder.finish();
+    return out;
+}
+
+}  // namespace sombra

@@ -1,0 +1,218 @@
+// Scene file → Scene: reads the JSON sections, checks every object's file
+// before loading any mesh (a typo in the last object should not wait for the
+// first one's million triangles), then loads the meshes and hands them to the
+// scene's builder (scene/scene_builder.h), which places them in world space.
+#include "io/scene_json/scene_file.h"
+
+#include <fstream>
+#include <limits>
+#include <map>
+#include <optional>
+#include <sstream>
+#include <utility>
+
+#include "io/mesh_file.h"
+#include "io/scene_json/scene_json.h"
+#include "scene/scene_builder.h"
+#include "scene/transform.h"
+
+namespace sombra {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+// Scene files describe; meshes belong in their own files. Bounds what a
+// mistaken path (a huge mesh or a disk image) makes us read.
+constexpr std::uintmax_t kMaxSceneFileBytes = 64u << 20;
+
+// One entry of "objects", validated but not yet loaded.
+struct ObjectSpec {
+    std::string pointer;                    // "/objects/3"
+    fs::path path;                          // the mesh file, relative to the working directory
+    std::optional<std::uint32_t> material;  // override: index into Scene::materials
+    Transform transform;
+    bool is_quad_light = false;  // a quad light: no file behind it
+};
+
+ObjectSpec read_object(const SceneJson& s, const Json& v, std::string_view pointer, const fs::path& scene_path,
+                       const std::map<std::string, std::uint32_t, std::less<>>& material_index) {
+    expect_keys(s, v, pointer, {"file", "material", "transform"});
+    ObjectSpec spec;
+    spec.pointer = std::string(pointer);
+
+    const std::string file_pointer = json_child(pointer, "file");
+    const std::string& file = read_string(s, require_member(s, v, pointer, "file"), file_pointer);
+    if (file.empty()) json_fail(s, file_pointer, "expected a file name, not an empty string");
+    // The system reads a path up to its first NUL: "a.obj\u0000b" must not quietly load a.obj.
+    if (file.find('\0') != std::string::npos) json_fail(s, file_pointer, "the file name contains a NUL character");
+    spec.path = scene_path.parent_path() / fs::path(file);
+    std::error_code ec;
+    const fs::file_status status = fs::status(spec.path, ec);
+    if (!fs::exists(status)) json_fail(s, file_pointer, "cannot open '" + file + "': no such file");
+    if (fs::is_directory(status)) json_fail(s, file_pointer, "'" + file + "' is a folder, not a mesh file");
+    // A device or a pipe could be read forever.
+    if (!fs::is_regular_file(status)) json_fail(s, file_pointer, "'" + file + "' is not a regular file");
+    if (fs::equivalent(spec.path, scene_path, ec))
+        json_fail(s, file_pointer, "'" + file + "' is the scene file itself, not a mesh");
+
+    if (const Json* m = find_member(v, "material")) {
+        const std::string material_pointer = json_child(pointer, "material");
+        const std::string& name = read_string(s, *m, material_pointer);
+        const auto it = material_index.find(name);
+        if (it == material_index.end()) json_fail(s, material_pointer, "unknown material '" + name + "'");
+        spec.material = it->second;
+    }
+    if (const Json* t = find_member(v, "transform"))
+        spec.transform = read_transform(s, *t, json_child(pointer, "transform"));
+    return spec;
+}
+
+// One object joins the scene: placed by its transform, with the scene's
+// material when it names one, else its file's own. The builder's problems
+// become errors naming the object's transform or its file.
+void add_object(SceneBuilder& builder, const LoadedMesh& loaded, const ObjectSpec& spec, const SceneJson& s) {
+    const std::string mesh_name = spec.path.string();
+    const MeshPlacement placement{spec.pointer, spec.is_quad_light ? std::string{} : mesh_name, spec.transform,
+                                  spec.material};
+    switch (builder.add_mesh(loaded.mesh, loaded.materials, loaded.textures, placement)) {
+        case MeshProblem::None: return;
+        case MeshProblem::NonFinitePlacement:
+            json_fail(s, json_child(spec.pointer, "transform"), "a transformed vertex is not finite");
+        case MeshProblem::BadVertexIndex: throw Error(mesh_name, "a triangle refers to a vertex that does not exist");
+    }
+}
+
+// A light a glTF file placed, carried by its object's transform: the
+// position moves, the direction turns with the transform's linear part.
+PunctualLight transform_light(PunctualLight light, const Transform& transform, const SceneJson& s,
+                              const std::string& object_pointer) {
+    const std::string where = json_child(object_pointer, "transform");
+    if (light.type != LightType::Directional) {
+        light.position = transform_point(transform, light.position);
+        if (!is_finite(light.position)) json_fail(s, where, "a transformed light position is not finite");
+    }
+    if (light.type != LightType::Point) {
+        const Vec3 direction = transform_vector(transform, light.direction);
+        if (!is_finite(direction) || !(length(to_double(direction)) > 0))
+            json_fail(s, where, "a transformed light direction is not finite");
+        light.direction = unit_direction(direction);
+    }
+    return light;
+}
+
+std::string read_scene_text(const fs::path& path) {
+    const std::string name = path.string();
+    std::error_code ec;
+    const fs::file_status status = fs::status(path, ec);
+    if (!fs::exists(status)) throw Error(name, "cannot open scene file: no such file");
+    if (fs::is_directory(status)) throw Error(name, "cannot open scene file: it is a folder");
+    if (!fs::is_regular_file(status)) throw Error(name, "cannot open scene file: not a regular file");
+    const std::uintmax_t size = fs::file_size(path, ec);
+    if (!ec && size > kMaxSceneFileBytes)
+        throw Error(name, "scene file is larger than " + std::to_string(kMaxSceneFileBytes >> 20) + " MiB");
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw Error(name, "cannot open scene file: permission denied or unreadable");
+    std::ostringstream text;
+    text << in.rdbuf();
+    if (in.bad()) throw Error(name, "cannot read scene file");
+    return std::move(text).str();
+}
+
+}  // namespace
+
+LoadedScene load_scene_file(const fs::path& path, Diagnostics& diag) {
+    return load_scene_text(read_scene_text(path), path, diag);
+}
+
+LoadedScene load_scene_text(const std::string& text, const fs::path& path, Diagnostics& diag) {
+    const SceneJson s{path.string(), diag};
+    const Json root = parse_scene_json(text, s.name);
+    expect_keys(s, root, "", {"render", "background", "environment", "camera", "materials", "lights", "objects"});
+
+    LoadedScene out;
+    SceneBuilder builder;
+    if (const Json* v = find_member(root, "render")) out.settings = read_render(s, *v, "/render");
+    if (const Json* v = find_member(root, "background")) builder.set_background(read_rgb(s, *v, "/background"));
+    builder.set_camera(read_camera(s, require_member(s, root, "", "camera"), "/camera"));
+    // The file's materials name their textures in the file's own table, which joins the scene's.
+    std::vector<Material> materials;
+    std::vector<Texture> material_textures;
+    SceneTextures textures{path.parent_path(), &material_textures};
+    if (const Json* v = find_member(root, "materials")) materials = read_materials(s, *v, "/materials", textures);
+    builder.add_materials(materials, material_textures);
+    SceneLights lights;
+    if (const Json* v = find_member(root, "lights")) lights = read_lights(s, *v, "/lights");
+    for (const PunctualLight& light : lights.punctual) builder.add_light(light);
+    if (const Json* v = find_member(root, "environment")) {
+        if (find_member(root, "background"))
+            json_fail(s, "/environment", "give either 'background' or 'environment', not both (the map replaces the background)");
+        builder.set_environment(read_environment(s, *v, "/environment", path.parent_path()));
+    }
+
+    std::map<std::string, std::uint32_t, std::less<>> material_index;
+    for (std::size_t i = 0; i < materials.size(); ++i)
+        material_index.emplace(materials[i].name, static_cast<std::uint32_t>(i));
+
+    const Json& objects = require_member(s, root, "", "objects");
+    expect_array(s, objects, "/objects");
+    if (objects.empty()) json_fail(s, "/objects", "at least one object is required");
+    std::vector<ObjectSpec> specs;
+    specs.reserve(objects.size());
+    for (std::size_t i = 0; i < objects.size(); ++i)
+        specs.push_back(read_object(s, objects[i], json_child("/objects", i), path, material_index));
+
+    // Quad lights join the geometry after the objects, through the same
+    // assembly: each is a two-triangle mesh with its own material.
+    std::vector<LoadedMesh> quad_meshes;
+    std::vector<ObjectSpec> quad_specs;
+    for (const QuadLight& q : lights.quads) {
+        quad_meshes.push_back(make_quad_light_mesh(q));
+        quad_specs.push_back(ObjectSpec{q.pointer, "quad light " + q.pointer, std::nullopt, Transform{}, true});
+    }
+
+    // Load everything first so the world arrays are sized once, exactly. A
+    // file used by several objects (one sphere, five materials) is read once.
+    std::vector<LoadedMesh> meshes;
+    std::vector<std::size_t> mesh_of(specs.size());
+    std::vector<std::size_t> last_use;
+    std::map<fs::path, std::size_t> loaded_index;
+    MeshSizes sizes;
+    for (std::size_t i = 0; i < specs.size(); ++i) {
+        const ObjectSpec& spec = specs[i];
+        std::error_code ec;
+        fs::path key = fs::canonical(spec.path, ec);
+        if (ec) key = spec.path;
+        const auto [it, is_new] = loaded_index.try_emplace(key, meshes.size());
+        if (is_new) {
+            meshes.push_back(load_mesh_file(spec.path, diag));
+            last_use.push_back(i);
+        }
+        mesh_of[i] = it->second;
+        last_use[it->second] = i;
+        const TriangleMesh& m = meshes[it->second].mesh;
+        if (m.triangles.empty()) json_warn(s, json_child(spec.pointer, "file"), "the mesh has no triangles");
+        sizes += sizes_of(m);
+    }
+    for (const LoadedMesh& q : quad_meshes) sizes += sizes_of(q.mesh);
+    // Indices are 32-bit; kNoNormal is reserved.
+    constexpr std::size_t kMaxIndex = std::numeric_limits<std::uint32_t>::max() - 1;
+    if (sizes.positions > kMaxIndex || sizes.normals > kMaxIndex || sizes.uvs > kMaxIndex ||
+        sizes.tangents > kMaxIndex || sizes.colors > kMaxIndex || sizes.triangles > kMaxIndex)
+        json_fail(s, "/objects", "the scene has more than " + std::to_string(kMaxIndex) + " vertices or triangles");
+
+    builder.reserve(sizes);
+    for (std::size_t i = 0; i < specs.size(); ++i) {
+        // Lights a glTF file places move with its object (§13, §16).
+        for (const PunctualLight& light : meshes[mesh_of[i]].lights)
+            builder.add_light(transform_light(light, specs[i].transform, s, specs[i].pointer));
+        add_object(builder, meshes[mesh_of[i]], specs[i], s);
+        // Free each file's mesh after its last object: peak memory stays near two copies.
+        if (last_use[mesh_of[i]] == i) meshes[mesh_of[i]] = LoadedMesh{};
+    }
+    for (std::size_t i = 0; i < quad_meshes.size(); ++i) add_object(builder, quad_meshes[i], quad_specs[i], s);
+    out.scene = builder.finish();
+    return out;
+}
+
+}  // namespace sombra

@@ -1,0 +1,26 @@
+// Scene files (spec §2, §3, §5, §8): the JSON read and checked, every
+// object's mesh file loaded and placed in world space by the scene's builder
+// (scene/scene_builder.h), the "render" section read beside the scene.
+#pragma once
+
+#include <filesystem>
+#include <string>
+
+#include "core/error.h"
+#include "io/loaded_scene.h"
+
+namespace sombra {
+
+// Reads and validates a scene file, loads every object's mesh (paths relative
+// to the scene's folder), and adds them to a SceneBuilder with their
+// transforms and material overrides. Throws Error with WHERE as
+// "scene.json:line:col" for malformed JSON and "scene.json: /json/path" (the
+// JSON pointer of the offending value) for semantic errors. The settings are
+// the file's "render" section, checked against render_settings_problem.
+LoadedScene load_scene_file(const std::filesystem::path& path, Diagnostics& diag);
+
+// The same from JSON text already in memory; `path` names it in messages and
+// anchors relative mesh paths.
+LoadedScene load_scene_text(const std::string& text, const std::filesystem::path& path, Diagnostics& diag);
+
+}  // namespace sombra

@@ -1,0 +1,55 @@
+# The layering of src/ (docs/architecture.md, "What may include what"),
+# checked on the sources' #include lines:
+#
+#   cmake -DSRC=path/to/src -P tools/check-layering.cmake
+#
+# Each rule names a folder and the folders its code must not include: the
+# renderer's stages never reach the file readers (io/), and the scene model
+# includes nothing but core/ and itself. Test code is exempt, a file whose
+# name contains "test" (foo_test.cpp, test_meshes.h, chi2_test_util.h): a
+# test may read a scene file to render it, and its executable links
+# sombra_io for that. Fails, listing every offending line, when a rule is
+# broken. CTest runs it as the test layering_includes (src/CMakeLists.txt).
+cmake_minimum_required(VERSION 3.25)
+
+if(NOT DEFINED SRC)
+  message(FATAL_ERROR "usage: cmake -DSRC=<src folder> -P check-layering.cmake")
+endif()
+
+set(rules
+  "accel:io"
+  "render:io"
+  "explain:io"
+  "image:io"
+  "scene:io,accel,render,explain,image,app"
+  "core:scene,io,accel,render,explain,image,app")
+
+set(broken "")
+set(checked 0)
+foreach(rule IN LISTS rules)
+  string(REPLACE ":" ";" parts "${rule}")
+  list(GET parts 0 folder)
+  list(GET parts 1 forbidden)
+  string(REPLACE "," "|" forbidden "${forbidden}")
+  file(GLOB_RECURSE files RELATIVE "${SRC}" "${SRC}/${folder}/*.h" "${SRC}/${folder}/*.hpp" "${SRC}/${folder}/*.cpp")
+  foreach(file IN LISTS files)
+    get_filename_component(name "${file}" NAME)
+    if(name MATCHES "test")
+      continue()
+    endif()
+    math(EXPR checked "${checked} + 1")
+    file(STRINGS "${SRC}/${file}" includes REGEX "^[ \t]*#[ \t]*include")
+    foreach(line IN LISTS includes)
+      # "io/x.h", <io/x.h>, and relative climbs such as "../io/x.h".
+      if(line MATCHES "include[ \t]*[\"<](\\.\\./)*(${forbidden})/")
+        string(STRIP "${line}" line)
+        string(APPEND broken "  ${file}: ${line} (${folder}/ must not include ${CMAKE_MATCH_2}/)\n")
+      endif()
+    endforeach()
+  endforeach()
+endforeach()
+
+if(broken)
+  message(FATAL_ERROR "layering broken: see docs/architecture.md, \"What may include what\"\n${broken}")
+endif()
+message(STATUS "layering holds: ${checked} files of ${SRC} checked")
