@@ -101,13 +101,14 @@ bool same_colour(const float* a, const float* b) {
     return same;
 }
 
-ImageAgreement bvh_against_brute(const TriangleMesh& mesh, const Accel& bvh, int width, int height, double rays_per_pixel,
-                                 std::size_t min_pixels,
+ImageAgreement bvh_against_brute(const TriangleMesh& mesh, const Accel& bvh, int width, int height,
+                                 double rays_per_pixel, std::size_t min_pixels,
                                  const std::function<Vec3(const Accel& accel, int i, int j)>& radiance) {
     constexpr double kBruteBudget = 2e9;  // triangle tests: a few seconds at most
     const Accel brute = make_accel(mesh, AccelKind::Brute);
     const std::size_t pixels = std::size_t(width) * std::size_t(height);
-    const double affordable = kBruteBudget / (std::max<double>(double(mesh.triangle_count()), 1) * std::max(rays_per_pixel, 1.0));
+    const double affordable =
+        kBruteBudget / (std::max<double>(double(mesh.triangle_count()), 1) * std::max(rays_per_pixel, 1.0));
     const std::size_t samples =
         std::clamp<std::size_t>(std::size_t(affordable), min_pixels, std::max<std::size_t>(pixels / 37, 1));
     const std::size_t stride = std::max<std::size_t>(pixels / samples, 1);

@@ -86,8 +86,8 @@ inline constexpr double kMinEqualFraction = 0.999;
 // brute force spends at most about 2·10⁹ triangle tests (a pixel costing
 // `rays_per_pixel` rays), but never fewer than `min_pixels`. The BVH's hits
 // are bit-identical to brute's, so the pixels must agree.
-ImageAgreement bvh_against_brute(const TriangleMesh& mesh, const Accel& bvh, int width, int height, double rays_per_pixel,
-                                 std::size_t min_pixels,
+ImageAgreement bvh_against_brute(const TriangleMesh& mesh, const Accel& bvh, int width, int height,
+                                 double rays_per_pixel, std::size_t min_pixels,
                                  const std::function<Vec3(const Accel& accel, int i, int j)>& radiance);
 
 }  // namespace sombra::bench

@@ -7,9 +7,9 @@
 #include <vector>
 
 #include "bench_util.h"
-#include "load_bench.h"
 #include "io/gltf/gltf.h"
 #include "io/mesh_file.h"
+#include "load_bench.h"
 
 namespace sombra::bench {
 

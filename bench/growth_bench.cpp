@@ -6,8 +6,8 @@
 
 #include "bench_util.h"
 #include "core/error.h"
-#include "measure.h"
 #include "io/quicklook.h"
+#include "measure.h"
 
 namespace sombra::bench {
 
@@ -45,7 +45,8 @@ void run_growth_bench(const std::vector<std::string>& model_files, const GrowthO
     settings.width = o.width;
     settings.height = o.height;
     settings.spp = 1;
-    if (const std::string problem = render_settings_problem(settings); !problem.empty()) throw Error("--width/--height", problem);
+    if (const std::string problem = render_settings_problem(settings); !problem.empty())
+        throw Error("--width/--height", problem);
 
     std::vector<GrowthPoint> points;
     for (const std::string& file : model_files) {

@@ -21,7 +21,9 @@ namespace {
 void add_embree_quality_option(CLI::App& command, sombra::bench::EmbreeSettings& embree) {
     using sombra::bench::EmbreeQuality;
     const std::map<std::string, EmbreeQuality> names{{"medium", EmbreeQuality::Medium}, {"high", EmbreeQuality::High}};
-    command.add_option("--embree-quality", embree.quality, "Embree's build quality: medium (its default) or high (spatial splits)")
+    command
+        .add_option("--embree-quality", embree.quality,
+                    "Embree's build quality: medium (its default) or high (spatial splits)")
         ->transform(CLI::CheckedTransformer(names));
 }
 
@@ -46,7 +48,8 @@ int main(int argc, char** argv) {
 
     int load_reps = 5;
     std::string obj_file;
-    CLI::App* load = app.add_subcommand("load", "Load an OBJ with sombra and with tinyobjloader, alternating (a .gltf/.glb: with tinygltf)");
+    CLI::App* load = app.add_subcommand(
+        "load", "Load an OBJ with sombra and with tinyobjloader, alternating (a .gltf/.glb: with tinygltf)");
     load->add_option("obj", obj_file, "OBJ, glTF or GLB file")->required()->check(CLI::ExistingFile);
     load->add_option("--reps", load_reps, "Timed rounds per loader (median reported)")
         ->check(CLI::Range(1, 1000))
@@ -55,7 +58,9 @@ int main(int argc, char** argv) {
     GrowthOptions growth_options;
     std::vector<std::string> model_files;
     CLI::App* growth = app.add_subcommand("growth", "Build and render cost against triangle count (quick-look view)");
-    growth->add_option("model", model_files, "Meshes (.obj, .ply), smallest first")->required()->check(CLI::ExistingFile);
+    growth->add_option("model", model_files, "Meshes (.obj, .ply), smallest first")
+        ->required()
+        ->check(CLI::ExistingFile);
     growth->add_option("--reps", growth_options.reps, "Timed rounds per backend (median reported)")
         ->check(CLI::Range(1, 1000))
         ->capture_default_str();
@@ -74,8 +79,12 @@ int main(int argc, char** argv) {
         ->check(CLI::Range(1, 1000))
         ->capture_default_str();
     path->add_option("--width", path_options.width, "Image width")->check(CLI::Range(1, 4096))->capture_default_str();
-    path->add_option("--height", path_options.height, "Image height")->check(CLI::Range(1, 4096))->capture_default_str();
-    path->add_option("--spp", path_options.spp, "Samples per pixel")->check(CLI::Range(1, 65536))->capture_default_str();
+    path->add_option("--height", path_options.height, "Image height")
+        ->check(CLI::Range(1, 4096))
+        ->capture_default_str();
+    path->add_option("--spp", path_options.spp, "Samples per pixel")
+        ->check(CLI::Range(1, 65536))
+        ->capture_default_str();
     path->add_option("--max-depth", path_options.max_depth, "Most scattering events on a path")
         ->check(CLI::Range(0, 1024))
         ->capture_default_str();
@@ -83,7 +92,8 @@ int main(int argc, char** argv) {
 
     RaysBenchOptions rays_options;
     std::vector<std::string> rays_files;
-    CLI::App* rays = app.add_subcommand("rays", "Trace batches of incoherent rays from the surfaces with every backend: traversal alone");
+    CLI::App* rays = app.add_subcommand(
+        "rays", "Trace batches of incoherent rays from the surfaces with every backend: traversal alone");
     rays->add_option("scene", rays_files, "Scene files (.json)")->required()->check(CLI::ExistingFile);
     rays->add_option("--reps", rays_options.reps, "Timed rounds per backend (median reported)")
         ->check(CLI::Range(1, 1000))
@@ -102,7 +112,9 @@ int main(int argc, char** argv) {
     std::vector<std::string> tree_files;
     CLI::App* tree = app.add_subcommand("tree", "The BVH's tree on scenes: SAH cost, size, build time");
     tree->add_option("scene", tree_files, "Scene files (.json)")->required()->check(CLI::ExistingFile);
-    tree->add_option("--reps", tree_reps, "Timed builds (median reported)")->check(CLI::Range(1, 1000))->capture_default_str();
+    tree->add_option("--reps", tree_reps, "Timed builds (median reported)")
+        ->check(CLI::Range(1, 1000))
+        ->capture_default_str();
 
     PathErrorOptions error_options;
     std::string error_file;
@@ -110,8 +122,12 @@ int main(int argc, char** argv) {
     CLI::App* path_error = app.add_subcommand(
         "path-error", "Path tracing's error against a converged reference, at fixed spp and at equal time");
     path_error->add_option("scene", error_file, "Scene file (.json)")->required()->check(CLI::ExistingFile);
-    path_error->add_option("--width", error_options.width, "Image width")->check(CLI::Range(1, 4096))->capture_default_str();
-    path_error->add_option("--height", error_options.height, "Image height")->check(CLI::Range(1, 4096))->capture_default_str();
+    path_error->add_option("--width", error_options.width, "Image width")
+        ->check(CLI::Range(1, 4096))
+        ->capture_default_str();
+    path_error->add_option("--height", error_options.height, "Image height")
+        ->check(CLI::Range(1, 4096))
+        ->capture_default_str();
     path_error->add_option("--max-depth", error_options.max_depth, "Most scattering events on a path")
         ->check(CLI::Range(0, 1024))
         ->capture_default_str();

@@ -19,7 +19,8 @@ struct Round {
     RenderOutput output;
 };
 
-Round build_and_render(const Scene& scene, const RenderSettings& settings, AccelKind kind, const EmbreeSettings& embree) {
+Round build_and_render(const Scene& scene, const RenderSettings& settings, AccelKind kind,
+                       const EmbreeSettings& embree) {
     Round round;
     const auto build_start = Clock::now();
     const Accel accel = make_compared_accel(scene, kind, embree);
@@ -41,8 +42,8 @@ ImageAgreement direct_bvh_against_brute(const Scene& scene, const RenderSettings
     const Accel bvh = make_accel(scene, AccelKind::Bvh);
     const Camera camera = make_camera(scene.camera, settings.width, settings.height);
     const LightSet lights = make_light_set(scene, make_constant_environment(scene.background), false);
-    return bvh_against_brute(scene.geometry, bvh, settings.width, settings.height, 1.0 + double(scene.lights.size()), 64,
-                             [&](const Accel& accel, int i, int j) {
+    return bvh_against_brute(scene.geometry, bvh, settings.width, settings.height, 1.0 + double(scene.lights.size()),
+                             64, [&](const Accel& accel, int i, int j) {
                                  const Ray ray = camera_ray(camera, image_plane_s(float(i) + 0.5f, settings.width),
                                                             image_plane_t(float(j) + 0.5f, settings.height));
                                  RayCounters counters;
@@ -78,8 +79,8 @@ SceneMeasurement measure_scene(const Scene& scene, const RenderSettings& setting
         if (a.fraction() < m.agreement.fraction()) m.agreement = a;
         if (a.fraction() < kMinEqualFraction) {
             throw Error(name, accel_label(kinds[k], embree) + " and " + std::string(accel_name(kinds[0])) +
-                                  " images differ in " + thousands(a.pixels - a.equal) + " of " +
-                                  thousands(a.pixels) + " pixels (more than 0.1 %): not timing a wrong result");
+                                  " images differ in " + thousands(a.pixels - a.equal) + " of " + thousands(a.pixels) +
+                                  " pixels (more than 0.1 %): not timing a wrong result");
         }
     }
     films.clear();

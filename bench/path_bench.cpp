@@ -13,11 +13,11 @@
 #include "bench_util.h"
 #include "core/error.h"
 #include "image/atomic_file.h"
+#include "io/scene_json/scene_file.h"
 #include "render/camera.h"
 #include "render/integrator.h"
 #include "render/render.h"
 #include "render/sampler.h"
-#include "io/scene_json/scene_file.h"
 
 namespace sombra::bench {
 
@@ -43,8 +43,8 @@ namespace {
 constexpr double kMaxZ = 4.0;
 
 struct PairedTest {
-    double z[3] = {0, 0, 0};        // mean(d)/se per channel
-    double mean_a[3] = {0, 0, 0};   // image means, for the message
+    double z[3] = {0, 0, 0};       // mean(d)/se per channel
+    double mean_a[3] = {0, 0, 0};  // image means, for the message
     double mean_b[3] = {0, 0, 0};
     double worst() const { return std::max({std::fabs(z[0]), std::fabs(z[1]), std::fabs(z[2])}); }
 };
@@ -107,28 +107,25 @@ Timed timed_render(const RenderJob& job) {
 ImageAgreement path_bvh_against_brute(const Scene& scene, const RenderSettings& settings, const Accel& bvh,
                                       const LightSet& lights, double rays_per_path) {
     const Camera camera = make_camera(scene.camera, settings.width, settings.height);
-    return bvh_against_brute(scene.geometry, bvh, settings.width, settings.height, rays_per_path, 16,
-                             [&](const Accel& accel, int i, int j) {
-                                 const Ray ray = camera_ray(camera, image_plane_s(float(i) + 0.5f, settings.width),
-                                                            image_plane_t(float(j) + 0.5f, settings.height));
-                                 RayCounters counters;
-                                 SampleStream samples{pixel_key(settings.seed, i, j, settings.width), 0, 1};
-                                 return trace_path(IntegratorContext{&scene, &accel, &lights, settings.max_depth}, ray,
-                                                   samples, counters);
-                             });
+    return bvh_against_brute(
+        scene.geometry, bvh, settings.width, settings.height, rays_per_path, 16, [&](const Accel& accel, int i, int j) {
+            const Ray ray = camera_ray(camera, image_plane_s(float(i) + 0.5f, settings.width),
+                                       image_plane_t(float(j) + 0.5f, settings.height));
+            RayCounters counters;
+            SampleStream samples{pixel_key(settings.seed, i, j, settings.width), 0, 1};
+            return trace_path(IntegratorContext{&scene, &accel, &lights, settings.max_depth}, ray, samples, counters);
+        });
 }
 
-std::string image_text(const RenderSettings& s) {
-    return std::to_string(s.width) + "×" + std::to_string(s.height);
-}
+std::string image_text(const RenderSettings& s) { return std::to_string(s.width) + "×" + std::to_string(s.height); }
 
 }  // namespace
 
 void run_path_bench(const std::vector<std::string>& scene_files, const PathBenchOptions& o, std::ostream& out) {
     const std::vector<AccelKind> kinds = compared_accels();
     Table table;
-    table.header = {"scene", "triangles", "image", "spp", "accel", "render s", "rays/sample", "Mrays/s", "samples/s",
-                    "pixels equal", "mean z"};
+    table.header = {"scene",       "triangles", "image",     "spp",          "accel", "render s",
+                    "rays/sample", "Mrays/s",   "samples/s", "pixels equal", "mean z"};
     table.right = {false, true, true, true, false, true, true, true, true, true, true};
     for (const std::string& file : scene_files) {
         const std::string name = std::filesystem::path(file).stem().string();
@@ -163,9 +160,9 @@ void run_path_bench(const std::vector<std::string>& scene_files, const PathBench
                 std::snprintf(text, sizeof text,
                               "%s and %s path-traced images differ in mean by z = (%.1f, %.1f, %.1f) standard errors "
                               "(means %.5g %.5g %.5g against %.5g %.5g %.5g): not timing a wrong result",
-                              accel_label(kinds[0], o.embree).c_str(), accel_label(kinds[k], o.embree).c_str(),
-                              t.z[0], t.z[1], t.z[2], t.mean_a[0], t.mean_a[1], t.mean_a[2], t.mean_b[0],
-                              t.mean_b[1], t.mean_b[2]);
+                              accel_label(kinds[0], o.embree).c_str(), accel_label(kinds[k], o.embree).c_str(), t.z[0],
+                              t.z[1], t.z[2], t.mean_a[0], t.mean_a[1], t.mean_a[2], t.mean_b[0], t.mean_b[1],
+                              t.mean_b[2]);
                 throw Error(file, text);
             }
         }
@@ -176,8 +173,8 @@ void run_path_bench(const std::vector<std::string>& scene_files, const PathBench
                                   thousands(brute.pixels) + " sampled pixels: not timing a wrong result");
         }
         first.clear();
-        std::cerr << "sombra-bench: " << name << ": agree (bvh = brute on " << brute.pixels
-                  << " sampled paths); " << o.reps << " timed renders per backend\n";
+        std::cerr << "sombra-bench: " << name << ": agree (bvh = brute on " << brute.pixels << " sampled paths); "
+                  << o.reps << " timed renders per backend\n";
 
         std::vector<std::vector<double>> times(kinds.size());
         for (int rep = 0; rep < o.reps; ++rep) {
@@ -192,13 +189,12 @@ void run_path_bench(const std::vector<std::string>& scene_files, const PathBench
             mrays[k] = render_s[k] > 0 ? double(rays[k]) / render_s[k] * 1e-6 : 0;
             sps[k] = render_s[k] > 0 ? samples / render_s[k] : 0;
             const bool head = k == 0;
-            table.rows.push_back({head ? name : "", head ? thousands(scene.geometry.triangle_count()) : "",
-                                  head ? image_text(settings) : "", head ? std::to_string(settings.spp) : "",
-                                  accel_label(kinds[k], o.embree), seconds(render_s[k]),
-                                  fixed(double(rays[k]) / samples, 2), fixed(mrays[k], 2),
-                                  thousands(std::uint64_t(std::llround(sps[k]))),
-                                  head ? "" : fixed(100.0 * equal[k].fraction(), 2) + " %",
-                                  head ? "" : fixed(tests[k].worst(), 2)});
+            table.rows.push_back(
+                {head ? name : "", head ? thousands(scene.geometry.triangle_count()) : "",
+                 head ? image_text(settings) : "", head ? std::to_string(settings.spp) : "",
+                 accel_label(kinds[k], o.embree), seconds(render_s[k]), fixed(double(rays[k]) / samples, 2),
+                 fixed(mrays[k], 2), thousands(std::uint64_t(std::llround(sps[k]))),
+                 head ? "" : fixed(100.0 * equal[k].fraction(), 2) + " %", head ? "" : fixed(tests[k].worst(), 2)});
         }
         if (kinds.size() == 2) {
             table.rows.push_back({"", "", "", "", "**bvh/embree**", ratio(render_s[0], render_s[1]),

@@ -14,8 +14,8 @@
 namespace sombra::bench {
 
 struct PathBenchOptions {
-    int reps = 5;           // timed renders per backend, alternating; medians reported
-    int width = 192;        // image size (overrides the scenes)
+    int reps = 5;     // timed renders per backend, alternating; medians reported
+    int width = 192;  // image size (overrides the scenes)
     int height = 192;
     int spp = 16;
     int max_depth = 8;
@@ -43,7 +43,7 @@ struct PathErrorOptions {
     int max_depth = 8;
     int reference_spp = 4096;
     std::vector<int> fixed_spp{16, 64, 256};
-    double budget_seconds = 1.0;          // the equal-time render's budget
+    double budget_seconds = 1.0;                      // the equal-time render's budget
     std::filesystem::path cache_dir = "build/bench";  // where the reference is kept
 };
 

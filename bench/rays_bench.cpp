@@ -125,11 +125,11 @@ void run_rays_bench(const std::vector<std::string>& scene_files, const RaysBench
             for (const auto& t : times) medians.push_back(median(t));
             for (std::size_t a = 0; a < accels.size(); ++a) {
                 const bool first = a == 0;
-                table.rows.push_back({first && !shadow ? name : "", first && !shadow ? thousands(scene.geometry.triangles.size()) : "",
-                                      first ? thousands(rays.size()) : "", first ? (shadow ? "shadow" : "closest hit") : "",
-                                      hit_share(a), accel_label(accels[a].kind, o.embree), seconds(medians[a]),
-                                      fixed(double(rays.size()) / medians[a] / 1e6, 2),
-                                      a == 1 ? ratio(medians[0], medians[1]) : ""});
+                table.rows.push_back(
+                    {first && !shadow ? name : "", first && !shadow ? thousands(scene.geometry.triangles.size()) : "",
+                     first ? thousands(rays.size()) : "", first ? (shadow ? "shadow" : "closest hit") : "",
+                     hit_share(a), accel_label(accels[a].kind, o.embree), seconds(medians[a]),
+                     fixed(double(rays.size()) / medians[a] / 1e6, 2), a == 1 ? ratio(medians[0], medians[1]) : ""});
             }
         }
     }

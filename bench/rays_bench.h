@@ -11,8 +11,8 @@
 namespace sombra::bench {
 
 struct RaysBenchOptions {
-    int reps = 9;          // timed rounds, the backends in rotated order; medians reported
-    int rays = 400000;     // rays of each kind per round
+    int reps = 9;       // timed rounds, the backends in rotated order; medians reported
+    int rays = 400000;  // rays of each kind per round
     EmbreeSettings embree = {};
 };
 

@@ -5,8 +5,8 @@
 
 #include "bench_util.h"
 #include "core/error.h"
-#include "measure.h"
 #include "io/scene_json/scene_file.h"
+#include "measure.h"
 
 namespace sombra::bench {
 
@@ -28,7 +28,8 @@ std::string bytes_per_triangle(std::size_t bytes, std::uint64_t triangles) {
 
 void run_scene_bench(const std::vector<std::string>& scene_files, const SceneBenchOptions& o, std::ostream& out) {
     Table table;
-    table.header = {"scene", "triangles", "image", "accel", "build s", "render s", "Mrays/s", "bytes/tri", "pixels equal"};
+    table.header = {"scene",    "triangles", "image",     "accel",       "build s",
+                    "render s", "Mrays/s",   "bytes/tri", "pixels equal"};
     table.right = {false, true, true, false, true, true, true, true, true};
     for (const std::string& file : scene_files) {
         const std::string name = std::filesystem::path(file).stem().string();

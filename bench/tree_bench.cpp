@@ -77,7 +77,8 @@ double binary_sah(const BinaryBvh& binary) {
 
 void run_tree_bench(const std::vector<std::string>& scene_files, int reps, std::ostream& out) {
     Table table;
-    table.header = {"scene", "triangles", "build s", "references", "nodes", "blocks", "MB", "SAH cost", "binary SAH cost"};
+    table.header = {"scene",  "triangles", "build s",  "references",     "nodes",
+                    "blocks", "MB",        "SAH cost", "binary SAH cost"};
     table.right = {false, true, true, true, true, true, true, true, true};
     for (const std::string& file : scene_files) {
         const std::string name = std::filesystem::path(file).stem().string();

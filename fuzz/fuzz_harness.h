@@ -183,7 +183,8 @@ inline std::string textures_problem(const std::vector<Material>& materials, cons
     for (Material m : materials) {
         std::string problem;
         for_each_texture_ref(m.textures, [&](TextureRef& r) {
-            if (r.is_set() && (r.texture >= textures.size() || r.channel > 3)) problem = "texture reference out of range";
+            if (r.is_set() && (r.texture >= textures.size() || r.channel > 3))
+                problem = "texture reference out of range";
         });
         if (!problem.empty()) return "material '" + m.name + "': " + problem;
         if (m.textured != any_texture(m.textures)) return "material '" + m.name + "': textured flag wrong";
@@ -207,8 +208,8 @@ inline std::string light_problem(const PunctualLight& light) {
         return "bad light";
     if (light.type != LightType::Point && !(std::fabs(length(light.direction) - 1) < 1e-3f))
         return "light direction not unit";
-    if (light.type == LightType::Spot &&
-        !(light.cos_outer >= -1e-6f && light.cos_outer < 1 && light.cos_inner >= light.cos_outer && light.cos_inner <= 1))
+    if (light.type == LightType::Spot && !(light.cos_outer >= -1e-6f && light.cos_outer < 1 &&
+                                           light.cos_inner >= light.cos_outer && light.cos_inner <= 1))
         return "bad spot cone";
     return {};
 }

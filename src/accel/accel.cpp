@@ -104,8 +104,7 @@ bool intersect(const Accel& accel, const Ray& ray, Hit& hit) {
 bool occluded(const Accel& accel, const Ray& ray) {
     if (accel.mesh == nullptr) return false;
     if (accel.kind == AccelKind::Bvh)
-        return accel.cutouts.active() ? occluded_bvh(accel.bvh, accel.cutouts, ray)
-                                      : occluded_bvh(accel.bvh, ray);
+        return accel.cutouts.active() ? occluded_bvh(accel.bvh, accel.cutouts, ray) : occluded_bvh(accel.bvh, ray);
     if (!is_traceable(ray)) return false;
 #ifdef SOMBRA_HAVE_EMBREE
     if (accel.kind == AccelKind::Embree) return accel.embree != nullptr && occluded_embree(*accel.embree, ray);

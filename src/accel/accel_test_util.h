@@ -75,8 +75,8 @@ inline std::vector<Ray> random_rays(const TriangleMesh& mesh, int count, std::ui
     for (int i = 0; i < count; ++i) {
         Ray ray;
         ray.origin = random_point(rng, lo, hi);
-        const Vec3 target = (i % 2 == 0 && !mesh.triangles.empty()) ? random_surface_point(mesh, rng)
-                                                                    : random_point(rng, lo, hi);
+        const Vec3 target =
+            (i % 2 == 0 && !mesh.triangles.empty()) ? random_surface_point(mesh, rng) : random_point(rng, lo, hi);
         ray.dir = (target - ray.origin) * (0.25f + 2 * unit(rng));
         if (i % 4 == 1) {
             const int axis = i % 3;
@@ -131,9 +131,8 @@ inline Comparison compare_with_brute(const TriangleMesh& mesh, const std::vector
         result.occluded += want_occluded;
         // occluded() must agree with intersect() in each backend, and the backends with each other.
         const bool same = want_found == got_found && want_occluded == got_occluded && got_occluded == got_found &&
-                          (!want_found || (want.triangle == got.triangle && want.t == got.t &&
-                                           want.b1 == got.b1 && want.b2 == got.b2 &&
-                                           got.has_corners &&
+                          (!want_found || (want.triangle == got.triangle && want.t == got.t && want.b1 == got.b1 &&
+                                           want.b2 == got.b2 && got.has_corners &&
                                            got.corners == triangle_corners(mesh, got.triangle)));
         if (same) continue;
         if (result.mismatches++ == 0) {

@@ -63,8 +63,15 @@ struct BoxRay {
 BoxRay make_box_ray(const Ray& ray) {
     const Vec3 inv{1.0f / ray.dir.x, 1.0f / ray.dir.y, 1.0f / ray.dir.z};
     constexpr int W = kBvhWidth;
-    return {set1(ray.origin.x), set1(ray.origin.y), set1(ray.origin.z), set1(inv.x), set1(inv.y), set1(inv.z),
-            std::signbit(inv.x) ? W : 0, std::signbit(inv.y) ? 3 * W : 2 * W, std::signbit(inv.z) ? 5 * W : 4 * W};
+    return {set1(ray.origin.x),
+            set1(ray.origin.y),
+            set1(ray.origin.z),
+            set1(inv.x),
+            set1(inv.y),
+            set1(inv.z),
+            std::signbit(inv.x) ? W : 0,
+            std::signbit(inv.y) ? 3 * W : 2 * W,
+            std::signbit(inv.z) ? 5 * W : 4 * W};
 }
 
 // Writes the distances at which the ray enters the child boxes within
@@ -104,8 +111,8 @@ struct StackEntry {
 // its nearer siblings' subtrees, time enough for the lines to arrive.
 inline void prefetch_child(const BvhWideNode* nodes, const TriangleBlock* blocks, std::uint32_t child,
                            std::uint32_t count) {
-    const char* p = count > 0 ? reinterpret_cast<const char*>(blocks + child)
-                              : reinterpret_cast<const char*>(nodes + child);
+    const char* p =
+        count > 0 ? reinterpret_cast<const char*>(blocks + child) : reinterpret_cast<const char*>(nodes + child);
     const int bytes = count > 0 ? static_cast<int>(sizeof(TriangleBlock)) : static_cast<int>(sizeof(BvhWideNode));
     for (int k = 0; k < bytes; k += 64) _mm_prefetch(p + k, _MM_HINT_T0);
     _mm_prefetch(p + bytes - 1, _MM_HINT_T0);  // a block need not start on a line

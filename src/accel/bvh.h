@@ -30,7 +30,8 @@ struct alignas(64) BvhWideNode {
     // enters it.
     float bounds[6 * kBvhWidth];
     std::uint32_t child[kBvhWidth];  // inner child: its index in Bvh::nodes; leaf: its first block in Bvh::blocks
-    std::uint32_t count[kBvhWidth];  // leaf: its triangle count (≥ 1), in (count + 3) / 4 blocks; inner child or empty slot: 0
+    std::uint32_t
+        count[kBvhWidth];  // leaf: its triangle count (≥ 1), in (count + 3) / 4 blocks; inner child or empty slot: 0
 };
 static_assert(sizeof(BvhWideNode) == 256);
 
@@ -74,8 +75,8 @@ using BvhNodeArray = std::vector<BvhWideNode, HugePageAllocator<BvhWideNode>>;
 using TriangleBlockArray = std::vector<TriangleBlock, HugePageAllocator<TriangleBlock>>;
 
 struct Bvh {
-    BvhNodeArray nodes;        // nodes[0] is the root; empty when no triangle can be hit
-    TriangleBlockArray blocks;   // the leaves' triangles, each leaf's blocks contiguous
+    BvhNodeArray nodes;         // nodes[0] is the root; empty when no triangle can be hit
+    TriangleBlockArray blocks;  // the leaves' triangles, each leaf's blocks contiguous
 };
 
 // Builds the tree over every triangle of `mesh` that can be hit: triangles

@@ -14,9 +14,10 @@ namespace sombra {
 
 struct BvhNode {
     Vec3 bmin;
-    std::uint32_t left_or_first;  // inner node: index of the left child (right = left + 1); leaf: first entry in BinaryBvh::triangle_order
+    std::uint32_t
+        left_or_first;  // inner node: index of the left child (right = left + 1); leaf: first entry in BinaryBvh::triangle_order
     Vec3 bmax;
-    std::uint32_t count;          // 0 for an inner node, else the leaf's triangle count
+    std::uint32_t count;  // 0 for an inner node, else the leaf's triangle count
 };
 static_assert(sizeof(BvhNode) == 32);
 
@@ -43,7 +44,8 @@ struct BinaryBvh {
     // node refers to are unused and uninitialised: read only the slots that
     // nodes refer to); empty when no triangle can be hit.
     BinaryNodeArray nodes;
-    std::vector<std::uint32_t, UninitialisedAllocator<std::uint32_t>> triangle_order;  // leaf entries, indices into TriangleMesh::triangles
+    std::vector<std::uint32_t, UninitialisedAllocator<std::uint32_t>>
+        triangle_order;  // leaf entries, indices into TriangleMesh::triangles
 };
 
 // Binned SAH over every triangle of `mesh` that can be hit (see make_bvh).

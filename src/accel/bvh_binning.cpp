@@ -46,7 +46,10 @@ struct BinMap {
 struct Bins {
     struct Box {
         __m128 lo, hi;
-        void grow(__m128 l, __m128 h) { lo = _mm_min_ps(lo, l); hi = _mm_max_ps(hi, h); }
+        void grow(__m128 l, __m128 h) {
+            lo = _mm_min_ps(lo, l);
+            hi = _mm_max_ps(hi, h);
+        }
     };
     Box box[3][kBins];                         // per axis, per bin
     alignas(16) std::int32_t count[kBins][4];  // per bin, the count along axes x, y, z (lane 3 unused)
@@ -147,7 +150,8 @@ Split find_sah_split(const PrimRef* refs, const RefRange& range) {
     }
     if (best.axis >= 0) {
         BoxRows l, r;
-        for (int b = 0; b < nbins; ++b) (b < best.bin ? l : r).grow(bins.box[best.axis][b].lo, bins.box[best.axis][b].hi);
+        for (int b = 0; b < nbins; ++b)
+            (b < best.bin ? l : r).grow(bins.box[best.axis][b].lo, bins.box[best.axis][b].hi);
         best.left_bounds = l.box();
         best.right_bounds = r.box();
     }

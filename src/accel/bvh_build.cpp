@@ -69,12 +69,13 @@ struct Builder {
             const std::uint32_t chunk = pass_chunk_size(end - begin);
             const std::uint32_t chunks = (end - begin + chunk - 1) / chunk;
             std::vector<Bounds> parts(chunks);
-            tbb::parallel_for(tbb::blocked_range<std::uint32_t>(0, chunks, 1), [&](const tbb::blocked_range<std::uint32_t>& r) {
-                for (std::uint32_t c = r.begin(); c < r.end(); ++c) {
-                    const std::uint32_t from = begin + c * chunk;
-                    parts[c] = measure_part(from, end - from > chunk ? from + chunk : end);
-                }
-            });
+            tbb::parallel_for(tbb::blocked_range<std::uint32_t>(0, chunks, 1),
+                              [&](const tbb::blocked_range<std::uint32_t>& r) {
+                                  for (std::uint32_t c = r.begin(); c < r.end(); ++c) {
+                                      const std::uint32_t from = begin + c * chunk;
+                                      parts[c] = measure_part(from, end - from > chunk ? from + chunk : end);
+                                  }
+                              });
             for (const Bounds& part : parts) {
                 all.bounds.grow(part.bounds);
                 all.centroids.grow(part.centroids);
@@ -219,9 +220,10 @@ BinaryBvh make_binary_bvh(const TriangleMesh& mesh) {
     builder.build(0, builder.measure(0, count), 1, 0);
 
     bvh.triangle_order.resize(count);
-    tbb::parallel_for(tbb::blocked_range<std::uint32_t>(0, count, 65536), [&](const tbb::blocked_range<std::uint32_t>& r) {
-        for (std::uint32_t k = r.begin(); k < r.end(); ++k) bvh.triangle_order[k] = refs[k].triangle;
-    });
+    tbb::parallel_for(tbb::blocked_range<std::uint32_t>(0, count, 65536),
+                      [&](const tbb::blocked_range<std::uint32_t>& r) {
+                          for (std::uint32_t k = r.begin(); k < r.end(); ++k) bvh.triangle_order[k] = refs[k].triangle;
+                      });
     return bvh;
 }
 

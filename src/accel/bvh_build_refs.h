@@ -26,8 +26,14 @@ struct Box {
     Vec3 bmin{kInf};
     Vec3 bmax{-kInf};
 
-    void grow(Vec3 p) { bmin = min(bmin, p); bmax = max(bmax, p); }
-    void grow(const Box& b) { bmin = min(bmin, b.bmin); bmax = max(bmax, b.bmax); }
+    void grow(Vec3 p) {
+        bmin = min(bmin, p);
+        bmax = max(bmax, p);
+    }
+    void grow(const Box& b) {
+        bmin = min(bmin, b.bmin);
+        bmax = max(bmax, b.bmax);
+    }
     // Half the surface area: the SAH only compares areas. 0 for an empty box.
     float half_area() const {
         if (!(bmin.x <= bmax.x)) return 0.0f;
@@ -58,7 +64,10 @@ using PrimRefArray = std::vector<PrimRef, UninitialisedAllocator<PrimRef>>;
 struct BoxRows {
     __m128 lo = _mm_set1_ps(kInf);
     __m128 hi = _mm_set1_ps(-kInf);
-    void grow(__m128 l, __m128 h) { lo = _mm_min_ps(lo, l); hi = _mm_max_ps(hi, h); }
+    void grow(__m128 l, __m128 h) {
+        lo = _mm_min_ps(lo, l);
+        hi = _mm_max_ps(hi, h);
+    }
     void grow(__m128 p) { grow(p, p); }
     void grow(const BoxRows& b) { grow(b.lo, b.hi); }
     Box box() const {

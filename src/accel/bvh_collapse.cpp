@@ -270,13 +270,12 @@ Bvh make_bvh(const TriangleMesh& mesh) {
     BinaryNodeArray().swap(binary.nodes);
 
     bvh.blocks.resize(collapser.block_count);
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, leaves.size(), 1024),
-                      [&](const tbb::blocked_range<std::size_t>& r) {
-                          for (std::size_t i = r.begin(); i < r.end(); ++i) {
-                              fill_leaf(mesh, binary.triangle_order.data(), leaves[i], bvh.blocks.data(),
-                                        bvh.nodes.data());
-                          }
-                      });
+    tbb::parallel_for(
+        tbb::blocked_range<std::size_t>(0, leaves.size(), 1024), [&](const tbb::blocked_range<std::size_t>& r) {
+            for (std::size_t i = r.begin(); i < r.end(); ++i) {
+                fill_leaf(mesh, binary.triangle_order.data(), leaves[i], bvh.blocks.data(), bvh.nodes.data());
+            }
+        });
     return bvh;
 }
 

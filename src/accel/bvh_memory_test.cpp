@@ -61,14 +61,13 @@ TEST_P(BvhMemory, SameTreeAsBeforeTheMemorySavings) {
     EXPECT_EQ(fnv1a(bvh.blocks.data(), bvh.blocks.size() * sizeof(TriangleBlock)), pinned.blocks_hash);
 }
 
-INSTANTIATE_TEST_SUITE_P(Models, BvhMemory,
-                         ::testing::Values(PinnedTree{"stanford-bunny.obj", 4327, 18088, 0x7131f7fe65b7f622ull,
-                                                      0xe0c46ee6e71fe43eull},
-                                           PinnedTree{"dragon.ply", 48416, 234718, 0x38aff62072063632ull,
-                                                      0xa55b397a831b760cull}),
-                         [](const ::testing::TestParamInfo<PinnedTree>& param_info) {
-                             return std::string(param_info.param.model) == "dragon.ply" ? "dragon" : "bunny";
-                         });
+INSTANTIATE_TEST_SUITE_P(
+    Models, BvhMemory,
+    ::testing::Values(PinnedTree{"stanford-bunny.obj", 4327, 18088, 0x7131f7fe65b7f622ull, 0xe0c46ee6e71fe43eull},
+                      PinnedTree{"dragon.ply", 48416, 234718, 0x38aff62072063632ull, 0xa55b397a831b760cull}),
+    [](const ::testing::TestParamInfo<PinnedTree>& param_info) {
+        return std::string(param_info.param.model) == "dragon.ply" ? "dragon" : "bunny";
+    });
 
 // The slots a tree of at most 2,048 references (built on one thread) uses:
 // the root's, then a prefix of the rest with no gap, about a third of the
@@ -97,8 +96,8 @@ TEST(BvhMemory, SerialSubtreesUseAPrefixOfTheirSlots) {
 // boundary (the mapping's two trimmed ends are the rest of it) and every
 // byte is theirs; smaller ones have the alignment asked for.
 TEST(BigArrays, StartOnAHugePageBoundaryAndHoldEveryByte) {
-    for (const std::size_t bytes : {std::size_t{64}, kHugePageBytes - 1, kHugePageBytes, kHugePageBytes + 1,
-                                    3 * kHugePageBytes + 4096}) {
+    for (const std::size_t bytes :
+         {std::size_t{64}, kHugePageBytes - 1, kHugePageBytes, kHugePageBytes + 1, 3 * kHugePageBytes + 4096}) {
         void* p = allocate_big_array(bytes, 64);
         ASSERT_NE(p, nullptr);
         EXPECT_EQ(reinterpret_cast<std::uintptr_t>(p) % (bytes < kHugePageBytes ? 64 : kHugePageBytes), 0u) << bytes;

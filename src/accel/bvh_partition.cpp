@@ -123,7 +123,8 @@ struct Runs {
     }
     // The position of the k-th reference of the runs.
     std::uint32_t at(std::uint32_t k) const {
-        const std::size_t run = static_cast<std::size_t>(std::upper_bound(before.begin(), before.end(), k) - before.begin()) - 1;
+        const std::size_t run =
+            static_cast<std::size_t>(std::upper_bound(before.begin(), before.end(), k) - before.begin()) - 1;
         return start[run] + (k - before[run]);
     }
 };
@@ -135,7 +136,8 @@ SidesOf partition_parallel(PrimRef* refs, std::uint32_t begin, std::uint32_t end
     auto chunk_end = [&](std::uint32_t c) { return end - (begin + c * chunk) > chunk ? begin + (c + 1) * chunk : end; };
     std::vector<SidesOf> parts(chunks);
     tbb::parallel_for(tbb::blocked_range<std::uint32_t>(0, chunks, 1), [&](const tbb::blocked_range<std::uint32_t>& r) {
-        for (std::uint32_t c = r.begin(); c < r.end(); ++c) parts[c] = partition_serial(refs, begin + c * chunk, chunk_end(c), side);
+        for (std::uint32_t c = r.begin(); c < r.end(); ++c)
+            parts[c] = partition_serial(refs, begin + c * chunk, chunk_end(c), side);
     });
     SidesOf out;
     std::uint32_t left_total = 0;

@@ -35,14 +35,14 @@ bool contains(const BvhWideNode& node, int i, Vec3 p) {
 }
 
 struct TreeFacts {
-    int depth = 0;       // of the deepest leaf; the root's children have depth 1
+    int depth = 0;  // of the deepest leaf; the root's children have depth 1
     int leaves = 0;
-    int nodes = 0;       // inner nodes reached
+    int nodes = 0;         // inner nodes reached
     int narrow_nodes = 0;  // nodes with fewer than two children
-    int bad_bounds = 0;  // children or triangles outside their parent's box
+    int bad_bounds = 0;    // children or triangles outside their parent's box
     int oversized_leaves = 0;
-    int loose_leaves = 0;  // leaves whose box is not exactly their triangles' box
-    int unsplit_leaves = 0;  // leaves of more than four triangles in a node with a free slot
+    int loose_leaves = 0;                // leaves whose box is not exactly their triangles' box
+    int unsplit_leaves = 0;              // leaves of more than four triangles in a node with a free slot
     std::vector<std::uint32_t> reached;  // the triangles the leaves hold, as traversal reads them
 };
 
@@ -174,12 +174,16 @@ TEST(BvhStructure, SahProducesSmallLeaves) {
 TEST(BvhStructure, RootSplitIsTheCheapestBinnedPlane) {
     // The last soup is large enough for the root's binning to run in
     // parallel chunks (kParallelPassRefs).
-    for (const auto& [seed, count] : {std::pair{7u, 3000}, std::pair{8u, 3000}, std::pair{9u, 3000}, std::pair{10u, 70000}}) {
+    for (const auto& [seed, count] :
+         {std::pair{7u, 3000}, std::pair{8u, 3000}, std::pair{9u, 3000}, std::pair{10u, 70000}}) {
         const TriangleMesh mesh = random_soup(count, seed, 0.05f);
         struct Bounds {
             Vec3 lo{std::numeric_limits<float>::infinity()}, hi{-std::numeric_limits<float>::infinity()};
             int count = 0;
-            void grow(Vec3 l, Vec3 h) { lo = min(lo, l); hi = max(hi, h); }
+            void grow(Vec3 l, Vec3 h) {
+                lo = min(lo, l);
+                hi = max(hi, h);
+            }
             float half_area() const {
                 const Vec3 e = hi - lo;
                 return e.x * e.y + e.y * e.z + e.z * e.x;
@@ -274,7 +278,8 @@ TEST(BvhStructure, SameTreeForAnyThreadCount) {
     ASSERT_EQ(parallel.nodes.size(), serial.nodes.size());
     EXPECT_EQ(std::memcmp(parallel.nodes.data(), serial.nodes.data(), parallel.nodes.size() * sizeof(BvhWideNode)), 0);
     ASSERT_EQ(parallel.blocks.size(), serial.blocks.size());
-    EXPECT_EQ(std::memcmp(parallel.blocks.data(), serial.blocks.data(), parallel.blocks.size() * sizeof(TriangleBlock)), 0);
+    EXPECT_EQ(std::memcmp(parallel.blocks.data(), serial.blocks.data(), parallel.blocks.size() * sizeof(TriangleBlock)),
+              0);
     // The chunked passes put every reference on its side: each triangle
     // inside its leaf's box, each once.
     EXPECT_EQ(inspect(parallel, mesh).bad_bounds, 0);

@@ -58,7 +58,8 @@ TEST(Bvh, AllCentroidsEqual) {
         Vec3 corners[3];
         for (int k = 0; k < 3; ++k) {
             const float phi = a + 2.0943951f * static_cast<float>(k);
-            corners[k] = centre + 0.3f * Vec3{std::cos(phi), std::sin(phi) * std::cos(tilt), std::sin(phi) * std::sin(tilt)};
+            corners[k] =
+                centre + 0.3f * Vec3{std::cos(phi), std::sin(phi) * std::cos(tilt), std::sin(phi) * std::sin(tilt)};
         }
         add_triangle(mesh, corners[0], corners[1], corners[2]);
         if (i % 3 == 0) add_triangle(mesh, corners[0], corners[1], corners[2]);  // an exact duplicate
@@ -103,10 +104,13 @@ TEST(Bvh, UnhittableTrianglesMixedIn) {
         Vec3* p[3] = {&mesh.positions[tri[0]], &mesh.positions[tri[1]], &mesh.positions[tri[2]]};
         switch (i % 5) {
             case 0: *p[2] = *p[0] + 2.0f * (*p[1] - *p[0]); break;  // collinear (after rounding: nearly)
-            case 1: *p[1] = *p[0]; break;                            // repeated corner
-            case 2: *p[1] = *p[0]; *p[2] = *p[0]; break;             // a point
-            case 3: p[1]->y = nan; break;                            // NaN corner
-            default: tri[2] = 1u << 30; break;                       // index out of range
+            case 1: *p[1] = *p[0]; break;                           // repeated corner
+            case 2:
+                *p[1] = *p[0];
+                *p[2] = *p[0];
+                break;                          // a point
+            case 3: p[1]->y = nan; break;       // NaN corner
+            default: tri[2] = 1u << 30; break;  // index out of range
         }
         if (!is_hittable(prepare_triangle(*p[0], *p[1], *p[2])) || i % 5 == 4) bad.push_back(i);
     }
@@ -154,7 +158,7 @@ TEST(Bvh, AxisAlignedRaysGrazingBoxFaces) {
     // directions along the axes and the face diagonals.
     std::vector<Ray> rays;
     const float coords[] = {-1.0f, 0.0f, 0.25f, 0.5f, 1.0f, 2.5f, 3.0f, 3.5f, 5.0f};
-    const Vec3 dirs[] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1},
+    const Vec3 dirs[] = {{1, 0, 0},     {-1, 0, 0},         {0, 1, 0}, {0, -1, 0}, {0, 0, 1},  {0, 0, -1},
                          {1, -0.0f, 0}, {-0.0f, -1, -0.0f}, {1, 1, 0}, {0, -1, 1}, {-1, 0, -1}};
     for (float x : coords)
         for (float y : coords)
@@ -212,9 +216,9 @@ TEST(Bvh, SharedEdgesAndCornersPickTheLowestIndex) {
     for (int i : order) add_triangle(mesh, fan_triangles[i][1], fan_triangles[i][2], fan_triangles[i][0]);
 
     std::vector<Ray> rays;
-    rays.push_back(Ray{{0.5f, 0.5f, 1}, {0, 0, -1}});    // the fan's centre
-    rays.push_back(Ray{{0.5f, 0.5f, -1}, {0, 0, 1}});    // from below
-    for (int k = 1; k < 64; ++k) {                       // points of the diagonal x + y = 3, exact in binary
+    rays.push_back(Ray{{0.5f, 0.5f, 1}, {0, 0, -1}});  // the fan's centre
+    rays.push_back(Ray{{0.5f, 0.5f, -1}, {0, 0, 1}});  // from below
+    for (int k = 1; k < 64; ++k) {                     // points of the diagonal x + y = 3, exact in binary
         const float s = static_cast<float>(k) / 64;
         rays.push_back(Ray{{2 + s, 1 - s, 1}, {0, 0, -1}});
     }

@@ -24,8 +24,13 @@ struct RayLanes {
 };
 
 inline RayLanes make_ray_lanes(Vec3 o, Vec3 d) {
-    return {_mm_set1_ps(o.x), _mm_set1_ps(o.y), _mm_set1_ps(o.z),
-            _mm_set1_ps(d.x), _mm_set1_ps(d.y), _mm_set1_ps(d.z), _mm_set1_ps(max_component(abs(d)))};
+    return {_mm_set1_ps(o.x),
+            _mm_set1_ps(o.y),
+            _mm_set1_ps(o.z),
+            _mm_set1_ps(d.x),
+            _mm_set1_ps(d.y),
+            _mm_set1_ps(d.z),
+            _mm_set1_ps(max_component(abs(d)))};
 }
 
 // What intersect_block found. Lane i's bit in `sure` is set when the scalar

@@ -43,7 +43,8 @@ void check_ray(const TriangleBlock& block, const Vec3 (&corners)[4][3], Vec3 o, 
     intersect_block(block, make_ray_lanes(o, d), tmax, tmax, found);
     for (int lane = 0; lane < 4; ++lane) {
         float t = 0, b1 = 0, b2 = 0;
-        const bool hit = intersect_triangle(o, d, corners[lane][0], corners[lane][1], corners[lane][2], tmax, t, b1, b2);
+        const bool hit =
+            intersect_triangle(o, d, corners[lane][0], corners[lane][1], corners[lane][2], tmax, t, b1, b2);
         tally.scalar_hits += hit;
         const bool sure = (found.sure >> lane) & 1, near = (found.near >> lane) & 1;
         tally.sure += sure;
@@ -73,21 +74,25 @@ TEST(Triangle4, LanesMatchTheScalarTestOnRandomRays) {
             // Aim at a corner-weighted point of one triangle, an edge of one, or anywhere.
             const auto& tri = corners[r % 4];
             const float w = (unit(rng) + 1.0f) / 2.0f;
-            const Vec3 target = r % 3 == 0 ? point() : (r % 3 == 1 ? (1 - w) * tri[0] + w * tri[1] : (tri[0] + tri[1] + tri[2]) * (1.0f / 3));
+            const Vec3 target =
+                r % 3 == 0 ? point()
+                           : (r % 3 == 1 ? (1 - w) * tri[0] + w * tri[1] : (tri[0] + tri[1] + tri[2]) * (1.0f / 3));
             check_ray(block, corners, o, target - o, r % 5 == 0 ? 0.5f : INFINITY, tally);
         }
     }
     EXPECT_EQ(tally.mismatches, 0);
-    EXPECT_GT(tally.sure, 10000);        // most hits are decided in the lanes,
-    EXPECT_GT(tally.near, 100);          // rays at edges go to the scalar test,
-    EXPECT_LT(tally.near, tally.sure);   // but they stay the exception
+    EXPECT_GT(tally.sure, 10000);       // most hits are decided in the lanes,
+    EXPECT_GT(tally.near, 100);         // rays at edges go to the scalar test,
+    EXPECT_LT(tally.near, tally.sure);  // but they stay the exception
 }
 
 // A quad grid's shared edges and corners, hit exactly: the scalar test's
 // near-edge branch decides these, so the lanes must hand them over.
 TEST(Triangle4, RaysThroughSharedEdgesGoToTheScalarTest) {
-    Vec3 corners[4][3] = {{{0, 0, 0}, {1, 0, 0}, {1, 1, 0}}, {{0, 0, 0}, {1, 1, 0}, {0, 1, 0}},
-                          {{1, 0, 0}, {2, 0, 0}, {2, 1, 0}}, {{1, 0, 0}, {2, 1, 0}, {1, 1, 0}}};
+    Vec3 corners[4][3] = {{{0, 0, 0}, {1, 0, 0}, {1, 1, 0}},
+                          {{0, 0, 0}, {1, 1, 0}, {0, 1, 0}},
+                          {{1, 0, 0}, {2, 0, 0}, {2, 1, 0}},
+                          {{1, 0, 0}, {2, 1, 0}, {1, 1, 0}}};
     const TriangleBlock block = make_block(corners);
     Tally tally;
     std::mt19937 rng(42);
@@ -157,8 +162,10 @@ TEST(Triangle4, NearLanesAreExactlyTheScalarTestsBand) {
 // A lane near an edge whose t lies beyond near_limit is not handed over;
 // with the limit beyond its t, it is.
 TEST(Triangle4, NearLanesBeyondTheLimitAreDropped) {
-    Vec3 corners[4][3] = {{{0, 0, 0}, {1, 0, 0}, {1, 1, 0}}, {{0, 0, 0}, {1, 1, 0}, {0, 1, 0}},
-                          {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}}, {{0, 0, 0}, {1, 1, 0}, {0, 1, 0}}};
+    Vec3 corners[4][3] = {{{0, 0, 0}, {1, 0, 0}, {1, 1, 0}},
+                          {{0, 0, 0}, {1, 1, 0}, {0, 1, 0}},
+                          {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}},
+                          {{0, 0, 0}, {1, 1, 0}, {0, 1, 0}}};
     const TriangleBlock block = make_block(corners);
     std::mt19937 rng(44);
     std::uniform_real_distribution<float> unit(0.0f, 1.0f);

@@ -46,7 +46,7 @@ struct StripScene {
     std::vector<Texture> textures{strip_alpha()};
 
     StripScene() {
-        mesh.positions = {{-1, -1, 0}, {1, -1, 0}, {1, 1, 0}, {-1, 1, 0},
+        mesh.positions = {{-1, -1, 0},       {1, -1, 0},       {1, 1, 0},       {-1, 1, 0},
                           {-0.6f, -0.6f, 1}, {0.6f, -0.6f, 1}, {0.6f, 0.6f, 1}, {-0.6f, 0.6f, 1}};
         mesh.triangles = {{0, 1, 2}, {0, 2, 3}, {4, 5, 6}, {4, 6, 7}};
         mesh.material_ids = {0, 0, 1, 1};
@@ -80,8 +80,8 @@ TEST(Cutouts, RaysPassThroughTheCutStripInEveryBackend) {
                 const float u = (x + 0.6f) / 1.2f;
                 const bool on_quad = std::fabs(x) < 0.6f && std::fabs(y) < 0.6f;
                 const bool quad_there = on_quad && !cut_at(u);
-                const std::string where = std::string(accel_name(kind)) + " at " + std::to_string(x) + ", " +
-                                          std::to_string(y);
+                const std::string where =
+                    std::string(accel_name(kind)) + " at " + std::to_string(x) + ", " + std::to_string(y);
                 // Straight down from z = 2: the quad at t = 1 where it exists, else the floor at t = 2.
                 Hit hit;
                 ASSERT_TRUE(intersect(accel, Ray{{x, y, 2}, {0, 0, -1}}, hit)) << where;

@@ -114,7 +114,8 @@ std::shared_ptr<const EmbreeScene> make_embree_scene(const TriangleMesh& mesh, c
     auto s = std::make_shared<EmbreeScene>();
     s->device = rtcNewDevice(nullptr);
     if (s->device == nullptr) {
-        throw Error("embree", "could not create a device (error " + std::to_string(int(rtcGetDeviceError(nullptr))) + ")");
+        throw Error("embree",
+                    "could not create a device (error " + std::to_string(int(rtcGetDeviceError(nullptr))) + ")");
     }
     rtcSetDeviceErrorFunction(s->device, record_error, s.get());
     rtcSetDeviceMemoryMonitorFunction(s->device, count_memory, s.get());
@@ -126,9 +127,9 @@ std::shared_ptr<const EmbreeScene> make_embree_scene(const TriangleMesh& mesh, c
     bool all_kept = true;
     for (std::size_t i = 0; i < mesh.triangles.size(); ++i) {
         const Index3& t = mesh.triangles[i];
-        const bool hittable = t[0] < vertex_count && t[1] < vertex_count && t[2] < vertex_count &&
-                              is_hittable(prepare_triangle(mesh.positions[t[0]], mesh.positions[t[1]],
-                                                              mesh.positions[t[2]]));
+        const bool hittable =
+            t[0] < vertex_count && t[1] < vertex_count && t[2] < vertex_count &&
+            is_hittable(prepare_triangle(mesh.positions[t[0]], mesh.positions[t[1]], mesh.positions[t[2]]));
         if (hittable) kept.push_back(static_cast<std::uint32_t>(i));
         all_kept = all_kept && hittable;
     }

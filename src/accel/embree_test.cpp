@@ -14,9 +14,9 @@
 #include "accel/accel.h"
 #include "accel/accel_test_util.h"
 #include "accel/embree_backend.h"
-#include "render/render.h"
 #include "io/mesh_file.h"
 #include "io/scene_json/scene_file.h"
+#include "render/render.h"
 
 namespace sombra {
 namespace {
@@ -79,10 +79,10 @@ TEST(EmbreeBackend, TmaxIsExclusiveAndTZeroIsNotAHit) {
 // Embree reports are mapped back to the mesh's.
 TEST(EmbreeBackend, SkipsUnhittableTrianglesAndKeepsMeshIndices) {
     TriangleMesh mesh;
-    testing::add_triangle(mesh, {-1, -1, 1}, {0, 0, 1}, {1, 1, 1});          // 0: collinear
-    testing::add_triangle(mesh, {-1, -1, 2}, {1, -1, 2}, {0, 1, 2});          // 1: made out of range below
-    testing::add_triangle(mesh, {-1, -1, 3}, {1, -1, NAN}, {0, 1, 3});        // 2: non-finite corner
-    testing::add_triangle(mesh, {-1, -1, 4}, {1, -1, 4}, {0, 1, 4});          // 3: the one to hit
+    testing::add_triangle(mesh, {-1, -1, 1}, {0, 0, 1}, {1, 1, 1});     // 0: collinear
+    testing::add_triangle(mesh, {-1, -1, 2}, {1, -1, 2}, {0, 1, 2});    // 1: made out of range below
+    testing::add_triangle(mesh, {-1, -1, 3}, {1, -1, NAN}, {0, 1, 3});  // 2: non-finite corner
+    testing::add_triangle(mesh, {-1, -1, 4}, {1, -1, 4}, {0, 1, 4});    // 3: the one to hit
     mesh.triangles[1][2] = 1000;
     const Accel accel = make_accel(mesh, AccelKind::Embree);
     Hit hit;
@@ -144,7 +144,8 @@ bool same_t(const Ray& ray, float a, float b) {
 bool same_point(const TriangleMesh& mesh, const Ray& ray, const Hit& a, const Hit& b) {
     const Index3& tri = mesh.triangles[a.triangle];
     auto point = [&](const Hit& h) {
-        return (1 - h.b1 - h.b2) * mesh.positions[tri[0]] + h.b1 * mesh.positions[tri[1]] + h.b2 * mesh.positions[tri[2]];
+        return (1 - h.b1 - h.b2) * mesh.positions[tri[0]] + h.b1 * mesh.positions[tri[1]] +
+               h.b2 * mesh.positions[tri[2]];
     };
     return length(point(a) - point(b)) <= 1e-4f * a.t * length(ray.dir) + 1e-5f * max_component(abs(ray.origin));
 }
@@ -295,13 +296,12 @@ TEST_P(EmbreeOnScene, ImageEqualsTheBvhImage) {
         lit += a[3 * p] + a[3 * p + 1] + a[3 * p + 2] > 0.05f;
     }
     std::printf("[ embree     ] %-12s %zu of %zu pixels differ\n", GetParam().c_str(), differing, pixels);
-    EXPECT_GT(lit, pixels / 10);                      // the picture shows something
-    EXPECT_LE(differing * 1000, pixels);              // identical in at least 99.9 % of pixels
+    EXPECT_GT(lit, pixels / 10);          // the picture shows something
+    EXPECT_LE(differing * 1000, pixels);  // identical in at least 99.9 % of pixels
     EXPECT_EQ(images[0].counters.camera_rays, images[1].counters.camera_rays);
 }
 
-INSTANTIATE_TEST_SUITE_P(Scenes, EmbreeOnScene,
-                         ::testing::Values("bunny", "dragon", "cornell", "phong", "manylights"));
+INSTANTIATE_TEST_SUITE_P(Scenes, EmbreeOnScene, ::testing::Values("bunny", "dragon", "cornell", "phong", "manylights"));
 
 }  // namespace
 }  // namespace sombra

@@ -12,7 +12,7 @@ std::size_t round_up(std::size_t bytes) { return (bytes + kHugePageBytes - 1) & 
 }  // namespace
 
 void* allocate_big_array(std::size_t bytes, std::size_t align) {
-    if (bytes < kHugePageBytes) return ::operator new(bytes, std::align_val_t{align});
+    if (bytes < kHugePageBytes) return ::operator new (bytes, std::align_val_t{align});
     // Map one huge page more than needed and trim both ends, so that what is
     // left starts on a 2 MiB boundary: only whole, aligned 2 MiB ranges can
     // be backed by huge pages.
@@ -37,7 +37,7 @@ void* allocate_big_array(std::size_t bytes, std::size_t align) {
 void release_big_array(void* p, std::size_t bytes, std::size_t align) noexcept {
     if (p == nullptr) return;
     if (bytes < kHugePageBytes) {
-        ::operator delete(p, std::align_val_t{align});
+        ::operator delete (p, std::align_val_t{align});
         return;
     }
     munmap(p, round_up(bytes));

@@ -92,9 +92,10 @@ inline bool edge_inside(Vec3 o, Vec3 d, Vec3 a, Vec3 b, bool flip) {
     const double px = ay * ez, qx = az * ey, py = az * ex, qy = ax * ez, pz = ax * ey, qz = ay * ex;
     const double dx = d.x, dy = d.y, dz = d.z;
     const double e = dx * (px - qx) + dy * (py - qy) + dz * (pz - qz);
-    const double bound = 8.0 * DBL_EPSILON *
-                         (std::fabs(dx) * (std::fabs(px) + std::fabs(qx)) + std::fabs(dy) * (std::fabs(py) + std::fabs(qy)) +
-                          std::fabs(dz) * (std::fabs(pz) + std::fabs(qz)));
+    const double bound =
+        8.0 * DBL_EPSILON *
+        (std::fabs(dx) * (std::fabs(px) + std::fabs(qx)) + std::fabs(dy) * (std::fabs(py) + std::fabs(qy)) +
+         std::fabs(dz) * (std::fabs(pz) + std::fabs(qz)));
     return (swap != flip ? -e : e) >= -bound;
 }
 
@@ -120,8 +121,8 @@ inline void clamp_barycentrics(float& u, float& v) {
 // above 1); b1, b2 are clamped so that b1, b2 ≥ 0 and b1 + b2 ≤ 1. Rays
 // parallel to the plane and degenerate triangles never hit. Every value
 // written is finite.
-inline bool intersect_triangle(Vec3 o, Vec3 d, const PreparedTriangle& tri, float tmax,
-                               float& t, float& b1, float& b2) {
+inline bool intersect_triangle(Vec3 o, Vec3 d, const PreparedTriangle& tri, float tmax, float& t, float& b1,
+                               float& b2) {
     // det = e1 · (d × e2) of the textbook form, = −d · (e1 × e2).
     const float det = -dot(d, tri.n);
     if (!(det != 0.0f)) return false;
@@ -170,8 +171,7 @@ inline bool intersect_triangle(Vec3 o, Vec3 d, const PreparedTriangle& tri, floa
 }
 
 // The same test for a triangle given by its corners.
-inline bool intersect_triangle(Vec3 o, Vec3 d, Vec3 p0, Vec3 p1, Vec3 p2, float tmax,
-                               float& t, float& b1, float& b2) {
+inline bool intersect_triangle(Vec3 o, Vec3 d, Vec3 p0, Vec3 p1, Vec3 p2, float tmax, float& t, float& b1, float& b2) {
     return intersect_triangle(o, d, prepare_triangle(p0, p1, p2), tmax, t, b1, b2);
 }
 

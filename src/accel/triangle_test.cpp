@@ -57,12 +57,12 @@ TEST(Triangle, ObliqueRayOnAGeneralTriangle) {
 
 TEST(Triangle, MissesOnEverySide) {
     const Vec3 down{0, 0, -1};
-    EXPECT_FALSE(trace({-0.01f, 0.5f, 1}, down).hit);   // beyond edge p0-p2 (b1 < 0)
-    EXPECT_FALSE(trace({0.5f, -0.01f, 1}, down).hit);   // beyond edge p0-p1 (b2 < 0)
-    EXPECT_FALSE(trace({0.51f, 0.5f, 1}, down).hit);    // beyond edge p1-p2 (b1 + b2 > 1)
-    EXPECT_FALSE(trace({1.01f, 0.0f, 1}, down).hit);    // past corner p1
-    EXPECT_FALSE(trace({0.0f, 1.01f, 1}, down).hit);    // past corner p2
-    EXPECT_FALSE(trace({-0.01f, -0.01f, 1}, down).hit); // past corner p0
+    EXPECT_FALSE(trace({-0.01f, 0.5f, 1}, down).hit);    // beyond edge p0-p2 (b1 < 0)
+    EXPECT_FALSE(trace({0.5f, -0.01f, 1}, down).hit);    // beyond edge p0-p1 (b2 < 0)
+    EXPECT_FALSE(trace({0.51f, 0.5f, 1}, down).hit);     // beyond edge p1-p2 (b1 + b2 > 1)
+    EXPECT_FALSE(trace({1.01f, 0.0f, 1}, down).hit);     // past corner p1
+    EXPECT_FALSE(trace({0.0f, 1.01f, 1}, down).hit);     // past corner p2
+    EXPECT_FALSE(trace({-0.01f, -0.01f, 1}, down).hit);  // past corner p0
 }
 
 TEST(Triangle, EdgesAndCornersCountAsInside) {
@@ -99,7 +99,7 @@ TEST(Triangle, OnlyDistancesStrictlyBetweenZeroAndTmaxCount) {
     EXPECT_FALSE(trace({0.2f, 0.2f, -1}, {0, 0, -1}).hit);  // behind the origin: t = -1
     EXPECT_FALSE(trace({0.2f, 0.2f, 0}, {0, 0, -1}).hit);   // origin on the triangle: t = 0
     const Vec3 o{0.2f, 0.2f, 1}, d{0, 0, -1};
-    EXPECT_FALSE(trace(o, d, kP0, kP1, kP2, 1.0f).hit);     // t = tmax is out
+    EXPECT_FALSE(trace(o, d, kP0, kP1, kP2, 1.0f).hit);  // t = tmax is out
     EXPECT_FALSE(trace(o, d, kP0, kP1, kP2, 0.5f).hit);
     EXPECT_TRUE(trace(o, d, kP0, kP1, kP2, std::nextafter(1.0f, 2.0f)).hit);
     EXPECT_FALSE(trace(o, d, kP0, kP1, kP2, std::nanf("")).hit);
@@ -117,11 +117,13 @@ TEST(Triangle, MissLeavesOutputsUntouched) {
 TEST(Triangle, DegenerateTrianglesNeverHitAndGiveNoNaN) {
     const Vec3 a{0.1f, 0.2f, 0.3f}, b{0.7f, -0.4f, 0.9f};
     const Vec3 degenerate[][3] = {
-        {{0, 0, 0}, {1, 2, 0}, {2, 4, 0}},        // collinear
-        {{0, 0, 0}, {2, 4, 0}, {1, 2, 0}},        // collinear, middle corner last
+        {{0, 0, 0}, {1, 2, 0}, {2, 4, 0}},  // collinear
+        {{0, 0, 0}, {2, 4, 0}, {1, 2, 0}},  // collinear, middle corner last
         {{0.1f, 0.1f, 0.1f}, {0.3f, 0.3f, 0.3f}, {0.2f, 0.2f, 0.2f}},
-        {a, a, b}, {a, b, a}, {a, b, b},          // a repeated corner
-        {a, a, a},                                // a point
+        {a, a, b},
+        {a, b, a},
+        {a, b, b},  // a repeated corner
+        {a, a, a},  // a point
     };
     std::mt19937 rng(7);
     std::uniform_real_distribution<float> unit(-1.0f, 1.0f), along(0.0f, 1.0f);

@@ -16,9 +16,9 @@
 #include <vector>
 
 #include "accel/accel.h"
-#include "render/camera.h"
 #include "io/mesh_file.h"
 #include "io/scene_json/scene_file.h"
+#include "render/camera.h"
 
 namespace sombra {
 namespace {
@@ -49,8 +49,8 @@ Escapes trace_all(const Accel& accel, const std::vector<Ray>& rays, std::size_t 
             }
             continue;
         }
-        const bool good = std::isfinite(hit.t) && hit.t > 0 && hit.t < rays[i].tmax && hit.b1 >= 0 &&
-                          hit.b2 >= 0 && hit.b1 + hit.b2 <= 1;
+        const bool good = std::isfinite(hit.t) && hit.t > 0 && hit.t < rays[i].tmax && hit.b1 >= 0 && hit.b2 >= 0 &&
+                          hit.b1 + hit.b2 <= 1;
         e.bad_hits += !good;
     }
     return e;
@@ -156,7 +156,8 @@ TEST(Watertight, RaysAimedAtSharedEdgesOfAQuadGridNeverPassThrough) {
     TriangleMesh mesh;
     auto vertex = [&](int i, int j) { return static_cast<std::uint32_t>(j * (kN + 1) + i); };
     for (int j = 0; j <= kN; ++j) {
-        for (int i = 0; i <= kN; ++i) mesh.positions.push_back(corner + static_cast<float>(i) * a + static_cast<float>(j) * b);
+        for (int i = 0; i <= kN; ++i)
+            mesh.positions.push_back(corner + static_cast<float>(i) * a + static_cast<float>(j) * b);
     }
     for (int j = 0; j < kN; ++j) {
         for (int i = 0; i < kN; ++i) {
@@ -179,7 +180,8 @@ TEST(Watertight, RaysAimedAtSharedEdgesOfAQuadGridNeverPassThrough) {
             targets.push_back(p(i, j));
             targets.push_back(0.5f * (p(i, j) + p(i + 1, j)));
             targets.push_back(0.5f * (p(i, j) + p(i, j + 1)));
-            targets.push_back((i + j) % 2 == 0 ? 0.5f * (p(i, j) + p(i + 1, j + 1)) : 0.5f * (p(i + 1, j) + p(i, j + 1)));
+            targets.push_back((i + j) % 2 == 0 ? 0.5f * (p(i, j) + p(i + 1, j + 1))
+                                               : 0.5f * (p(i + 1, j) + p(i, j + 1)));
         }
     }
     const Vec3 centre = corner + 32.0f * (a + b);
@@ -231,8 +233,8 @@ TEST(Watertight, NearEdgeDecisionsKeepTheirSide) {
                         float t = -1, b1 = -1, b2 = -1;
                         const bool hit = flipped ? intersect_triangle(o, target - o, p0, p2, p1, INFINITY, t, b1, b2)
                                                  : intersect_triangle(o, target - o, p0, p1, p2, INFINITY, t, b1, b2);
-                        EXPECT_EQ(hit, side < 0) << "edge " << k << " offset " << offset << " face " << face
-                                                 << (flipped ? " flipped" : "");
+                        EXPECT_EQ(hit, side < 0)
+                            << "edge " << k << " offset " << offset << " face " << face << (flipped ? " flipped" : "");
                         if (hit) {
                             EXPECT_TRUE(b1 >= 0 && b2 >= 0 && b1 + b2 <= 1 && t > 0);
                         }

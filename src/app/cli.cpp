@@ -42,20 +42,27 @@ void add_render_options(CLI::App& command, CliOptions& o) {
         ->capture_default_str();
     command.add_option("--accel", o.accel, "Acceleration structure: " + accel_list())
         ->check([](const std::string& name) {
-            return parse_accel_kind(name) ? std::string{} : "unknown accelerator '" + name + "' (available: " + accel_list() + ")";
+            return parse_accel_kind(name) ? std::string{}
+                                          : "unknown accelerator '" + name + "' (available: " + accel_list() + ")";
         })
         ->capture_default_str();
-    command.add_option("--integrator", o.integrator, "direct (point lights, spec §4) or path (path tracing; overrides the scene)")
+    command
+        .add_option("--integrator", o.integrator,
+                    "direct (point lights, spec §4) or path (path tracing; overrides the scene)")
         ->check(CLI::IsMember({"direct", "path"}));
-    command.add_option("--max-depth", o.max_depth, "Most scattering events on a path, 0 to 1024 (path; overrides the scene)")
+    command
+        .add_option("--max-depth", o.max_depth,
+                    "Most scattering events on a path, 0 to 1024 (path; overrides the scene)")
         ->check(CLI::Range(0, kMaxDepth));
-    command.add_option("--light-tree", o.light_tree,
-                       "Choose emitters by a light tree: auto (from 8 emitters on), on, or off (in proportion to power)")
+    command
+        .add_option("--light-tree", o.light_tree,
+                    "Choose emitters by a light tree: auto (from 8 emitters on), on, or off (in proportion to power)")
         ->check(CLI::IsMember({"auto", "on", "off"}))
         ->capture_default_str();
-    command.add_option("--texture-filter", o.texture_filter,
-                       "Texture lookups: bilinear (full resolution, the default) or mipmap (by the ray's footprint; "
-                       "overrides the scene)")
+    command
+        .add_option("--texture-filter", o.texture_filter,
+                    "Texture lookups: bilinear (full resolution, the default) or mipmap (by the ray's footprint; "
+                    "overrides the scene)")
         ->check(CLI::IsMember({"bilinear", "mipmap"}));
     command.add_flag("-q,--quiet", o.quiet, "No progress bar, no summary");
 }
@@ -70,7 +77,8 @@ CliParse parse_command_line(int argc, const char* const* argv) {
     app.require_subcommand(1);
 
     CliOptions o;
-    CLI::App* render = app.add_subcommand("render", "Render a scene (.json) or take a quick look at a model (.obj, .ply, .gltf, .glb)");
+    CLI::App* render = app.add_subcommand(
+        "render", "Render a scene (.json) or take a quick look at a model (.obj, .ply, .gltf, .glb)");
     render->add_option("input", o.input, "Scene file (.json) or model (.obj, .ply, .gltf, .glb)")->required();
     render->add_option("-o,--output", o.output, "Image to write: .png (8-bit sRGB), .pfm or .exr (linear)")
         ->capture_default_str();

@@ -15,18 +15,18 @@ enum class Command {
 
 struct CliOptions {
     Command command = Command::Render;
-    std::string input;                 // scene .json, or a model .obj/.ply/.gltf/.glb for the quick look
+    std::string input;  // scene .json, or a model .obj/.ply/.gltf/.glb for the quick look
     std::string output = "render.png";
     std::optional<int> width, height, spp;
     std::optional<std::uint64_t> seed;
-    int threads = 0;                   // 0 = all hardware threads
-    float exposure = 0;                // PNG only: radiance × 2^exposure
+    int threads = 0;     // 0 = all hardware threads
+    float exposure = 0;  // PNG only: radiance × 2^exposure
     std::string accel = "bvh";
-    std::optional<std::string> integrator;  // "direct" or "path", overrides the scene
-    std::optional<int> max_depth;           // overrides the scene; checked against kMaxDepth
-    std::string light_tree = "auto";        // "auto", "on" or "off": how path chooses among emitters
+    std::optional<std::string> integrator;      // "direct" or "path", overrides the scene
+    std::optional<int> max_depth;               // overrides the scene; checked against kMaxDepth
+    std::string light_tree = "auto";            // "auto", "on" or "off": how path chooses among emitters
     std::optional<std::string> texture_filter;  // "bilinear" or "mipmap", overrides the scene
-    std::string stats_json;            // empty = none
+    std::string stats_json;                     // empty = none
     bool quiet = false;
 
     // sombra explain SCENE X Y [--sample K] [--json] [--svg FILE]

@@ -20,8 +20,9 @@ TEST_F(Cli, RendersASceneAndWritesStatistics) {
     EXPECT_TRUE(fs::file_size(dir_ / "out.png") > 0);
     EXPECT_NE(r.err.find("triangles"), std::string::npos);  // the summary line
     const auto stats = nlohmann::json::parse(read_text(dir_ / "stats.json"));
-    for (const char* key : {"triangles", "width", "height", "spp", "threads", "accel", "load_seconds", "build_seconds",
-                            "render_seconds", "write_seconds", "total_seconds", "camera_rays", "shadow_rays", "peak_rss_bytes"})
+    for (const char* key :
+         {"triangles", "width", "height", "spp", "threads", "accel", "load_seconds", "build_seconds", "render_seconds",
+          "write_seconds", "total_seconds", "camera_rays", "shadow_rays", "peak_rss_bytes"})
         EXPECT_TRUE(stats.contains(key)) << key;
     EXPECT_EQ(stats["triangles"], 2);
     EXPECT_EQ(stats["width"], 32);
@@ -32,8 +33,9 @@ TEST_F(Cli, RendersASceneAndWritesStatistics) {
 
 TEST_F(Cli, OverridesAndQuiet) {
     write_text(dir_ / "s.json", scene());
-    const RunResult r = run("render s.json -o out.pfm --width 8 --height 4 --spp 3 --seed 9 --threads 1 --accel brute "
-                            "--quiet --stats-json stats.json");
+    const RunResult r =
+        run("render s.json -o out.pfm --width 8 --height 4 --spp 3 --seed 9 --threads 1 --accel brute "
+            "--quiet --stats-json stats.json");
     ASSERT_EQ(r.status, 0) << r.err;
     EXPECT_EQ(r.out, "");
     EXPECT_EQ(r.err, "");
@@ -49,7 +51,9 @@ TEST_F(Cli, OverridesAndQuiet) {
 TEST_F(Cli, LightTreeChoices) {
     write_text(dir_ / "s.json", scene());
     for (const char* choice : {"auto", "on", "off"}) {
-        const RunResult r = run(std::string("render s.json -o out.pfm --width 8 --height 4 --integrator path --quiet --light-tree ") + choice);
+        const RunResult r =
+            run(std::string("render s.json -o out.pfm --width 8 --height 4 --integrator path --quiet --light-tree ") +
+                choice);
         EXPECT_EQ(r.status, 0) << choice << ": " << r.err;
     }
 }
@@ -58,7 +62,8 @@ TEST_F(Cli, TextureFilterIsReportedAndOverridesTheScene) {
     write_text(dir_ / "s.json", scene());
     ASSERT_EQ(run("render s.json -o out.pfm --width 8 --height 4 --quiet --stats-json plain.json").status, 0);
     EXPECT_EQ(nlohmann::json::parse(read_text(dir_ / "plain.json"))["texture_filter"], "bilinear");
-    const RunResult r = run("render s.json -o out.pfm --width 8 --height 4 --quiet --texture-filter mipmap --stats-json mip.json");
+    const RunResult r =
+        run("render s.json -o out.pfm --width 8 --height 4 --quiet --texture-filter mipmap --stats-json mip.json");
     ASSERT_EQ(r.status, 0) << r.err;
     const auto stats = nlohmann::json::parse(read_text(dir_ / "mip.json"));
     EXPECT_EQ(stats["texture_filter"], "mipmap");
@@ -80,11 +85,11 @@ TEST_F(Cli, QuickLookOfAModel) {
 }
 
 TEST_F(Cli, WrongCommandLinesExitWithTwo) {
-    for (const char* args : {"", "render", "paint s.json", "render s.json --bogus", "render s.json --spp", "render s.json --spp x",
-                             "render s.json --accel nope", "render s.json --threads -1",
-                             "render s.json --threads 100000", "render s.json --seed -1", "render s.json --exposure x",
-                             "render s.json --light-tree maybe", "render s.json --texture-filter trilinear",
-                             "render s.json --texture-filter"}) {
+    for (const char* args :
+         {"", "render", "paint s.json", "render s.json --bogus", "render s.json --spp", "render s.json --spp x",
+          "render s.json --accel nope", "render s.json --threads -1", "render s.json --threads 100000",
+          "render s.json --seed -1", "render s.json --exposure x", "render s.json --light-tree maybe",
+          "render s.json --texture-filter trilinear", "render s.json --texture-filter"}) {
         const RunResult r = run(args);
         EXPECT_EQ(r.status, 2) << args << ": " << r.err;
         EXPECT_EQ(r.err.rfind("sombra: error: ", 0), 0u) << args << ": " << r.err;
@@ -127,8 +132,9 @@ TEST_F(Cli, MissingMeshFile) {
 }
 
 TEST_F(Cli, CameraVectorsNotPerpendicular) {
-    write_text(dir_ / "s.json", scene(R"({"width": 32, "height": 24})",
-                                      R"({"origin": [0, 0, 4], "left": [1, 0, 0], "up": [0.2, 1, 0], "forward": [0, 0, -1]})"));
+    write_text(dir_ / "s.json",
+               scene(R"({"width": 32, "height": 24})",
+                     R"({"origin": [0, 0, 4], "left": [1, 0, 0], "up": [0.2, 1, 0], "forward": [0, 0, -1]})"));
     expect_input_error(run("render s.json -o out.png"), "perpendicular");
 }
 

@@ -126,7 +126,8 @@ protected:
         return R"({"render": )" + render + R"(, "camera": )" + camera +
                R"(, "materials": {"grey": {"type": "diffuse", "kd": [0.5, 0.5, 0.5]}},
                  "lights": [{"type": "point", "position": [0, 0, 3], "intensity": [5, 5, 5]}],
-                 "objects": [{"file": ")" + mesh + R"(", "material": "grey"}])" + extra + "}";
+                 "objects": [{"file": ")" +
+               mesh + R"(", "material": "grey"}])" + extra + "}";
     }
 
     // No temporary image file anywhere under the temp folder.

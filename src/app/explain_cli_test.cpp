@@ -21,7 +21,8 @@ protected:
 
     // The value explain reports for pixel (x, y) with `args`, as the floats it printed.
     std::vector<float> explained(int x, int y, const std::string& args) {
-        const RunResult r = run("explain " + cornell() + " " + std::to_string(x) + " " + std::to_string(y) + " --json " + args);
+        const RunResult r =
+            run("explain " + cornell() + " " + std::to_string(x) + " " + std::to_string(y) + " --json " + args);
         EXPECT_EQ(r.status, 0) << r.err;
         const nlohmann::json j = nlohmann::json::parse(r.out, nullptr, false);
         if (j.is_discarded() || !j.contains("value")) {
@@ -62,12 +63,14 @@ TEST_F(ExplainCli, MipmappedTexturesAreTheRenderedPixelBitForBit) {
     const Pfm image = read_pfm(dir_ / "out.pfm");
     ASSERT_EQ(image.width, 48);
     int footprints = 0;
-    for (const auto& [x, y] : {std::pair{24, 28}, std::pair{24, 14}, std::pair{5, 12}, std::pair{20, 12}, std::pair{40, 15},
-                              std::pair{30, 18}, std::pair{2, 30}}) {
-        const RunResult r = run("explain " + scene + " " + std::to_string(x) + " " + std::to_string(y) + " --json " + args);
+    for (const auto& [x, y] : {std::pair{24, 28}, std::pair{24, 14}, std::pair{5, 12}, std::pair{20, 12},
+                               std::pair{40, 15}, std::pair{30, 18}, std::pair{2, 30}}) {
+        const RunResult r =
+            run("explain " + scene + " " + std::to_string(x) + " " + std::to_string(y) + " --json " + args);
         ASSERT_EQ(r.status, 0) << r.err;
         const nlohmann::json j = nlohmann::json::parse(r.out);
-        const float value[3] = {static_cast<float>(j["value"][0].get<double>()), static_cast<float>(j["value"][1].get<double>()),
+        const float value[3] = {static_cast<float>(j["value"][0].get<double>()),
+                                static_cast<float>(j["value"][1].get<double>()),
                                 static_cast<float>(j["value"][2].get<double>())};
         const float* pixel = &image.rgb[(static_cast<std::size_t>(31 - y) * 48 + static_cast<std::size_t>(x)) * 3];
         EXPECT_EQ(std::memcmp(value, pixel, sizeof value), 0) << "pixel (" << x << ", " << y << ")";
@@ -77,7 +80,8 @@ TEST_F(ExplainCli, MipmappedTexturesAreTheRenderedPixelBitForBit) {
 }
 
 TEST_F(ExplainCli, TextTellsTheStoryAndSvgDrawsIt) {
-    const RunResult r = run("explain " + cornell() + " 12 20 --width 24 --height 24 --spp 2 --sample 1 --svg story.svg --quiet");
+    const RunResult r =
+        run("explain " + cornell() + " 12 20 --width 24 --height 24 --spp 2 --sample 1 --svg story.svg --quiet");
     ASSERT_EQ(r.status, 0) << r.err;
     EXPECT_NE(r.out.find("Pixel (12, 20), sample 1 of 2"), std::string::npos) << r.out;
     EXPECT_NE(r.out.find("Camera ray"), std::string::npos);
@@ -93,7 +97,8 @@ TEST_F(ExplainCli, PixelOrSampleOutsideTheImageIsAnInputError) {
     write_text(dir_ / "s.json", scene());  // 32×24, 1 spp
     expect_input_error(run("explain s.json 32 0"), "pixel (32, 0): outside the 32x24 image");
     expect_input_error(run("explain s.json 0 -1"), "pixel (0, -1): outside");
-    expect_input_error(run("explain s.json 5 5 --sample 1"), "--sample: sample 1 does not exist: the pixel has 1 sample");
+    expect_input_error(run("explain s.json 5 5 --sample 1"),
+                       "--sample: sample 1 does not exist: the pixel has 1 sample");
     expect_input_error(run("explain s.json 5 5 --spp 4 --sample 4"), "the pixel has 4 samples (0 to 3)");
     // The pixel is checked against the size after the overrides.
     expect_input_error(run("explain s.json 20 5 --width 16"), "outside the 16x24 image");

@@ -22,18 +22,21 @@ namespace {
 
 // The picture's file must be writable, found out before the work.
 void check_svg_path(const std::filesystem::path& path) {
-    if (lower_extension(path) != ".svg") throw Error(path.string(), "the picture is an SVG file: the name must end in .svg");
+    if (lower_extension(path) != ".svg")
+        throw Error(path.string(), "the picture is an SVG file: the name must end in .svg");
     check_side_file_path(path);
 }
 
 void check_pixel(const CliOptions& o, const RenderSettings& s) {
     const std::string where = "pixel (" + std::to_string(o.pixel_x) + ", " + std::to_string(o.pixel_y) + ")";
     if (o.pixel_x < 0 || o.pixel_x >= s.width || o.pixel_y < 0 || o.pixel_y >= s.height)
-        throw Error(where, "outside the " + std::to_string(s.width) + "x" + std::to_string(s.height) + " image (columns 0 to " +
-                               std::to_string(s.width - 1) + ", rows 0 to " + std::to_string(s.height - 1) + ")");
+        throw Error(where, "outside the " + std::to_string(s.width) + "x" + std::to_string(s.height) +
+                               " image (columns 0 to " + std::to_string(s.width - 1) + ", rows 0 to " +
+                               std::to_string(s.height - 1) + ")");
     if (o.sample < 0 || o.sample >= s.spp)
-        throw Error("--sample", "sample " + std::to_string(o.sample) + " does not exist: the pixel has " + std::to_string(s.spp) +
-                                    " sample" + (s.spp == 1 ? "" : "s") + " (0 to " + std::to_string(s.spp - 1) + ")");
+        throw Error("--sample", "sample " + std::to_string(o.sample) + " does not exist: the pixel has " +
+                                    std::to_string(s.spp) + " sample" + (s.spp == 1 ? "" : "s") + " (0 to " +
+                                    std::to_string(s.spp - 1) + ")");
 }
 
 }  // namespace
@@ -69,7 +72,8 @@ int run_explain(const CliOptions& o) {
             {
                 const bool show = !o.quiet && isatty(STDERR_FILENO);
                 ProgressBar bar(progress,
-                                static_cast<std::uint64_t>(settings.width) * static_cast<std::uint64_t>(settings.height) *
+                                static_cast<std::uint64_t>(settings.width) *
+                                    static_cast<std::uint64_t>(settings.height) *
                                     static_cast<std::uint64_t>(preview.settings.spp),
                                 show);
                 rendered = render_image(preview, progress);
@@ -80,8 +84,9 @@ int run_explain(const CliOptions& o) {
                 return interrupted_exit_status(sig);
             }
             interrupt.set_phase(InterruptWatcher::Phase::Writing);
-            const std::string picture = explain_svg(
-                context, record, ImageView{rendered.film.width, rendered.film.height, rendered.film.rgb.data()}, o.exposure);
+            const std::string picture =
+                explain_svg(context, record,
+                            ImageView{rendered.film.width, rendered.film.height, rendered.film.rgb.data()}, o.exposure);
             write_file_atomically(o.svg, [&picture](const std::filesystem::path& temp) {
                 std::ofstream out(temp, std::ios::binary);
                 out << picture;

@@ -44,13 +44,13 @@ class GltfCli : public CliFixture {
 protected:
     // Renders a scene with one object (file, plus JSON for "transform") to NAME.pfm.
     Pfm render_object(const std::string& file, const std::string& transform, const std::string& name) {
-        write_text(dir_ / (name + ".json"),
-                   R"({"render": {"width": 48, "height": 36}, "camera": {"origin": [3, 4, 9], "look_at": [0, 0.5, 0], "fov": 40},
+        write_text(
+            dir_ / (name + ".json"),
+            R"({"render": {"width": 48, "height": 36}, "camera": {"origin": [3, 4, 9], "look_at": [0, 0.5, 0], "fov": 40},
                        "materials": {"grey": {"type": "diffuse", "kd": [0.6, 0.6, 0.6]}},
                        "lights": [{"type": "point", "position": [-4, 6, 5], "intensity": [60, 60, 60]}],
                        "objects": [{"file": ")" +
-                       file + R"(", "material": "grey")" + (transform.empty() ? "" : ", \"transform\": " + transform) +
-                       "}]}");
+                file + R"(", "material": "grey")" + (transform.empty() ? "" : ", \"transform\": " + transform) + "}]}");
         const RunResult r = run("render " + name + ".json -o " + name + ".pfm --quiet");
         EXPECT_EQ(r.status, 0) << r.err;
         return read_pfm(dir_ / (name + ".pfm"));
@@ -74,11 +74,11 @@ TEST_F(GltfCli, NodeTreeRendersLikeTheSceneFilesTransform) {
     flat.save(dir_ / "flat.glb");
 
     const Pfm by_nodes = render_object("tree.gltf", "", "nodes");
-    const Pfm by_scene = render_object(
-        "flat.glb",
-        R"([{"translate": [0.3, 0, 0]}, {"scale": 1.2}, {"rotate": {"axis": [0, 1, 0], "degrees": 30}},
+    const Pfm by_scene =
+        render_object("flat.glb",
+                      R"([{"translate": [0.3, 0, 0]}, {"scale": 1.2}, {"rotate": {"axis": [0, 1, 0], "degrees": 30}},
             {"translate": [0.5, -0.5, 0]}])",
-        "scene");
+                      "scene");
     const Pfm untransformed = render_object("flat.glb", "", "plain");
     EXPECT_GT(sum(by_nodes), 1.0f);
     // The same matrix up to the rounding of composing it in another order.
@@ -120,7 +120,8 @@ TEST_F(GltfCli, QuickLookUsesTheFilesCamera) {
     f.add_node({{"mesh", 0}});
     f.add_node({{"camera", 0}, {"translation", {0, 0.5, 6}}});
     f.set_scene({0, 1});
-    f.doc["cameras"] = {{{"type", "perspective"}, {"perspective", {{"yfov", 0.6}, {"aspectRatio", 2.0}, {"znear", 0.1}}}}};
+    f.doc["cameras"] = {
+        {{"type", "perspective"}, {"perspective", {{"yfov", 0.6}, {"aspectRatio", 2.0}, {"znear", 0.1}}}}};
     f.save(dir_ / "cam.gltf");
     RunResult r = run("render cam.gltf -o cam.pfm --quiet");
     ASSERT_EQ(r.status, 0) << r.err;

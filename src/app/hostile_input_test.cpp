@@ -25,8 +25,8 @@ class Hostile : public CliFixture {
 protected:
     // The fixture's scene with `mesh` in place of the square.
     std::string mesh_scene(const std::string& mesh) {
-        return scene(R"({"width": 32, "height": 24})", R"({"origin": [0, 0, 4], "look_at": [0, 0, 0], "fov": 40})",
-                     "", mesh);
+        return scene(R"({"width": 32, "height": 24})", R"({"origin": [0, 0, 4], "look_at": [0, 0, 0], "fov": 40})", "",
+                     mesh);
     }
 
     // Renders `scene_text` as s.json to out.pfm and returns the image; `args` adds options.
@@ -76,7 +76,8 @@ TEST_F(Hostile, PlyHeaderClaimingBillionsOfElements) {
     // Once aborted the process: the face count reached vector::reserve before any check.
     write_text(dir_ / "c.ply", "ply\nformat binary_little_endian 1.0\nelement vertex 3\n" + xyz +
                                    "element face 18446744073709551615\nproperty list uchar int vertex_indices\n"
-                                   "end_header\n" + std::string(36, '\0'));
+                                   "end_header\n" +
+                                   std::string(36, '\0'));
     expect_error_at(run("render c.ply -o out.png", kSmallMemoryKib), "c.ply",
                     "element 'face' claims 18446744073709551615 entries");
     write_text(dir_ / "d.ply",
@@ -120,16 +121,18 @@ TEST_F(Hostile, ObjNegativeFaceIndexPastTheStart) {
 
 TEST_F(Hostile, NanOrInfCoordinates) {
     const Pfm square = reference();
-    write_text(dir_ / "bad.obj", kSquareVertices + "v nan 0 0\nv 0 inf 0\nv 1e39 0 0\nv 0 0 -1.#IND\n"
-                                 "f 1 2 3 4\nf 1 2 5\nf 2 3 6\nf 3 4 7\nf 1 3 8\n");
+    write_text(dir_ / "bad.obj", kSquareVertices +
+                                     "v nan 0 0\nv 0 inf 0\nv 1e39 0 0\nv 0 0 -1.#IND\n"
+                                     "f 1 2 3 4\nf 1 2 5\nf 2 3 6\nf 3 4 7\nf 1 3 8\n");
     RunResult r;
     const Pfm image = render_scene(mesh_scene("bad.obj"), &r);
     expect_warning(r, "bad.obj", "dropped 4 triangles touching 4 vertices with non-finite (nan/inf) coordinates");
     EXPECT_EQ(image.rgb, square.rgb);
 
     // The same in a binary PLY: a NaN float.
-    std::string ply = "ply\nformat binary_little_endian 1.0\nelement vertex 5\nproperty float x\nproperty float y\n"
-                      "property float z\nelement face 3\nproperty list uchar int vertex_indices\nend_header\n";
+    std::string ply =
+        "ply\nformat binary_little_endian 1.0\nelement vertex 5\nproperty float x\nproperty float y\n"
+        "property float z\nelement face 3\nproperty list uchar int vertex_indices\nend_header\n";
     const float vertices[15] = {-1, -1, 0, 1, -1, 0, 1, 1, 0, -1, 1, 0, std::nanf(""), 0, 0};
     ply.append(reinterpret_cast<const char*>(vertices), sizeof vertices);
     for (const std::vector<int>& face : std::vector<std::vector<int>>{{0, 1, 2}, {0, 2, 3}, {0, 1, 4}}) {
@@ -154,8 +157,8 @@ TEST_F(Hostile, DegenerateAndZeroAreaTriangles) {
     write_text(dir_ / "degenerate.obj", kSquareVertices + "v 0 0 0\nf 1 2 3 4\nf 1 1 2\nf 3 3 3\nf 1 5 3\nf 5 5 5\n");
     for (const char* accel : {"bvh", "brute"}) {
         RunResult r;
-        const Pfm image = render_scene(mesh_scene("degenerate.obj"),
-                                       &r, std::string("--stats-json stats.json --accel ") + accel);
+        const Pfm image =
+            render_scene(mesh_scene("degenerate.obj"), &r, std::string("--stats-json stats.json --accel ") + accel);
         EXPECT_EQ(image.rgb, square.rgb) << accel;
         const auto stats = nlohmann::json::parse(read_text(dir_ / "stats.json"));
         EXPECT_EQ(stats["triangles"], 6) << accel;  // counted, never hit
@@ -169,9 +172,10 @@ TEST_F(Hostile, MeshWithNoFaces) {
                     "no triangles (3 vertices, no face with 3 or more corners)");
     write_text(dir_ / "empty.obj", "");
     expect_error_at(run("render empty.obj -o out.png"), "empty.obj", "no triangles (0 vertices");
-    write_text(dir_ / "nofaces.ply", "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
-                                     "property float z\nelement face 0\nproperty list uchar int vertex_indices\n"
-                                     "end_header\n0 0 0\n1 0 0\n0 1 0\n");
+    write_text(dir_ / "nofaces.ply",
+               "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+               "property float z\nelement face 0\nproperty list uchar int vertex_indices\n"
+               "end_header\n0 0 0\n1 0 0\n0 1 0\n");
     expect_error_at(run("render nofaces.ply -o out.png"), "nofaces.ply", "no triangles (3 vertices");
     write_text(dir_ / "s.json", mesh_scene("points.obj"));
     expect_error_at(run("render s.json -o out.png"), "points.obj", "no triangles");
@@ -256,9 +260,11 @@ TEST_F(Hostile, BinaryGarbage) {
     write_text(dir_ / "s.json", mesh_scene("g.obj"));
     expect_error_at(run("render s.json -o out.png"), "g.obj:4288", "is not made of indices");
     // A valid PLY header over a garbage body.
-    write_text(dir_ / "h.ply", "ply\nformat binary_big_endian 1.0\nelement vertex 1000\nproperty double x\n"
-                               "property double y\nproperty double z\nelement face 1000\n"
-                               "property list uchar uint vertex_indices\nend_header\n" + garbage);
+    write_text(dir_ / "h.ply",
+               "ply\nformat binary_big_endian 1.0\nelement vertex 1000\nproperty double x\n"
+               "property double y\nproperty double z\nelement face 1000\n"
+               "property list uchar uint vertex_indices\nend_header\n" +
+                   garbage);
     expect_error_at(run("render h.ply -o out.png"), "h.ply", "out of range");
 }
 
@@ -271,8 +277,7 @@ TEST_F(Hostile, SingleLineOfHundredsOfMegabytes) {
         obj << kSquareVertices << '#' << std::string(line, 'x') << "\nf 1 2 3 4\n";
     }
     RunResult r;
-    const Pfm image = render_scene(mesh_scene("long.obj"), &r,
-                                   "--stats-json stats.json");
+    const Pfm image = render_scene(mesh_scene("long.obj"), &r, "--stats-json stats.json");
     fs::remove(dir_ / "long.obj");
     EXPECT_EQ(image.rgb, square.rgb);
     if (!kSanitized) {
@@ -294,14 +299,19 @@ TEST_F(Hostile, NonUtf8AndSpacedFileNames) {
     const fs::path folder = dir_ / "f\xff lder with spaces";
     fs::create_directories(folder);
     fs::copy_file(dir_ / "square.obj", folder / "m\xffsh with spaces.obj");
-    fs::copy_file(dir_ / "square.obj", folder / "m\xc3\xb6" "bius strip.obj");  // UTF-8, as a scene may name it
-    write_text(folder / "sc\xffne file.json", mesh_scene("m\xc3\xb6" "bius strip.obj"));
+    fs::copy_file(dir_ / "square.obj", folder /
+                                           "m\xc3\xb6"
+                                           "bius strip.obj");  // UTF-8, as a scene may name it
+    write_text(folder / "sc\xffne file.json", mesh_scene("m\xc3\xb6"
+                                                         "bius strip.obj"));
     const std::string scene_arg = shell_quote("f\xff lder with spaces/sc\xffne file.json");
     const std::string output_arg = shell_quote("f\xff lder with spaces/\xff out.png");
     EXPECT_EQ(run("render " + scene_arg + " -o " + output_arg + " --quiet").status, 0);
     EXPECT_TRUE(fs::is_regular_file(folder / "\xff out.png"));
     EXPECT_EQ(run("render " + shell_quote("f\xff lder with spaces/m\xffsh with spaces.obj") + " -o " +
-                  shell_quote("\xff quick look.pfm") + " --quiet").status, 0);
+                  shell_quote("\xff quick look.pfm") + " --quiet")
+                  .status,
+              0);
     EXPECT_EQ(read_pfm(dir_ / "\xff quick look.pfm").width, 640);
     expect_no_temp_files();
 

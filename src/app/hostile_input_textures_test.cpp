@@ -13,15 +13,18 @@ namespace {
 
 using namespace sombra::cli_test;
 
-const std::string kHead = R"({"render": {"width": 16, "height": 12}, "camera": {"origin": [0, 0, 4], "look_at": [0, 0, 0], "fov": 40},
+const std::string kHead =
+    R"({"render": {"width": 16, "height": 12}, "camera": {"origin": [0, 0, 4], "look_at": [0, 0, 0], "fov": 40},
   "lights": [{"position": [0, 0, 3], "intensity": [5, 5, 5]}], )";
 
 class HostileTextures : public CliFixture {
 protected:
     void SetUp() override {
         CliFixture::SetUp();
-        write_text(dir_ / "uv.obj", "v -1 -1 0\nv 1 -1 0\nv 1 1 0\nv -1 1 0\nvt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\nf 1/1 2/2 3/3 4/4\n");
-        sombra::testing::write_png_file(dir_ / "good.png", 2, 2, 3, 8, {255, 0, 0, 0, 255, 0, 0, 0, 255, 255, 255, 255});
+        write_text(dir_ / "uv.obj",
+                   "v -1 -1 0\nv 1 -1 0\nv 1 1 0\nv -1 1 0\nvt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\nf 1/1 2/2 3/3 4/4\n");
+        sombra::testing::write_png_file(dir_ / "good.png", 2, 2, 3, 8,
+                                        {255, 0, 0, 0, 255, 0, 0, 0, 255, 255, 255, 255});
         std::vector<std::uint16_t> noise;
         for (int i = 0; i < 32 * 32 * 3; ++i) noise.push_back(static_cast<std::uint16_t>((i * 7919) % 65521));
         sombra::testing::write_png_file(dir_ / "deep.png", 32, 32, 3, 16, noise);
@@ -59,14 +62,13 @@ TEST_F(HostileTextures, BadSceneTexturesAreOneLineErrors) {
          "cannot open texture 'missing.png': no such file"},
         {R"({"type": "diffuse", "kd": {"texture": "folder.png"}})", "s.json: /materials/m/kd/texture",
          "'folder.png' is not a regular file"},
-        {R"({"type": "diffuse", "kd": {"texture": "half.png"}})", "half.png", "cannot decode as PNG: the data ends too early (truncated?)"},
+        {R"({"type": "diffuse", "kd": {"texture": "half.png"}})", "half.png",
+         "cannot decode as PNG: the data ends too early (truncated?)"},
         {R"({"type": "diffuse", "kd": {"texture": "huge.png"}})", "huge.png",
          "image is 16000×16000 pixels of 4 channels, more than the limit"},
         {R"({"type": "diffuse", "kd": {"texture": "wide.png"}})", "wide.png", "more than the limit"},
-        {R"({"type": "diffuse", "kd": {"texture": "text.png"}})", "text.png",
-         "cannot read the TGA header"},
-        {R"({"type": "diffuse", "kd": {"texture": "anim.gif"}})", "anim.gif",
-         "unsupported image format: a GIF image"},
+        {R"({"type": "diffuse", "kd": {"texture": "text.png"}})", "text.png", "cannot read the TGA header"},
+        {R"({"type": "diffuse", "kd": {"texture": "anim.gif"}})", "anim.gif", "unsupported image format: a GIF image"},
         {R"({"type": "diffuse", "kd": {"texture": "empty.png"}})", "empty.png", "image file is empty"},
         {R"({"type": "diffuse", "kd": {"texture": "good.png", "scale": [1.5, 1, 1]}})", "s.json: /materials/m/kd/scale",
          "kd components must lie in [0, 1]"},
@@ -92,8 +94,9 @@ TEST_F(HostileTextures, BadMtlTexturesWarnAndRenderTheConstant) {
     write_text(dir_ / "half.png", deep.substr(0, deep.size() / 2));
     write_text(dir_ / "huge.png", sombra::testing::png_claiming(16000, 16000));
     write_text(dir_ / "m.mtl", "newmtl a\nKd 0.5 0.5 0.5\nmap_Kd missing.png\nnorm half.png\nmap_Ke huge.png\n");
-    write_text(dir_ / "mtl.obj", "mtllib m.mtl\nv -1 -1 0\nv 1 -1 0\nv 1 1 0\nv -1 1 0\nvt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\n"
-                                 "usemtl a\nf 1/1 2/2 3/3 4/4\n");
+    write_text(dir_ / "mtl.obj",
+               "mtllib m.mtl\nv -1 -1 0\nv 1 -1 0\nv 1 1 0\nv -1 1 0\nvt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\n"
+               "usemtl a\nf 1/1 2/2 3/3 4/4\n");
     const RunResult r = run("render mtl.obj -o out.png --quiet");
     EXPECT_EQ(r.status, 0) << r.err;
     EXPECT_TRUE(fs::exists(dir_ / "out.png"));
@@ -110,11 +113,13 @@ TEST_F(HostileTextures, BadMtlTexturesWarnAndRenderTheConstant) {
 }
 
 TEST_F(HostileTextures, GoodTexturesAndCutOutsRenderQuietly) {
-    RunResult r = render(R"({"type": "phong", "kd": {"texture": "good.png"}, "ks": {"texture": "deep.png", "scale": [0.2, 0.2, 0.2]},
+    RunResult r = render(
+        R"({"type": "phong", "kd": {"texture": "good.png"}, "ks": {"texture": "deep.png", "scale": [0.2, 0.2, 0.2]},
                              "shininess": 10, "normal_map": "deep.png"})");
     EXPECT_EQ(r.status, 0) << r.err;
     EXPECT_TRUE(r.err.empty()) << r.err;
-    r = render(R"({"type": "diffuse", "kd": [1, 1, 1], "alpha": {"texture": "good.png"}})", "--integrator path --spp 1");
+    r = render(R"({"type": "diffuse", "kd": [1, 1, 1], "alpha": {"texture": "good.png"}})",
+               "--integrator path --spp 1");
     EXPECT_EQ(r.status, 0) << r.err;
     EXPECT_TRUE(r.err.empty()) << r.err;
 }

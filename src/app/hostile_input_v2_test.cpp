@@ -62,8 +62,8 @@ TEST_F(HostileV2, BadVersionTwoValuesAreOneLineErrors) {
         {material_scene(R"({"type": "conductor", "ks": [1, 1, 1], "roughness": 1.5})"),
          "s.json: /materials/m/roughness", "must lie in [0, 1]"},
         {material_scene(R"({"type": "mirror", "kr": [1.2, 1, 1]})"), "s.json: /materials/m/kr", "must lie in [0, 1]"},
-        {material_scene(R"({"type": "pbr", "base_color": [1, 1, 1], "roughness": 0.5})"), "s.json: /materials/m/metallic",
-         "missing required key 'metallic'"},
+        {material_scene(R"({"type": "pbr", "base_color": [1, 1, 1], "roughness": 0.5})"),
+         "s.json: /materials/m/metallic", "missing required key 'metallic'"},
         {material_scene(R"({"type": "pbr", "base_color": [1, 1, 1], "metallic": 1.5, "roughness": 0.5})"),
          "s.json: /materials/m/metallic", "metallic must lie in [0, 1]"},
         {material_scene(R"({"type": "pbr", "base_color": [1, 1, 1], "metallic": "NaN", "roughness": 0.5})"),
@@ -74,7 +74,8 @@ TEST_F(HostileV2, BadVersionTwoValuesAreOneLineErrors) {
          "s.json: /materials/m/base_color", "base_color components must lie in [0, 1]"},
         {material_scene(R"({"type": "pbr", "base_color": [1, 1, 1], "metallic": 0, "roughness": 0.5, "ior": 0.9})"),
          "s.json: /materials/m/ior", "greater than 1"},
-        {material_scene(R"({"type": "pbr", "base_color": [1, 1, 1], "metallic": 0, "roughness": 0.5, "ks": [1, 1, 1]})"),
+        {material_scene(
+             R"({"type": "pbr", "base_color": [1, 1, 1], "metallic": 0, "roughness": 0.5, "ks": [1, 1, 1]})"),
          "s.json: /materials/m/ks", "'ks' applies only to phong and conductor materials, not pbr"},
         {scene_with("", R"({"width": 16, "height": 12, "max_depth": 1025})"), "s.json: /render/max_depth",
          "between 0 and 1024"},
@@ -147,8 +148,9 @@ TEST_F(HostileV2, DirectWarnsOnceAboutContentOnlyPathLights) {
 
     r = render(material_scene(R"({"type": "dielectric"})"));
     EXPECT_EQ(count(r.err, warning), 1u) << r.err;
-    const std::string path_glass = R"({"render": {"width": 16, "height": 12, "integrator": "path"}, "camera": )" + kCamera +
-                                   R"(, "materials": {"m": {"type": "mirror", "kr": [1, 1, 1]}}, "objects": [{"file": "square.obj", "material": "m"}]})";
+    const std::string path_glass =
+        R"({"render": {"width": 16, "height": 12, "integrator": "path"}, "camera": )" + kCamera +
+        R"(, "materials": {"m": {"type": "mirror", "kr": [1, 1, 1]}}, "objects": [{"file": "square.obj", "material": "m"}]})";
     r = render(path_glass);
     EXPECT_EQ(count(r.err, warning), 0u) << r.err;
     r = render(path_glass, "--integrator direct");

@@ -62,8 +62,9 @@ TEST_F(HostileV3, BadSpotDirectionalAndLensValuesAreOneLineErrors) {
         {light_scene(R"({"type": "point", "position": [0, 0, 2], "intensity": [1, 1, 1]})",
                      lens + R"("aperture_radius": 0.1, "focus_distance": 0})"),
          "s.json: /camera/focus_distance", "must be > 0"},
-        {light_scene(R"({"type": "point", "position": [0, 0, 2], "intensity": [1, 1, 1]})",
-                     R"({"origin": [0, 0, 4], "left": [-1, 0, 0], "up": [0, 1, 0], "forward": [0, 0, -1], "aperture_radius": 0.1})"),
+        {light_scene(
+             R"({"type": "point", "position": [0, 0, 2], "intensity": [1, 1, 1]})",
+             R"({"origin": [0, 0, 4], "left": [-1, 0, 0], "up": [0, 1, 0], "forward": [0, 0, -1], "aperture_radius": 0.1})"),
          "s.json: /camera", "needs 'focus_distance'"},
     };
     for (const auto& c : cases) {

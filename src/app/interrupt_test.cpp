@@ -21,7 +21,8 @@ using sombra::cli_test::read_text;
 class Interrupt : public ::testing::TestWithParam<int> {
 protected:
     void SetUp() override {
-        dir_ = fs::temp_directory_path() / ("sombra-interrupt-" + std::to_string(::getpid()) + "-" + std::to_string(GetParam()));
+        dir_ = fs::temp_directory_path() /
+               ("sombra-interrupt-" + std::to_string(::getpid()) + "-" + std::to_string(GetParam()));
         fs::remove_all(dir_);
         fs::create_directories(dir_);
         std::ofstream(dir_ / "square.obj") << "v -1 -1 0\nv 1 -1 0\nv 1 1 0\nv -1 1 0\nf 1 2 3 4\n";

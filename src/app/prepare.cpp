@@ -19,7 +19,8 @@ std::string lower_extension(const std::filesystem::path& path) {
 void check_side_file_path(const std::filesystem::path& path) {
     const std::filesystem::path folder = path.parent_path().empty() ? "." : path.parent_path();
     std::error_code ec;
-    if (!std::filesystem::is_directory(folder, ec)) throw Error(path.string(), "folder '" + folder.string() + "' does not exist");
+    if (!std::filesystem::is_directory(folder, ec))
+        throw Error(path.string(), "folder '" + folder.string() + "' does not exist");
     if (std::filesystem::is_directory(path, ec)) throw Error(path.string(), "is a folder");
 }
 
@@ -42,13 +43,26 @@ RenderSettings resolve_settings(const RenderSettings& scene_settings, const CliO
     auto check = [&s](const char* option) {
         if (const std::string problem = render_settings_problem(s); !problem.empty()) throw Error(option, problem);
     };
-    if (o.width) { s.width = *o.width; check("--width"); }
-    if (o.height) { s.height = *o.height; check("--height"); }
-    if (o.spp) { s.spp = *o.spp; check("--spp"); }
+    if (o.width) {
+        s.width = *o.width;
+        check("--width");
+    }
+    if (o.height) {
+        s.height = *o.height;
+        check("--height");
+    }
+    if (o.spp) {
+        s.spp = *o.spp;
+        check("--spp");
+    }
     if (o.seed) s.seed = *o.seed;
     if (o.integrator) s.integrator = *o.integrator == "path" ? IntegratorKind::Path : IntegratorKind::Direct;
-    if (o.max_depth) { s.max_depth = *o.max_depth; check("--max-depth"); }
-    if (o.texture_filter) s.texture_filter = *o.texture_filter == "mipmap" ? TextureFilter::Mipmap : TextureFilter::Bilinear;
+    if (o.max_depth) {
+        s.max_depth = *o.max_depth;
+        check("--max-depth");
+    }
+    if (o.texture_filter)
+        s.texture_filter = *o.texture_filter == "mipmap" ? TextureFilter::Mipmap : TextureFilter::Bilinear;
     return s;
 }
 
@@ -57,7 +71,9 @@ void prepare_textures(Scene& scene, const RenderSettings& settings) {
 }
 
 LightSelection light_selection(const CliOptions& o) {
-    return o.light_tree == "on" ? LightSelection::Tree : o.light_tree == "off" ? LightSelection::Power : LightSelection::Automatic;
+    return o.light_tree == "on"    ? LightSelection::Tree
+           : o.light_tree == "off" ? LightSelection::Power
+                                   : LightSelection::Automatic;
 }
 
 void print_warnings(const Diagnostics& diag, const Scene& scene, const RenderSettings& settings, const CliOptions& o) {

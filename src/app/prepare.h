@@ -44,7 +44,8 @@ LightSelection light_selection(const CliOptions& options);
 
 // Prints the loader's warnings, and the one about the direct integrator
 // meeting version-2 content (spec §10), to stderr.
-void print_warnings(const Diagnostics& diag, const Scene& scene, const RenderSettings& settings, const CliOptions& options);
+void print_warnings(const Diagnostics& diag, const Scene& scene, const RenderSettings& settings,
+                    const CliOptions& options);
 
 // Runs `body` (returning the exit status) and turns what it throws into the
 // one line of spec §1, "sombra: error: WHERE: WHAT", and exit status 1.

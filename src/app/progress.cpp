@@ -35,7 +35,8 @@ void ProgressBar::draw(double elapsed) const {
     constexpr int kWidth = 30;
     const auto samples = progress_.samples_done.load(std::memory_order_relaxed);
     const double done = static_cast<double>(samples) / static_cast<double>(total_samples_);
-    const double mrays = elapsed > 0 ? static_cast<double>(progress_.rays_traced.load(std::memory_order_relaxed)) / elapsed * 1e-6 : 0;
+    const double mrays =
+        elapsed > 0 ? static_cast<double>(progress_.rays_traced.load(std::memory_order_relaxed)) / elapsed * 1e-6 : 0;
     char bar[kWidth + 1];
     const int filled = static_cast<int>(done * kWidth);
     for (int k = 0; k < kWidth; ++k) bar[k] = k < filled ? '#' : '-';
@@ -52,8 +53,8 @@ void ProgressBar::draw(double elapsed) const {
     else
         std::snprintf(count, sizeof count, "%llu/%llu samples", static_cast<unsigned long long>(samples),
                       static_cast<unsigned long long>(total_samples_));
-    std::fprintf(stderr, "\r\033[Ksombra: [%s] %3d%%  %s  %.1f Mrays/s  ETA %s", bar, static_cast<int>(done * 100), count,
-                 mrays, eta);
+    std::fprintf(stderr, "\r\033[Ksombra: [%s] %3d%%  %s  %.1f Mrays/s  ETA %s", bar, static_cast<int>(done * 100),
+                 count, mrays, eta);
     std::fflush(stderr);
 }
 

@@ -2,10 +2,10 @@
 
 #include <unistd.h>
 
+#include <tbb/info.h>
 #include <chrono>
 #include <cstdio>
 #include <iostream>
-#include <tbb/info.h>
 
 #include "accel/accel.h"
 #include "app/interrupt.h"
@@ -23,9 +23,7 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-double seconds_since(Clock::time_point start) {
-    return std::chrono::duration<double>(Clock::now() - start).count();
-}
+double seconds_since(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
 
 }  // namespace
 

@@ -60,9 +60,11 @@ std::string summary_line(const RunStats& s, const std::string& output) {
     char rate[48];
     std::snprintf(rate, sizeof rate, "%.1f Mrays/s", mrays);
     return "sombra: " + thousands(s.triangles) + " triangles, " + std::to_string(s.width) + "x" +
-           std::to_string(s.height) + " at " + std::to_string(s.spp) + " spp, " + s.integrator + " | load " + seconds(s.load_seconds) +
-           ", build " + seconds(s.build_seconds) + ", render " + seconds(s.render_seconds) + " (" + rate + ", " +
-           std::to_string(s.threads) + (s.threads == 1 ? " thread), write " : " threads), write ") + seconds(s.write_seconds) + " | wrote " + output;
+           std::to_string(s.height) + " at " + std::to_string(s.spp) + " spp, " + s.integrator + " | load " +
+           seconds(s.load_seconds) + ", build " + seconds(s.build_seconds) + ", render " + seconds(s.render_seconds) +
+           " (" + rate + ", " + std::to_string(s.threads) +
+           (s.threads == 1 ? " thread), write " : " threads), write ") + seconds(s.write_seconds) + " | wrote " +
+           output;
 }
 
 }  // namespace sombra

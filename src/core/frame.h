@@ -18,8 +18,7 @@ struct Frame {
         const float sign = std::copysign(1.0f, n.z);
         const float a = -1.0f / (sign + n.z);
         const float b = n.x * n.y * a;
-        return Frame{Vec3{1.0f + sign * n.x * n.x * a, sign * b, -sign * n.x},
-                     Vec3{b, sign + n.y * n.y * a, -n.y}, n};
+        return Frame{Vec3{1.0f + sign * n.x * n.x * a, sign * b, -sign * n.x}, Vec3{b, sign + n.y * n.y * a, -n.y}, n};
     }
 
     Vec3 to_local(Vec3 v) const { return {dot(v, s), dot(v, t), dot(v, n)}; }

@@ -28,7 +28,10 @@ std::vector<MaterialParameter> material_parameters(const Material& m) {
         case MaterialType::Dielectric: p = {{"ior", {m.ior}}, {"kt", rgb(m.kt)}}; break;
         case MaterialType::Conductor: p = {{"ks", rgb(m.ks)}, {"roughness", {m.roughness}}}; break;
         case MaterialType::Pbr:
-            p = {{"base_color", rgb(m.base_color)}, {"metallic", {m.metallic}}, {"roughness", {m.roughness}}, {"ior", {m.ior}}};
+            p = {{"base_color", rgb(m.base_color)},
+                 {"metallic", {m.metallic}},
+                 {"roughness", {m.roughness}},
+                 {"ior", {m.ior}}};
             break;
     }
     if (is_emissive(m)) p.push_back({"ke", rgb(m.ke)});

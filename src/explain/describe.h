@@ -24,9 +24,9 @@ std::vector<MaterialParameter> material_parameters(const Material& m);
 
 // Where scene triangle `triangle` came from.
 struct TriangleOrigin {
-    std::string object;           // "/objects/2", "/lights/0", or "?" when unknown
-    std::string file;             // the mesh file ("" for a quad light)
-    std::uint32_t triangle = 0;   // index among that object's triangles
+    std::string object;          // "/objects/2", "/lights/0", or "?" when unknown
+    std::string file;            // the mesh file ("" for a quad light)
+    std::uint32_t triangle = 0;  // index among that object's triangles
 };
 TriangleOrigin triangle_origin(const Scene& scene, std::uint32_t triangle);
 

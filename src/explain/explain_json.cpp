@@ -92,7 +92,9 @@ private:
         return j;
     }
 
-    static Json f_terms(Vec3 diffuse, Vec3 lobe, Vec3 f) { return {{"diffuse", vec(diffuse)}, {"lobe", vec(lobe)}, {"total", vec(f)}}; }
+    static Json f_terms(Vec3 diffuse, Vec3 lobe, Vec3 f) {
+        return {{"diffuse", vec(diffuse)}, {"lobe", vec(lobe)}, {"total", vec(f)}};
+    }
 
     // Cut-outs a ray went through, nearest first.
     Json holes(const std::vector<HoleRecord>& listed) const {
@@ -202,8 +204,8 @@ private:
         j["lights"] = lights(v);
         const BounceRecord& b = v.bounce;
         if (r_.path && b.sampled) {
-            Json bounce = {{"omega_i", vec(b.wi)},      {"f_r", vec(b.f)},
-                           {"pdf", number(b.pdf)},      {"delta", b.delta},
+            Json bounce = {{"omega_i", vec(b.wi)},           {"f_r", vec(b.f)},
+                           {"pdf", number(b.pdf)},           {"delta", b.delta},
                            {"transmission", b.transmission}, {"weight", vec(b.weight)},
                            {"throughput", vec(b.throughput)}};
             if (b.roulette)

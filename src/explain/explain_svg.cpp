@@ -16,7 +16,7 @@ namespace sombra {
 
 namespace {
 
-constexpr float kPanel = 480.0f;        // height of both panels, width of the scene view is 4/3 of it
+constexpr float kPanel = 480.0f;  // height of both panels, width of the scene view is 4/3 of it
 constexpr float kViewWidth = 640.0f;
 constexpr float kGap = 24.0f;
 constexpr float kMargin = 16.0f;
@@ -85,20 +85,26 @@ private:
 
 class Picture {
 public:
-    Picture(const ExplainContext& context, const SampleRecord& record) : c_(context), r_(record), view_(context.job.camera) {}
+    Picture(const ExplainContext& context, const SampleRecord& record)
+        : c_(context), r_(record), view_(context.job.camera) {}
 
     std::string draw(ImageView image, float exposure) {
         fit();
-        const float image_scale = std::min(kPanel / static_cast<float>(image.width), kPanel / static_cast<float>(image.height));
-        const float image_w = image_scale * static_cast<float>(image.width), image_h = image_scale * static_cast<float>(image.height);
+        const float image_scale =
+            std::min(kPanel / static_cast<float>(image.width), kPanel / static_cast<float>(image.height));
+        const float image_w = image_scale * static_cast<float>(image.width),
+                    image_h = image_scale * static_cast<float>(image.height);
         const float width = kViewWidth + kGap + std::max(image_w, 200.0f);
         const std::vector<CaptionLine> lines = story_lines();
         const float height = kPanel + 80.0f + 16.0f * static_cast<float>(std::min(lines.size(), kMaxStoryLines));
         svg_ << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << num(width) << "\" height=\"" << num(height)
-             << "\" viewBox=\"0 0 " << num(width) << " " << num(height) << "\" font-family=\"sans-serif\" font-size=\"12\">\n";
+             << "\" viewBox=\"0 0 " << num(width) << " " << num(height)
+             << "\" font-family=\"sans-serif\" font-size=\"12\">\n";
         svg_ << "<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n";
-        svg_ << "<clipPath id=\"view\"><rect width=\"" << num(kViewWidth) << "\" height=\"" << num(kPanel) << "\"/></clipPath>\n";
-        svg_ << "<rect width=\"" << num(kViewWidth) << "\" height=\"" << num(kPanel) << "\" fill=\"#fafafa\" stroke=\"#ccc\"/>\n";
+        svg_ << "<clipPath id=\"view\"><rect width=\"" << num(kViewWidth) << "\" height=\"" << num(kPanel)
+             << "\"/></clipPath>\n";
+        svg_ << "<rect width=\"" << num(kViewWidth) << "\" height=\"" << num(kPanel)
+             << "\" fill=\"#fafafa\" stroke=\"#ccc\"/>\n";
         svg_ << "<g clip-path=\"url(#view)\">\n";
         outlines();
         camera();
@@ -159,8 +165,8 @@ private:
 
     void dot_at(Vec3 p, const char* colour, float radius) {
         const Point2 q = view_.screen(p);
-        svg_ << "<circle cx=\"" << num(q.x) << "\" cy=\"" << num(q.y) << "\" r=\"" << num(radius) << "\" fill=\"" << colour
-             << "\"/>\n";
+        svg_ << "<circle cx=\"" << num(q.x) << "\" cy=\"" << num(q.y) << "\" r=\"" << num(radius) << "\" fill=\""
+             << colour << "\"/>\n";
     }
 
     // Text beside a point; in the right part of the view it ends at the point instead, to stay inside.
@@ -174,9 +180,9 @@ private:
     void cross_at(Vec3 p, const char* colour) {
         const Point2 q = view_.screen(p);
         constexpr float k = 5;
-        svg_ << "<path d=\"M" << num(q.x - k) << " " << num(q.y - k) << "L" << num(q.x + k) << " " << num(q.y + k) << "M"
-             << num(q.x - k) << " " << num(q.y + k) << "L" << num(q.x + k) << " " << num(q.y - k) << "\" stroke=\"" << colour
-             << "\" stroke-width=\"2.5\"/>\n";
+        svg_ << "<path d=\"M" << num(q.x - k) << " " << num(q.y - k) << "L" << num(q.x + k) << " " << num(q.y + k)
+             << "M" << num(q.x - k) << " " << num(q.y + k) << "L" << num(q.x + k) << " " << num(q.y - k)
+             << "\" stroke=\"" << colour << "\" stroke-width=\"2.5\"/>\n";
     }
 
     void outlines() {
@@ -208,7 +214,8 @@ private:
         const float k = 0.08f * view_.extent() / std::max(length(cam.forward), 1e-12f);
         Vec3 corners[4];
         for (int i = 0; i < 4; ++i)
-            corners[i] = cam.origin + k * (cam.forward + (i & 1 ? 1.0f : -1.0f) * cam.left + (i & 2 ? 1.0f : -1.0f) * cam.up);
+            corners[i] =
+                cam.origin + k * (cam.forward + (i & 1 ? 1.0f : -1.0f) * cam.left + (i & 2 ? 1.0f : -1.0f) * cam.up);
         for (const Vec3 c : corners) line(cam.origin, c, "#333", 1);
         line(corners[0], corners[1], "#333", 1);
         line(corners[1], corners[3], "#333", 1);
@@ -223,7 +230,8 @@ private:
             if (delta[i].type == LightType::Directional) continue;  // drawn as its shadow rays only
             const Vec3 p = delta[i].position;
             const Point2 q = view_.screen(p);
-            svg_ << "<circle cx=\"" << num(q.x) << "\" cy=\"" << num(q.y) << "\" r=\"7\" fill=\"#ffd54f\" stroke=\"#b07800\" "
+            svg_ << "<circle cx=\"" << num(q.x) << "\" cy=\"" << num(q.y)
+                 << "\" r=\"7\" fill=\"#ffd54f\" stroke=\"#b07800\" "
                  << "stroke-width=\"1.5\"/>\n";
             label(p, "light " + std::to_string(i), "#7a5300", 9, 4);
         }
@@ -294,12 +302,13 @@ private:
         const float s = w / static_cast<float>(image.width);
         const float px = left + s * static_cast<float>(r_.pixel_x), py = s * static_cast<float>(r_.pixel_y);
         const float size = std::max(s, 1.0f);
-        svg_ << "<rect x=\"" << num(px - 0.5f) << "\" y=\"" << num(py - 0.5f) << "\" width=\"" << num(size + 1) << "\" height=\""
-             << num(size + 1) << "\" fill=\"none\" stroke=\"#ff2020\" stroke-width=\"1\"/>\n";
+        svg_ << "<rect x=\"" << num(px - 0.5f) << "\" y=\"" << num(py - 0.5f) << "\" width=\"" << num(size + 1)
+             << "\" height=\"" << num(size + 1) << "\" fill=\"none\" stroke=\"#ff2020\" stroke-width=\"1\"/>\n";
         svg_ << "<circle cx=\"" << num(px + size * 0.5f) << "\" cy=\"" << num(py + size * 0.5f)
              << "\" r=\"12\" fill=\"none\" stroke=\"#ff2020\" stroke-width=\"2\"/>\n";
-        svg_ << "<text x=\"" << num(left) << "\" y=\"" << num(h + 16) << "\">the render (" << image.width << "x" << image.height
-             << ", " << picture_spp(c_.job.settings) << " spp), pixel (" << r_.pixel_x << ", " << r_.pixel_y << ") circled</text>\n";
+        svg_ << "<text x=\"" << num(left) << "\" y=\"" << num(h + 16) << "\">the render (" << image.width << "x"
+             << image.height << ", " << picture_spp(c_.job.settings) << " spp), pixel (" << r_.pixel_x << ", "
+             << r_.pixel_y << ") circled</text>\n";
     }
 
     void text_line(float y, const std::string& text, const char* colour = "#222") {
@@ -311,11 +320,14 @@ private:
         const char* colour;
     };
 
-    CaptionLine light_line(const std::string& name, LightOutcome outcome, const BlockerRecord& blocker, Vec3 contribution) const {
+    CaptionLine light_line(const std::string& name, LightOutcome outcome, const BlockerRecord& blocker,
+                           Vec3 contribution) const {
         switch (outcome) {
-            case LightOutcome::Visible: return {name + ": reaches the light, adds " + readable(contribution), kVisibleColour};
+            case LightOutcome::Visible:
+                return {name + ": reaches the light, adds " + readable(contribution), kVisibleColour};
             case LightOutcome::Blocked:
-                return {name + ": blocked by " + object_name(blocker.triangle) + " at distance " + readable(blocker.distance),
+                return {name + ": blocked by " + object_name(blocker.triangle) + " at distance " +
+                            readable(blocker.distance),
                         kBlockedColour};
             case LightOutcome::Behind: return {name + ": behind the surface, adds nothing", kBehindColour};
             case LightOutcome::OnSurface: return {name + ": on the surface, adds nothing", kBehindColour};
@@ -334,21 +346,23 @@ private:
         for (const VertexRecord& v : r_.vertices) {
             const std::string at = r_.path ? std::string("x").append(std::to_string(v.depth)).append(" ") : "";
             if (!v.hit) {
-                lines.push_back({at + "leaves the scene: environment L_e = " + readable(v.emission.radiance) + ", adds " +
-                                     readable(v.emission.contribution),
+                lines.push_back({at + "leaves the scene: environment L_e = " + readable(v.emission.radiance) +
+                                     ", adds " + readable(v.emission.contribution),
                                  kPathColour});
                 continue;
             }
             if (r_.path)
-                lines.push_back({at + "on " + object_name(v.surface.triangle) + ", throughput " + readable(v.throughput) +
+                lines.push_back({at + "on " + object_name(v.surface.triangle) + ", throughput " +
+                                     readable(v.throughput) +
                                      (v.emission.present ? ", emission adds " + readable(v.emission.contribution) : ""),
                                  kPathColour});
             for (const DeltaLightRecord& l : v.delta_lights)
-                lines.push_back(light_line("  " + at + "light " + std::to_string(l.light), l.outcome, l.blocker, l.contribution));
+                lines.push_back(
+                    light_line("  " + at + "light " + std::to_string(l.light), l.outcome, l.blocker, l.contribution));
             const SampledLightRecord& s = v.sampled_light;
             if (s.sampled)
-                lines.push_back(light_line("  " + at + (s.environment ? "environment sample" : "emitter sample"), s.outcome,
-                                           s.blocker, s.contribution));
+                lines.push_back(light_line("  " + at + (s.environment ? "environment sample" : "emitter sample"),
+                                           s.outcome, s.blocker, s.contribution));
         }
         return lines;
     }
@@ -358,13 +372,20 @@ private:
     void caption(const std::vector<CaptionLine>& lines, float height) {
         float y = kPanel + 20;
         for (std::size_t i = 0; i < lines.size() && i < kMaxStoryLines; ++i, y += 16)
-            text_line(y, i + 1 == kMaxStoryLines && lines.size() > kMaxStoryLines ? "… (the text story has the rest)" : lines[i].text,
+            text_line(y,
+                      i + 1 == kMaxStoryLines && lines.size() > kMaxStoryLines ? "… (the text story has the rest)"
+                                                                               : lines[i].text,
                       lines[i].colour);
-        text_line(height - 42, "The scene seen from above and to the right of the camera (orthographic, outlines only).", "#555");
-        text_line(height - 26, "Blue: camera ray and path (x0, x1, …); green: shading normal n_s; gold: shadow ray that reaches its light;",
+        text_line(height - 42,
+                  "The scene seen from above and to the right of the camera (orthographic, outlines only).", "#555");
+        text_line(height - 26,
+                  "Blue: camera ray and path (x0, x1, …); green: shading normal n_s; gold: shadow ray that reaches its "
+                  "light;",
                   "#555");
-        text_line(height - 10, "red: blocked shadow ray (× marks the blocker, dashed beyond it); grey dots: light behind the surface.",
-                  "#555");
+        text_line(
+            height - 10,
+            "red: blocked shadow ray (× marks the blocker, dashed beyond it); grey dots: light behind the surface.",
+            "#555");
     }
 
     const ExplainContext& c_;

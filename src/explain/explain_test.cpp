@@ -13,8 +13,8 @@
 #include <random>
 
 #include "explain/describe.h"
-#include "render/test_meshes.h"
 #include "io/scene_json/scene_file.h"
+#include "render/test_meshes.h"
 
 namespace sombra {
 namespace {
@@ -40,7 +40,8 @@ Vec3 sum_of_terms(const SampleRecord& r) {
 // Renders `scene` at `settings`, then re-traces `pixel_count` random pixels'
 // every sample with the recorder: each pixel's average must be the film's
 // value to the last bit, and each sample's terms must add up to its value.
-void expect_explain_matches_render(const Scene& scene, const RenderSettings& settings, int pixel_count, const char* what) {
+void expect_explain_matches_render(const Scene& scene, const RenderSettings& settings, int pixel_count,
+                                   const char* what) {
     const Accel accel = make_accel(scene, AccelKind::Bvh);
     const RenderJob job = make_render_job(scene, accel, settings, 2);
     RenderProgress progress;
@@ -91,22 +92,26 @@ class ExplainSharedScene : public ::testing::TestWithParam<const char*> {};
 
 TEST_P(ExplainSharedScene, ValueIsTheRenderedSampleBitForBit) {
     const std::filesystem::path file = kShared / "scenes" / GetParam();
-    if (!std::filesystem::exists(file)) GTEST_SKIP() << "shared/ not found at " << kShared << ": " << file << " is missing";
+    if (!std::filesystem::exists(file))
+        GTEST_SKIP() << "shared/ not found at " << kShared << ": " << file << " is missing";
     Diagnostics diag;
     const auto [scene, file_settings] = load_scene_file(file, diag);
-    expect_explain_matches_render(scene, scaled_down(file_settings, 8, IntegratorKind::Direct, 1), 1000, "direct, 1 spp");
+    expect_explain_matches_render(scene, scaled_down(file_settings, 8, IntegratorKind::Direct, 1), 1000,
+                                  "direct, 1 spp");
     expect_explain_matches_render(scene, scaled_down(file_settings, 8, IntegratorKind::Path, 3), 1000, "path, 3 spp");
 }
 
 INSTANTIATE_TEST_SUITE_P(SharedScenes, ExplainSharedScene,
-                         ::testing::Values("bunny.json", "cornell.json", "phong.json", "manylights.json", "dragon.json"));
+                         ::testing::Values("bunny.json", "cornell.json", "phong.json", "manylights.json",
+                                           "dragon.json"));
 
 // The repository's scene of spot, sun and thin lens (spec §16, §17), under
 // both integrators: every delta light's factor and every lens sample.
 TEST(ExplainRepoScene, SpotSunAndLensMatchTheRender) {
     Diagnostics diag;
     const auto [scene, file_settings] = load_scene_file(kSource / "scenes" / "spot-sun-dof.json", diag);
-    expect_explain_matches_render(scene, scaled_down(file_settings, 8, IntegratorKind::Direct, 3), 1000, "direct, 3 spp");
+    expect_explain_matches_render(scene, scaled_down(file_settings, 8, IntegratorKind::Direct, 3), 1000,
+                                  "direct, 3 spp");
     expect_explain_matches_render(scene, scaled_down(file_settings, 8, IntegratorKind::Path, 3), 1000, "path, 3 spp");
 }
 
@@ -170,11 +175,13 @@ TEST(ExplainRecord, ListsTheCutOutsARayWentThrough) {
 // seen by a 1×1 camera from the side, looking past the blocker at the ground in its shadow.
 Scene blocked_scene() {
     Scene scene;
-    scene.materials = {Material{"ground", MaterialType::Diffuse, Vec3{0.5f}}, Material{"blocker", MaterialType::Diffuse, Vec3{0.2f}}};
+    scene.materials = {Material{"ground", MaterialType::Diffuse, Vec3{0.5f}},
+                       Material{"blocker", MaterialType::Diffuse, Vec3{0.2f}}};
     testing::add_quad(scene.geometry, {-2, 0, -2}, {-2, 0, 2}, {2, 0, 2}, {2, 0, -2}, 0);
     testing::add_quad(scene.geometry, {-0.5f, 1, -0.5f}, {-0.5f, 1, 0.5f}, {0.5f, 1, 0.5f}, {0.5f, 1, -0.5f}, 1);
     scene.objects = {SceneObject{"/objects/0", "ground.obj", 0, 2}, SceneObject{"/objects/1", "blocker.obj", 2, 2}};
-    scene.lights = {make_point_light({0, 3, 0}, Vec3{10.0f}), make_point_light({0, -1, 0}, Vec3{10.0f}), make_point_light({1.5f, 2, 0}, Vec3{8.0f})};
+    scene.lights = {make_point_light({0, 3, 0}, Vec3{10.0f}), make_point_light({0, -1, 0}, Vec3{10.0f}),
+                    make_point_light({1.5f, 2, 0}, Vec3{8.0f})};
     scene.camera.look_at = CameraLookAt{{3, 2, 0.1f}, {0.1f, 0, 0.1f}, {0, 1, 0}, 10};
     return scene;
 }
@@ -273,7 +280,7 @@ TEST(ExplainRecord, SvgShowsTheBlockedShadowRayInRedAndEmbedsTheImage) {
     EXPECT_EQ(svg.rfind("<svg", 0), 0u);
     EXPECT_NE(svg.find("</svg>"), std::string::npos);
     EXPECT_NE(svg.find("blocked by blocker.obj triangle"), std::string::npos);
-    EXPECT_NE(svg.find("#d0202a"), std::string::npos);  // the blocked ray's red
+    EXPECT_NE(svg.find("#d0202a"), std::string::npos);                            // the blocked ray's red
     EXPECT_NE(svg.find("data:image/png;base64,iVBORw0KGgo"), std::string::npos);  // a PNG's signature, base64
 }
 

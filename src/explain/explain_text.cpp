@@ -26,7 +26,8 @@ private:
         const RenderSettings& s = c_.job.settings;
         out_ << "Pixel (" << r_.pixel_x << ", " << r_.pixel_y << "), sample " << r_.sample << " of " << s.spp << ", of "
              << c_.scene_file << " at " << s.width << "x" << s.height << ", "
-             << (r_.path ? "path integrator, max_depth " + std::to_string(s.max_depth) : std::string("direct integrator"))
+             << (r_.path ? "path integrator, max_depth " + std::to_string(s.max_depth)
+                         : std::string("direct integrator"))
              << ", seed " << s.seed << "\n";
     }
 
@@ -40,21 +41,21 @@ private:
         if (!r_.lens) {
             out_ << "  origin o               " << readable(r_.origin) << "\n";
             out_ << "  direction d            s·l + t·u + f = " << readable(r_.direction) << "\n";
-            out_ << "      with l = " << readable(cam.left) << ", u = " << readable(cam.up) << ", f = "
-                 << readable(cam.forward) << "\n";
+            out_ << "      with l = " << readable(cam.left) << ", u = " << readable(cam.up)
+                 << ", f = " << readable(cam.forward) << "\n";
             return;
         }
         // A thin lens (spec §17): the ray leaves a point of the lens and aims
         // where the pinhole ray meets the focus plane.
         out_ << "  lens sample            (" << readable(r_.lens_u) << ", " << readable(r_.lens_v)
              << ") on the unit square, mapped to the disc of radius r = " << readable(cam.lens_radius) << "\n";
-        out_ << "  origin                 " << readable(r_.origin) << "  (o + r·(x·l̂ + y·û), o = "
-             << readable(cam.origin) << ")\n";
+        out_ << "  origin                 " << readable(r_.origin)
+             << "  (o + r·(x·l̂ + y·û), o = " << readable(cam.origin) << ")\n";
         out_ << "  direction              " << readable(r_.direction)
              << "  (towards where s·l + t·u + f meets the focus plane at distance " << readable(cam.focus_distance)
              << ")\n";
-        out_ << "      with l = " << readable(cam.left) << ", u = " << readable(cam.up) << ", f = " << readable(cam.forward)
-             << "\n";
+        out_ << "      with l = " << readable(cam.left) << ", u = " << readable(cam.up)
+             << ", f = " << readable(cam.forward) << "\n";
     }
 
     std::string where(std::uint32_t triangle) const {
@@ -75,7 +76,8 @@ private:
         }
         if (named.textured)
             s += "\n           (textured: the values at this hit's uv " + readable(h.uv.x) + ", " + readable(h.uv.y) +
-                 (h.uv_footprint > 0.0f ? ", mip-mapped over a footprint " + readable(h.uv_footprint) + " wide in uv" : "") +
+                 (h.uv_footprint > 0.0f ? ", mip-mapped over a footprint " + readable(h.uv_footprint) + " wide in uv"
+                                        : "") +
                  "; n_s after its normal or bump map)";
         return s;
     }
@@ -152,8 +154,8 @@ private:
     }
 
     void blocked(const BlockerRecord& b, const char* tail) {
-        out_ << "    BLOCKED: the shadow ray meets " << where(b.triangle) << " at distance " << readable(b.distance) << tail
-             << "\n";
+        out_ << "    BLOCKED: the shadow ray meets " << where(b.triangle) << " at distance " << readable(b.distance)
+             << tail << "\n";
     }
 
     void delta_light(const DeltaLightRecord& l, Vec3 beta) {
@@ -172,8 +174,8 @@ private:
                  << readable(light.direction) << ", I = " << readable(light.intensity) << ", cone cos "
                  << readable(light.cos_outer) << " (outer) to " << readable(light.cos_inner) << " (inner)\n";
         } else {
-            out_ << "  point light " << l.light << " at " << readable(light.position) << ", I = "
-                 << readable(light.intensity) << "\n";
+            out_ << "  point light " << l.light << " at " << readable(light.position)
+                 << ", I = " << readable(light.intensity) << "\n";
         }
         if (l.outcome == LightOutcome::OnSurface) {
             out_ << "    sits exactly on x: it lights nothing\n";
@@ -216,8 +218,8 @@ private:
              << (l.environment ? std::string("the environment") : where(l.triangle)) << "\n";
         out_ << "    ω_i = " << readable(l.wi);
         if (!l.environment)
-            out_ << ", point " << readable(l.target) << ", distance " << readable(l.distance) << ", |n_light·ω_i| = "
-                 << readable(l.cos_light);
+            out_ << ", point " << readable(l.target) << ", distance " << readable(l.distance)
+                 << ", |n_light·ω_i| = " << readable(l.cos_light);
         out_ << "\n    L_e = " << readable(l.radiance) << ", light pdf = " << readable(l.light_pdf)
              << " /sr, BSDF pdf = " << readable(l.bsdf_pdf) << " /sr\n";
         if (l.outcome == LightOutcome::Behind) {
@@ -233,8 +235,8 @@ private:
             return;
         }
         holes(l.holes, l.holes_crossed, "    the shadow ray went through ", "      ");
-        out_ << "    f_r = " << readable(l.f) << " = diffuse " << readable(l.f_diffuse) << " + lobe " << readable(l.f_lobe)
-             << ", |n_s·ω_i| = " << readable(l.cos_s) << "\n";
+        out_ << "    f_r = " << readable(l.f) << " = diffuse " << readable(l.f_diffuse) << " + lobe "
+             << readable(l.f_lobe) << ", |n_s·ω_i| = " << readable(l.cos_s) << "\n";
         out_ << "    MIS weight w = " << readable(l.mis_weight) << " (power heuristic)\n";
         out_ << "    adds β·f_r·|n_s·ω_i|·L_e·w/pdf = " << readable(l.contribution) << "\n";
     }
@@ -251,13 +253,13 @@ private:
         if (b.delta)
             out_ << "    lobe chosen with probability " << readable(b.pdf) << ", weight " << readable(b.weight) << "\n";
         else
-            out_ << "    f_r = " << readable(b.f) << ", pdf = " << readable(b.pdf) << " /sr, weight f_r·|cos|/pdf = "
-                 << readable(b.weight) << "\n";
+            out_ << "    f_r = " << readable(b.f) << ", pdf = " << readable(b.pdf)
+                 << " /sr, weight f_r·|cos|/pdf = " << readable(b.weight) << "\n";
         out_ << "    throughput β = " << readable(b.throughput) << "\n";
         if (b.roulette) {
-            out_ << "    Russian roulette: survival probability q = " << readable(b.roulette_q) << ", drew u = "
-                 << readable(b.roulette_u) << (b.survived ? " < q: survives, β/q = " + readable(b.throughput_after)
-                                                          : " ≥ q: the path ends")
+            out_ << "    Russian roulette: survival probability q = " << readable(b.roulette_q)
+                 << ", drew u = " << readable(b.roulette_u)
+                 << (b.survived ? " < q: survives, β/q = " + readable(b.throughput_after) : " ≥ q: the path ends")
                  << "\n";
         }
     }
@@ -271,7 +273,8 @@ private:
         if (spp == 1)
             out_ << "  with one sample per pixel this is the pixel's value in the rendered image (linear RGB)\n";
         else
-            out_ << "  the pixel's value is the average of its " << spp << " samples (sombra explain ... --sample K shows each)\n";
+            out_ << "  the pixel's value is the average of its " << spp
+                 << " samples (sombra explain ... --sample K shows each)\n";
     }
 
     const ExplainContext& c_;
@@ -281,6 +284,8 @@ private:
 
 }  // namespace
 
-std::string explain_text(const ExplainContext& context, const SampleRecord& record) { return Story(context, record).tell(); }
+std::string explain_text(const ExplainContext& context, const SampleRecord& record) {
+    return Story(context, record).tell();
+}
 
 }  // namespace sombra

@@ -20,7 +20,8 @@ struct EdgeFaces {
 
 Vec3 face_normal(const TriangleMesh& mesh, std::size_t t) {
     const Index3& tri = mesh.triangles[t];
-    const Vec3 n = cross(mesh.positions[tri[1]] - mesh.positions[tri[0]], mesh.positions[tri[2]] - mesh.positions[tri[0]]);
+    const Vec3 n =
+        cross(mesh.positions[tri[1]] - mesh.positions[tri[0]], mesh.positions[tri[2]] - mesh.positions[tri[0]]);
     const float len = length(n);
     return len > 0.0f && std::isfinite(len) ? n / len : Vec3{0.0f};
 }

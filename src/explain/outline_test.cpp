@@ -13,7 +13,8 @@ namespace {
 TriangleMesh cube() {
     TriangleMesh m;
     for (int i = 0; i < 8; ++i)
-        m.positions.push_back({static_cast<float>(i & 1), static_cast<float>((i >> 1) & 1), static_cast<float>((i >> 2) & 1)});
+        m.positions.push_back(
+            {static_cast<float>(i & 1), static_cast<float>((i >> 1) & 1), static_cast<float>((i >> 2) & 1)});
     auto quad = [&m](std::uint32_t a, std::uint32_t b, std::uint32_t c, std::uint32_t d) {
         m.triangles.push_back({a, b, c});
         m.triangles.push_back({a, c, d});

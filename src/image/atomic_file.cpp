@@ -45,8 +45,8 @@ fs::path create_temp_beside(const fs::path& target) {
         const int open_errno = errno;
         if (open_errno != EEXIST) {
             const std::string shown = folder.empty() ? std::string(".") : folder.string();
-            throw Error(target.string(),
-                        "cannot write: cannot create a temporary file in '" + shown + "': " + errno_message(open_errno));
+            throw Error(target.string(), "cannot write: cannot create a temporary file in '" + shown +
+                                             "': " + errno_message(open_errno));
         }
     }
     throw Error(target.string(), "cannot write: no free temporary file name");

@@ -108,8 +108,9 @@ TEST_F(AtomicWriteTest, FolderInTheTargetsPlaceIsLeftAlone) {
     fs::create_directory(folder_ / "a.pfm");
     write_bytes(folder_ / "a.pfm" / "inside.txt", old_content);
     const std::vector<float> rgb = noise(2, 2);
-    const std::string message =
-        error_of(folder_ / "a.pfm", [&] { write_image(folder_ / "a.pfm", {2, 2, rgb.data()}, 0.0f); });
+    const std::string message = error_of(folder_ / "a.pfm", [&] {
+        write_image(folder_ / "a.pfm", {2, 2, rgb.data()}, 0.0f);
+    });
     EXPECT_EQ(message.rfind("cannot write: ", 0), 0u) << message;
     EXPECT_EQ(read_bytes(folder_ / "a.pfm" / "inside.txt"),
               std::vector<unsigned char>(old_content.begin(), old_content.end()));
@@ -121,8 +122,9 @@ TEST_F(AtomicWriteTest, ReadOnlyFolderFailsAndKeepsTheEarlierFile) {
     write_bytes(folder_ / "a.png", old_content);
     ::chmod(folder_.c_str(), 0555);
     const std::vector<float> rgb = noise(2, 2);
-    const std::string message =
-        error_of(folder_ / "a.png", [&] { write_image(folder_ / "a.png", {2, 2, rgb.data()}, 0.0f); });
+    const std::string message = error_of(folder_ / "a.png", [&] {
+        write_image(folder_ / "a.png", {2, 2, rgb.data()}, 0.0f);
+    });
     ::chmod(folder_.c_str(), 0755);
     EXPECT_EQ(message.rfind("cannot write: ", 0), 0u) << message;
     EXPECT_EQ(read_bytes(folder_ / "a.png"), std::vector<unsigned char>(old_content.begin(), old_content.end()));
@@ -173,7 +175,10 @@ TEST_F(AtomicWriteTest, InvalidImagesAreRejectedBeforeAnyFileIsMade) {
     EXPECT_NE(error_of(path, [&] { write_image(path, {4, -1, rgb.data()}, 0.0f); }).find("4x-1"), std::string::npos);
     EXPECT_EQ(error_of(path, [&] { write_image(path, {2, 2, nullptr}, 0.0f); }), "cannot write: no pixel data");
     const fs::path jpg = folder_ / "a.jpg";
-    EXPECT_EQ(error_of(jpg, [&] { write_image(jpg, {2, 2, rgb.data()}, 0.0f); }),
+    EXPECT_EQ(error_of(jpg,
+                       [&] {
+                           write_image(jpg, {2, 2, rgb.data()}, 0.0f);
+                       }),
               "unsupported image format 'jpg' (use .png, .pfm or .exr)");
     EXPECT_TRUE(entries().empty());
 }

@@ -59,10 +59,8 @@ void check_output_path(const fs::path& path) {
     const fs::file_status folder_status = fs::status(folder, error);
     if (folder_status.type() == fs::file_type::none)
         throw Error(path.string(), "cannot access folder '" + folder.string() + "': " + errno_message(error.value()));
-    if (!fs::exists(folder_status))
-        throw Error(path.string(), "folder '" + folder.string() + "' does not exist");
-    if (!fs::is_directory(folder_status))
-        throw Error(path.string(), "'" + folder.string() + "' is not a folder");
+    if (!fs::exists(folder_status)) throw Error(path.string(), "folder '" + folder.string() + "' does not exist");
+    if (!fs::is_directory(folder_status)) throw Error(path.string(), "'" + folder.string() + "' is not a folder");
     if (fs::is_directory(target, error)) throw Error(path.string(), "is a folder, not an image file");
     // Creating the temporary file and renaming it need write and search rights on the folder.
     if (::access(folder.c_str(), W_OK | X_OK) != 0)

@@ -36,7 +36,7 @@ struct PngFile {
     int bit_depth = 0, colour_type = 0;
     std::vector<std::string> chunks;  // chunk types in file order
     int srgb_intent = -1;
-    std::vector<std::uint8_t> rgb;    // decoded by libpng, top row first
+    std::vector<std::uint8_t> rgb;  // decoded by libpng, top row first
 };
 
 std::uint32_t big_endian_u32(const std::vector<unsigned char>& bytes, std::size_t at) {
@@ -189,10 +189,9 @@ TEST_F(ImageIoTest, PngClampsOutOfRangeValues) {
 }
 
 TEST_F(ImageIoTest, PngWritesPixelsWithNonFiniteChannelsAsBlack) {
-    const std::vector<float> rgb = {nan_value, 1, 1,  1, inf_value, 1,  1, 1, -inf_value,  1, 0.5f, 0};
+    const std::vector<float> rgb = {nan_value, 1, 1, 1, inf_value, 1, 1, 1, -inf_value, 1, 0.5f, 0};
     write_image(folder_ / "a.png", {4, 1, rgb.data()}, 0.0f);
-    EXPECT_EQ(read_png(folder_ / "a.png").rgb,
-              (std::vector<std::uint8_t>{0, 0, 0, 0, 0, 0, 0, 0, 0, 255, 188, 0}));
+    EXPECT_EQ(read_png(folder_ / "a.png").rgb, (std::vector<std::uint8_t>{0, 0, 0, 0, 0, 0, 0, 0, 0, 255, 188, 0}));
 }
 
 TEST_F(ImageIoTest, PngRowsRunTopToBottomAndChannelsStayApart) {
@@ -204,8 +203,8 @@ TEST_F(ImageIoTest, PngRowsRunTopToBottomAndChannelsStayApart) {
     write_image(folder_ / "a.png", {3, 2, rgb.data()}, 0.0f);
     // sRGB codes of 0.25, 0.5, 0.75 are 137, 188, 225.
     EXPECT_EQ(read_png(folder_ / "a.png").rgb,
-              (std::vector<std::uint8_t>{137, 137, 188, 188, 137, 188, 225, 137, 188,
-                                         137, 188, 188, 188, 188, 188, 225, 188, 188}));
+              (std::vector<std::uint8_t>{137, 137, 188, 188, 137, 188, 225, 137, 188, 137, 188, 188, 188, 188, 188, 225,
+                                         188, 188}));
 }
 
 TEST_F(ImageIoTest, PfmBytesAreExact) {

@@ -32,8 +32,7 @@ void write_pfm(const std::filesystem::path& file, ImageView image) {
     const auto height = static_cast<std::size_t>(image.height);
     OutputFile out = open_for_writing(file);
 
-    const std::string header =
-        "PF\n" + std::to_string(image.width) + " " + std::to_string(image.height) + "\n-1.0\n";
+    const std::string header = "PF\n" + std::to_string(image.width) + " " + std::to_string(image.height) + "\n-1.0\n";
     write_all(out.get(), header.data(), header.size());
 
     std::vector<unsigned char> row(width * 3 * sizeof(float));

@@ -69,8 +69,8 @@ bool encode_png(std::FILE* out, png_uint_32 width, png_uint_32 height, png_bytep
     // its size on renders (docs/performance.md, "Writing PNG").
     png_set_filter(png, PNG_FILTER_TYPE_BASE, PNG_FILTER_PAETH);
     png_set_compression_strategy(png, Z_RLE);
-    png_set_IHDR(png, info, width, height, 8, PNG_COLOR_TYPE_RGB, PNG_INTERLACE_NONE,
-                 PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
+    png_set_IHDR(png, info, width, height, 8, PNG_COLOR_TYPE_RGB, PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_DEFAULT,
+                 PNG_FILTER_TYPE_DEFAULT);
     // sRGB chunk, plus the gAMA and cHRM equivalents for readers that predate it.
     png_set_sRGB_gAMA_and_cHRM(png, info, PNG_sRGB_INTENT_PERCEPTUAL);
     png_write_info(png, info);
@@ -99,7 +99,8 @@ std::vector<png_byte> srgb_bytes(ImageView image, float exposure) {
 
 std::vector<png_bytep> row_pointers(std::vector<png_byte>& bytes, ImageView image) {
     std::vector<png_bytep> rows(static_cast<std::size_t>(image.height));
-    for (std::size_t j = 0; j < rows.size(); ++j) rows[j] = bytes.data() + j * static_cast<std::size_t>(image.width) * 3;
+    for (std::size_t j = 0; j < rows.size(); ++j)
+        rows[j] = bytes.data() + j * static_cast<std::size_t>(image.width) * 3;
     return rows;
 }
 
@@ -112,8 +113,8 @@ void write_png(const std::filesystem::path& file, ImageView image, float exposur
     OutputFile out = open_for_writing(file);
     PngFailure failure{};
     errno = 0;
-    if (!encode_png(out.get(), static_cast<png_uint_32>(image.width), static_cast<png_uint_32>(image.height), rows.data(),
-                    &failure)) {
+    if (!encode_png(out.get(), static_cast<png_uint_32>(image.width), static_cast<png_uint_32>(image.height),
+                    rows.data(), &failure)) {
         // libpng says only "Write Error" when fwrite fails; the OS knows why.
         if (std::strcmp(failure.message, "Write Error") == 0 && failure.saved_errno != 0)
             throw std::system_error(failure.saved_errno, std::generic_category());

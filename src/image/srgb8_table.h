@@ -27,7 +27,7 @@ public:
 
 private:
     static constexpr std::size_t kBuckets = (0x3f800000u >> 16) + 1;  // the top 16 bits of floats in [0, 1]
-    std::array<std::uint8_t, kBuckets> bucket_code_{};  // encode_srgb8 of each bucket's smallest float
+    std::array<std::uint8_t, kBuckets> bucket_code_{};                // encode_srgb8 of each bucket's smallest float
     std::array<float, 257> threshold_{};  // threshold_[k]: the smallest float whose code is k (k ≥ 1); [256] = +∞
 };
 

@@ -64,7 +64,8 @@ protected:
 
 TEST_F(FuzzRegression, EveryReproducerLoadsOrFailsCleanly) {
     const std::size_t replayed = replay_all(fuzz::Target::Obj, "obj") + replay_all(fuzz::Target::Ply, "ply") +
-                                 replay_all(fuzz::Target::Scene, "scene") + replay_all(fuzz::Target::Texture, "texture");
+                                 replay_all(fuzz::Target::Scene, "scene") +
+                                 replay_all(fuzz::Target::Texture, "texture");
     EXPECT_GE(replayed, 2u);  // at least those tested one by one below
 }
 
@@ -103,8 +104,8 @@ TEST_F(FuzzRegression, TextureSeedsDecode) {
         EXPECT_NO_THROW(problem = fuzz::run_input(fuzz::Target::Texture, bytes, folder));
         EXPECT_EQ(problem, "");
         try {
-            const Texture t = read_texture_file(fuzz::stage_input(fuzz::Target::Texture, bytes, folder),
-                                                TextureEncoding::Color);
+            const Texture t =
+                read_texture_file(fuzz::stage_input(fuzz::Target::Texture, bytes, folder), TextureEncoding::Color);
             EXPECT_GT(t.texels.size(), 0u);
         } catch (const Error& e) {
             ADD_FAILURE() << e.what();
@@ -160,7 +161,8 @@ TEST_F(FuzzRegression, JpegHuffmanCountsOverTheTableAreRefused) {
     for (const char* name : {"jpeg-huffman-counts-over-256.jpg", "jpeg-huffman-overflow-after-fill-bytes.jpg",
                              "jpeg-huffman-counts-cut-short-at-the-end.jpg"}) {
         SCOPED_TRACE(name);
-        const fs::path path = fuzz::stage_input(fuzz::Target::Texture, read_bytes(kRegressions / "texture" / name), folder);
+        const fs::path path =
+            fuzz::stage_input(fuzz::Target::Texture, read_bytes(kRegressions / "texture" / name), folder);
         try {
             read_texture_file(path, TextureEncoding::Color);
             ADD_FAILURE() << "decoded a JPEG with an oversized Huffman table";

@@ -75,9 +75,9 @@ struct MeshBuilder {
     // The file's vertices and normals, in file order; the loader fills these.
     std::vector<Vec3> positions;
     std::vector<Vec3> normals;
-    std::vector<Vec2> uvs;                 // texture coordinates, in file order
-    std::vector<VertexTangent> tangents;   // glTF only, like the rest
-    std::vector<Rgba> colors;              // glTF only, like the rest
+    std::vector<Vec2> uvs;                // texture coordinates, in file order
+    std::vector<VertexTangent> tangents;  // glTF only, like the rest
+    std::vector<Rgba> colors;             // glTF only, like the rest
 
     // Faces with fewer than 3 corners that the loader saw but could not add.
     std::size_t skipped_small_faces = 0;

@@ -30,9 +30,9 @@ LoadedMesh load_mesh_file(const std::filesystem::path& path, Diagnostics& diag) 
     if (extension == ".obj") return load_obj(path, diag);
     if (extension == ".ply") return load_ply(path, diag);
     if (extension == ".gltf" || extension == ".glb") return load_gltf(path, diag);
-    throw Error(where, extension.empty() ? "mesh file has no extension (expected .obj, .ply, .gltf or .glb)"
-                                         : "unsupported mesh file type '" + extension +
-                                               "' (expected .obj, .ply, .gltf or .glb)");
+    throw Error(where, extension.empty()
+                           ? "mesh file has no extension (expected .obj, .ply, .gltf or .glb)"
+                           : "unsupported mesh file type '" + extension + "' (expected .obj, .ply, .gltf or .glb)");
 }
 
 namespace {

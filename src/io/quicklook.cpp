@@ -88,9 +88,9 @@ LoadedScene make_quicklook_scene(const std::filesystem::path& model, Diagnostics
         const float intensity = share * kKeyRadiance * std::numbers::pi_v<float> / 0.8f * d * d;
         return make_point_light(sphere.centre + d * normalize(direction), Vec3{intensity});
     };
-    builder.add_light(light_at({-1.0f, 1.4f, 1.3f}, 4.0f, 1.0f));   // key: upper left, front
-    builder.add_light(light_at({1.2f, 0.3f, 1.0f}, 4.0f, 0.35f));   // fill: right, low
-    builder.add_light(light_at({0.3f, 1.2f, -1.2f}, 4.0f, 0.5f));   // rim: behind, above
+    builder.add_light(light_at({-1.0f, 1.4f, 1.3f}, 4.0f, 1.0f));  // key: upper left, front
+    builder.add_light(light_at({1.2f, 0.3f, 1.0f}, 4.0f, 0.35f));  // fill: right, low
+    builder.add_light(light_at({0.3f, 1.2f, -1.2f}, 4.0f, 0.5f));  // rim: behind, above
     out.scene = builder.finish();
     return out;
 }

@@ -52,7 +52,8 @@ TEST(Uvs, ObjTextureCoordinatesFollowTheFanSplit) {
 TEST(Uvs, ObjWithoutTextureCoordinatesHasNone) {
     TempFolder tmp;
     Diagnostics diag;
-    const TriangleMesh mesh = load_obj(tmp.write("tri.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0.5 0.5\nf 1 2 3\n"), diag).mesh;
+    const TriangleMesh mesh =
+        load_obj(tmp.write("tri.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0.5 0.5\nf 1 2 3\n"), diag).mesh;
     EXPECT_FALSE(mesh.has_uvs());
     EXPECT_TRUE(mesh.uvs.empty());
 }
@@ -62,8 +63,10 @@ TEST(Uvs, PlyVertexTextureCoordinatesUnderEachName) {
         SCOPED_TRACE(u);
         TempFolder tmp;
         Diagnostics diag;
-        const std::string ply = std::string("ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\n"
-                                            "property float z\nproperty float ") + u + "\nproperty float " + v +
+        const std::string ply = std::string(
+                                    "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\n"
+                                    "property float z\nproperty float ") +
+                                u + "\nproperty float " + v +
                                 "\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n"
                                 "0 0 0 0 0\n1 0 0 0.25 0\n1 1 0 0.25 0.75\n0 1 0 0 0.75\n4 0 1 2 3\n";
         const TriangleMesh mesh = load_ply(tmp.write("quad.ply", ply), diag).mesh;
@@ -78,8 +81,8 @@ TEST(Uvs, SceneAssemblyOffsetsUvIndicesAndMarksObjectsWithout) {
     TempFolder tmp;
     tmp.write("tri.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
     tmp.write("quad.obj", kQuadObj);
-    const auto scene_path = tmp.write(
-        "scene.json", R"({"camera": {"origin": [0, 0, 5], "look_at": [0, 0, 0]}, "objects": [
+    const auto scene_path =
+        tmp.write("scene.json", R"({"camera": {"origin": [0, 0, 5], "look_at": [0, 0, 0]}, "objects": [
             {"file": "tri.obj"},
             {"file": "quad.obj"},
             {"file": "quad.obj", "transform": [{"translate": [3, 0, 0]}]}]})");
@@ -87,7 +90,7 @@ TEST(Uvs, SceneAssemblyOffsetsUvIndicesAndMarksObjectsWithout) {
     const TriangleMesh world = load_scene_file(scene_path, diag).scene.geometry;
     ASSERT_EQ(world.triangle_count(), 1u + 4u + 4u);
     ASSERT_EQ(world.uv_indices.size(), world.triangles.size());
-    EXPECT_EQ(world.uvs.size(), 8u);  // each object's own copy
+    EXPECT_EQ(world.uvs.size(), 8u);         // each object's own copy
     EXPECT_EQ(world.uv_indices[0], kNoUvs);  // tri.obj has none
     EXPECT_EQ(world.uv_indices[1], (Index3{0, 1, 2}));
     EXPECT_EQ(world.uv_indices[5], (Index3{4, 5, 6}));  // the second quad: offset by the first's 4

@@ -24,7 +24,7 @@ TEST(Brdf, LambertIsKdOverPi) {
 
 TEST(Brdf, PhongPeaksInTheMirrorDirection) {
     const Vec3 n{0, 0, 1};
-    const Vec3 wi = direction(kPi / 6, 0);         // 30° from the normal
+    const Vec3 wi = direction(kPi / 6, 0);        // 30° from the normal
     const Vec3 mirror = direction(kPi / 6, kPi);  // r = 2(n·ωi)n − ωi
     const float shininess = 20;
     const Material m = phong({0.2f, 0.2f, 0.2f}, {0.5f, 0.5f, 0.5f}, shininess);

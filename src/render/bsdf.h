@@ -49,19 +49,20 @@ namespace sombra {
 
 // The surface as a BSDF sees it at a hit.
 struct BsdfPoint {
-    Vec3 n_g;      // unit geometric normal, on the side of wo (surfaces are two-sided)
-    Vec3 n_s;      // unit shading normal, in n_g's hemisphere
-    Frame frame;   // Frame::from_normal(n_s)
-    bool outside;  // wo is on the side of the triangle's winding normal n_w (a dielectric ray from outside enters the medium)
+    Vec3 n_g;     // unit geometric normal, on the side of wo (surfaces are two-sided)
+    Vec3 n_s;     // unit shading normal, in n_g's hemisphere
+    Frame frame;  // Frame::from_normal(n_s)
+    bool
+        outside;  // wo is on the side of the triangle's winding normal n_w (a dielectric ray from outside enters the medium)
 };
 
 // A BsdfPoint with its frame built around n_s. n_g, n_s unit, n_g·n_s ≥ 0.
 BsdfPoint make_bsdf_point(Vec3 n_g, Vec3 n_s, bool outside);
 
 struct BsdfSample {
-    Vec3 wi;             // sampled unit direction, world space, pointing away from the surface
-    Vec3 weight;         // f(wo, wi)·|n_s·wi| / pdf; for a delta lobe the lobe's factor / its selection probability
-    float pdf = 0;       // solid-angle density of wi (for MIS); for a delta lobe: the probability of having chosen that lobe
+    Vec3 wi;        // sampled unit direction, world space, pointing away from the surface
+    Vec3 weight;    // f(wo, wi)·|n_s·wi| / pdf; for a delta lobe the lobe's factor / its selection probability
+    float pdf = 0;  // solid-angle density of wi (for MIS); for a delta lobe: the probability of having chosen that lobe
     bool delta = false;  // wi came from a delta (specular) lobe: eval/pdf of it are 0, no MIS against lights
     bool transmission = false;
 };

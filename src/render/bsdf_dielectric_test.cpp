@@ -115,8 +115,10 @@ TEST(BsdfDielectric, IsDeltaAndNeverLeaksThroughTheGeometricNormal) {
         BsdfSample b;
         if (!sample_bsdf(m, p, wo, hash_to_unit(i, 6), 0, 0, b)) continue;
         ASSERT_TRUE(is_finite(b.weight));
-        if (b.transmission) EXPECT_LT(b.wi.z, 0.0f);
-        else EXPECT_GT(b.wi.z, 0.0f);
+        if (b.transmission)
+            EXPECT_LT(b.wi.z, 0.0f);
+        else
+            EXPECT_GT(b.wi.z, 0.0f);
     }
 }
 

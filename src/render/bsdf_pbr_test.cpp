@@ -39,9 +39,7 @@ Material pbr(Vec3 base_color, float metallic, float roughness, float ior = 1.5f)
     return m;
 }
 
-ref::Params params(const Material& m, int channel) {
-    return {m.base_color[channel], m.metallic, m.roughness, m.ior};
-}
+ref::Params params(const Material& m, int channel) { return {m.base_color[channel], m.metallic, m.roughness, m.ior}; }
 
 Vec3 polar(double theta_deg, double phi) {
     const double t = theta_deg * kPi / 180.0;
@@ -90,7 +88,8 @@ TEST(Pbr, EvalMatchesAppendixB) {
                 const double expected = m.roughness > 0 ? ref::brdf(p, to_dir(wo), to_dir(wi))
                                                         : ref::diffuse_part(p, to_dir(wo), to_dir(wi));
                 ASSERT_NEAR(f[c], expected, 1e-3 * expected + 1e-7)
-                    << "r " << m.roughness << " m " << m.metallic << " channel " << c << " wo.z " << wo.z << " wi.z " << wi.z;
+                    << "r " << m.roughness << " m " << m.metallic << " channel " << c << " wo.z " << wo.z << " wi.z "
+                    << wi.z;
             }
         }
     }
@@ -312,12 +311,16 @@ TEST(Pbr, RoughnessZeroIsADeltaMirrorOverTheDiffuseBase) {
 }
 
 TEST(Pbr, EdgeCasesAreFinite) {
-    const Material ms[] = {pbr(Vec3{0.5f}, 0, 0),   pbr(Vec3{0.5f}, 0.5f, std::sqrt(0.999e-3f)),
-                           pbr(Vec3{0.5f}, 1, std::sqrt(1.001e-3f)), pbr(Vec3{1.0f}, 0, 1),
-                           pbr(Vec3{0.0f}, 1, 0.5f), pbr(Vec3{0.0f}, 0, 0.5f, 1.0001f), pbr(Vec3{1.0f}, 0, 0.2f, 50.0f)};
+    const Material ms[] = {pbr(Vec3{0.5f}, 0, 0),
+                           pbr(Vec3{0.5f}, 0.5f, std::sqrt(0.999e-3f)),
+                           pbr(Vec3{0.5f}, 1, std::sqrt(1.001e-3f)),
+                           pbr(Vec3{1.0f}, 0, 1),
+                           pbr(Vec3{0.0f}, 1, 0.5f),
+                           pbr(Vec3{0.0f}, 0, 0.5f, 1.0001f),
+                           pbr(Vec3{1.0f}, 0, 0.2f, 50.0f)};
     // Grazing, exactly tangent, below a tilted n_s, normal.
-    const Vec3 wos[] = {polar(89.99, 0.1), Vec3{1, 0, 0}, normalize(Vec3{1, 0, 1e-7f}), polar(0, 0),
-                        polar(80, 1.0 + kPi), Vec3{0, 0, 1}};
+    const Vec3 wos[] = {polar(89.99, 0.1), Vec3{1, 0, 0},        normalize(Vec3{1, 0, 1e-7f}),
+                        polar(0, 0),       polar(80, 1.0 + kPi), Vec3{0, 0, 1}};
     const float us[] = {0.0f, 0.5f, 0x1.fffffep-1f};
     for (const Material& m : ms)
         for (const BsdfPoint& p : {kFlat, kTilted})

@@ -40,7 +40,8 @@ Vec3 polar(double theta_deg, double phi) {
 
 // A uniformly distributed unit direction from two numbers in [0, 1).
 Vec3 uniform_sphere(float u1, float u2) {
-    const float z = 1.0f - 2.0f * u1, r = std::sqrt(std::max(0.0f, 1.0f - z * z)), phi = 2.0f * static_cast<float>(kPi) * u2;
+    const float z = 1.0f - 2.0f * u1, r = std::sqrt(std::max(0.0f, 1.0f - z * z)),
+                phi = 2.0f * static_cast<float>(kPi) * u2;
     return {r * std::cos(phi), r * std::sin(phi), z};
 }
 
@@ -58,7 +59,8 @@ void expect_chi2(const Material& m, const BsdfPoint& p, Vec3 wo, std::uint64_t s
     const Vec3 mirror = normalize(2.0f * dot(wo, p.n_s) * p.n_s - wo);
     const auto sample = [&](std::uint32_t i) -> std::optional<Vec3> {
         BsdfSample s;
-        if (!sample_bsdf(m, p, wo, rnd(3 * i, seed), rnd(3 * i + 1, seed), rnd(3 * i + 2, seed), s)) return std::nullopt;
+        if (!sample_bsdf(m, p, wo, rnd(3 * i, seed), rnd(3 * i + 1, seed), rnd(3 * i + 2, seed), s))
+            return std::nullopt;
         return s.wi;
     };
     const auto pdf = [&](Vec3 wi) { return pdf_bsdf(m, p, wo, wi); };
@@ -83,7 +85,9 @@ TEST(Chi2Util, GammaQMatchesClosedForms) {
 
 TEST(Chi2Util, AcceptsAnExactSamplerAndRejectsAWrongOne) {
     const Frame frame = Frame::from_normal({0, 0, 1});
-    const auto uniform = [](std::uint32_t i) -> std::optional<Vec3> { return uniform_sphere(rnd(2 * i, 7), rnd(2 * i + 1, 7)); };
+    const auto uniform = [](std::uint32_t i) -> std::optional<Vec3> {
+        return uniform_sphere(rnd(2 * i, 7), rnd(2 * i + 1, 7));
+    };
     const auto uniform_pdf = [](Vec3) { return 1.0 / (4 * kPi); };
     const chi2::Result ok = chi2::run(frame, uniform, uniform_pdf, {});
     EXPECT_TRUE(ok.passed) << ok.message;
@@ -112,7 +116,8 @@ TEST(Chi2, Phong) {
     std::uint64_t seed = 100;
     for (const float n : {0.0f, 1.0f, 10.0f, 200.0f})
         for (int c = 0; c < 2; ++c)
-            for (const double theta : kIncidence) expect_chi2(phong(kds[c], kss[c], n), kFlat, polar(theta, 1.3), ++seed);
+            for (const double theta : kIncidence)
+                expect_chi2(phong(kds[c], kss[c], n), kFlat, polar(theta, 1.3), ++seed);
 }
 
 TEST(Chi2, Conductor) {
@@ -140,10 +145,14 @@ TEST(Chi2, TiltedShadingNormal) {
 
 // Materials for the property tests, all non-delta.
 std::vector<Material> non_delta_materials() {
-    return {diffuse({0.2f, 0.5f, 0.9f}),           phong({0.4f, 0.4f, 0.4f}, {0.5f, 0.5f, 0.5f}, 0),
-            phong({0.4f, 0.4f, 0.4f}, {0.5f, 0.5f, 0.5f}, 1), phong({0.1f, 0.2f, 0.1f}, {0.6f, 0.7f, 0.8f}, 30),
-            phong({0, 0, 0}, {1, 1, 1}, 500),       conductor({0.9f, 0.6f, 0.3f}, 0.04f),
-            conductor({1, 1, 1}, 0.2f),             conductor({0.5f, 0.5f, 0.5f}, 0.5f),
+    return {diffuse({0.2f, 0.5f, 0.9f}),
+            phong({0.4f, 0.4f, 0.4f}, {0.5f, 0.5f, 0.5f}, 0),
+            phong({0.4f, 0.4f, 0.4f}, {0.5f, 0.5f, 0.5f}, 1),
+            phong({0.1f, 0.2f, 0.1f}, {0.6f, 0.7f, 0.8f}, 30),
+            phong({0, 0, 0}, {1, 1, 1}, 500),
+            conductor({0.9f, 0.6f, 0.3f}, 0.04f),
+            conductor({1, 1, 1}, 0.2f),
+            conductor({0.5f, 0.5f, 0.5f}, 0.5f),
             conductor({1, 1, 1}, 1.0f)};
 }
 
@@ -236,9 +245,13 @@ double ggx_white_furnace(double alpha, double theta_deg) {
 }
 
 TEST(Bsdf, AlbedoIsAtMostOne) {
-    const Material materials[] = {diffuse(Vec3{1.0f}), phong({0.5f, 0.5f, 0.5f}, {0.5f, 0.5f, 0.5f}, 1),
-                                  phong({0.2f, 0.2f, 0.2f}, {0.8f, 0.8f, 0.8f}, 0), phong({0, 0, 0}, {1, 1, 1}, 50),
-                                  conductor({1, 1, 1}, 0.1f), conductor({1, 1, 1}, 0.5f), conductor({1, 1, 1}, 1.0f)};
+    const Material materials[] = {diffuse(Vec3{1.0f}),
+                                  phong({0.5f, 0.5f, 0.5f}, {0.5f, 0.5f, 0.5f}, 1),
+                                  phong({0.2f, 0.2f, 0.2f}, {0.8f, 0.8f, 0.8f}, 0),
+                                  phong({0, 0, 0}, {1, 1, 1}, 50),
+                                  conductor({1, 1, 1}, 0.1f),
+                                  conductor({1, 1, 1}, 0.5f),
+                                  conductor({1, 1, 1}, 1.0f)};
     std::uint64_t key = 50;
     for (const Material& m : materials) {
         for (const double theta : kIncidence) {
@@ -318,14 +331,18 @@ TEST(Bsdf, DeltaMaterials) {
 }
 
 TEST(Bsdf, EdgeCasesAreFinite) {
-    const Material materials[] = {diffuse(Vec3{0.5f}), phong(Vec3{0.3f}, Vec3{0.6f}, 0), phong(Vec3{0.3f}, Vec3{0.6f}, 1e4f),
-                                  conductor(Vec3{0.5f}, 0), conductor(Vec3{0.5f}, std::sqrt(0.999e-3f)),
-                                  conductor(Vec3{0.5f}, std::sqrt(1.001e-3f)), conductor(Vec3{0.5f}, 1),
+    const Material materials[] = {diffuse(Vec3{0.5f}),
+                                  phong(Vec3{0.3f}, Vec3{0.6f}, 0),
+                                  phong(Vec3{0.3f}, Vec3{0.6f}, 1e4f),
+                                  conductor(Vec3{0.5f}, 0),
+                                  conductor(Vec3{0.5f}, std::sqrt(0.999e-3f)),
+                                  conductor(Vec3{0.5f}, std::sqrt(1.001e-3f)),
+                                  conductor(Vec3{0.5f}, 1),
                                   Material{"m", MaterialType::Mirror, {}, {}, 1, {}},
                                   Material{"g", MaterialType::Dielectric, {}, {}, 1, {}}};
     // Grazing, exactly tangent, below a tilted n_s, normal.
-    const Vec3 wos[] = {polar(89.99, 0.1), Vec3{1, 0, 0}, normalize(Vec3{1, 0, 1e-7f}), polar(0, 0),
-                        polar(80, 1.0 + kPi), Vec3{0, 0, 1}};
+    const Vec3 wos[] = {polar(89.99, 0.1), Vec3{1, 0, 0},        normalize(Vec3{1, 0, 1e-7f}),
+                        polar(0, 0),       polar(80, 1.0 + kPi), Vec3{0, 0, 1}};
     const float us[] = {0.0f, 0.5f, 0x1.fffffep-1f};
     for (const Material& m : materials) {
         for (const BsdfPoint& p : {kFlat, kTilted}) {

@@ -51,7 +51,8 @@ Camera make_camera(const CameraSpec& spec, int width, int height) {
     if (spec.focus_distance)
         camera.focus_distance = *spec.focus_distance;
     else if (spec.look_at)
-        camera.focus_distance = static_cast<float>(length(to_double(spec.look_at->look_at) - to_double(spec.look_at->origin)));
+        camera.focus_distance =
+            static_cast<float>(length(to_double(spec.look_at->look_at) - to_double(spec.look_at->origin)));
     else
         camera.focus_distance = static_cast<float>(length(to_double(camera.forward)));
     return camera;

@@ -86,9 +86,9 @@ double adaptive_simpson(const F& f, double a, double b, double eps, int min_dept
 // Pearson's χ² of observed counts against expected ones, for any binning.
 struct Pearson {
     double chi2 = 0;
-    int dof = 0;          // bins used (after pooling) − 1
-    double p_value = 1;   // Q(dof/2, χ²/2); 1 when fewer than 2 bins remain; 0 for a bad bin
-    long bad_bin = -1;    // a bin that expects nothing yet holds more than `slack` samples, or −1
+    int dof = 0;         // bins used (after pooling) − 1
+    double p_value = 1;  // Q(dof/2, χ²/2); 1 when fewer than 2 bins remain; 0 for a bad bin
+    long bad_bin = -1;   // a bin that expects nothing yet holds more than `slack` samples, or −1
 };
 
 // Bins expecting fewer than `min_expected` are pooled, smallest expectation
@@ -129,15 +129,15 @@ inline Pearson pearson(const std::vector<double>& observed, const std::vector<do
 }
 
 struct Options {
-    int cos_bins = 10;          // bins in cos θ of the frame: over [−1, 1], or [0, 1] when hemisphere
-    int phi_bins = 20;          // bins in φ over [0, 2π)
-    bool hemisphere = false;    // bin only the frame's upper hemisphere (a sample below it fails the test)
+    int cos_bins = 10;        // bins in cos θ of the frame: over [−1, 1], or [0, 1] when hemisphere
+    int phi_bins = 20;        // bins in φ over [0, 2π)
+    bool hemisphere = false;  // bin only the frame's upper hemisphere (a sample below it fails the test)
     std::uint32_t samples = 200000;
-    double min_expected = 5;    // bins expected to hold fewer samples are pooled
-    double alpha = 0.01;        // significance level of the whole suite…
-    int test_count = 1;         // …split over this many χ² tests (Šidák): each uses 1 − (1 − α)^(1/test_count)
-    double integration_eps = 1e-7;  // absolute tolerance of each bin's integral of the pdf (probability)…
-    double integration_rel = 1e-4;  // …or this fraction of the bin's probability (first estimate), if larger
+    double min_expected = 5;  // bins expected to hold fewer samples are pooled
+    double alpha = 0.01;      // significance level of the whole suite…
+    int test_count = 1;       // …split over this many χ² tests (Šidák): each uses 1 − (1 − α)^(1/test_count)
+    double integration_eps = 1e-7;      // absolute tolerance of each bin's integral of the pdf (probability)…
+    double integration_rel = 1e-4;      // …or this fraction of the bin's probability (first estimate), if larger
     int min_depth = 3, max_depth = 18;  // adaptive Simpson subdivisions per dimension
 };
 
@@ -156,7 +156,8 @@ struct Result {
 // The unit direction at (cos θ = z, φ) of frame.
 inline Vec3 direction_at(const Frame& frame, double z, double phi) {
     const double r = std::sqrt(std::max(0.0, 1.0 - z * z));
-    return frame.to_world(Vec3{static_cast<float>(r * std::cos(phi)), static_cast<float>(r * std::sin(phi)), static_cast<float>(z)});
+    return frame.to_world(
+        Vec3{static_cast<float>(r * std::cos(phi)), static_cast<float>(r * std::sin(phi)), static_cast<float>(z)});
 }
 
 // sample(i) → std::optional<Vec3>: the i-th sampled unit direction (world
@@ -183,7 +184,10 @@ Result run(const Frame& frame, const SampleFn& sample, const PdfFn& pdf, const O
         ++successes;
         const Vec3 l = frame.to_local(*d);
         const double z = std::clamp(static_cast<double>(l.z), -1.0, 1.0);
-        if (z < z0) { ++outside; continue; }
+        if (z < z0) {
+            ++outside;
+            continue;
+        }
         double phi = std::atan2(static_cast<double>(l.y), static_cast<double>(l.x));
         if (phi < 0) phi += two_pi;
         const int iz = std::clamp(static_cast<int>((z - z0) / dz), 0, o.cos_bins - 1);
@@ -209,8 +213,8 @@ Result run(const Frame& frame, const SampleFn& sample, const PdfFn& pdf, const O
             guess *= (zb - za) * (pb - pa) / 81;
             const double eps = std::max(o.integration_eps, o.integration_rel * guess);
             const auto ring = [&](double z) {
-                return adaptive_simpson([&](double phi) { return f(z, phi); }, pa, pb, eps / dz, o.min_depth, o.max_depth,
-                                       0.25 * o.integration_rel);
+                return adaptive_simpson([&](double phi) { return f(z, phi); }, pa, pb, eps / dz, o.min_depth,
+                                        o.max_depth, 0.25 * o.integration_rel);
             };
             const double mass = adaptive_simpson(ring, za, zb, eps, o.min_depth, o.max_depth, o.integration_rel);
             expected[cell(iz, ip)] = mass * n;
@@ -248,9 +252,10 @@ Result run(const Frame& frame, const SampleFn& sample, const PdfFn& pdf, const O
     }
     res.p_value = pearson_result.p_value;
     res.passed = res.p_value > res.significance;
-    res.message = "chi2 = " + std::to_string(res.chi2) + ", dof = " + std::to_string(res.dof) + ", p = " +
-                  std::to_string(res.p_value) + " (level " + std::to_string(res.significance) +
-                  "), integral = " + std::to_string(res.pdf_integral) + ", successes = " + std::to_string(res.success_fraction) +
+    res.message = "chi2 = " + std::to_string(res.chi2) + ", dof = " + std::to_string(res.dof) +
+                  ", p = " + std::to_string(res.p_value) + " (level " + std::to_string(res.significance) +
+                  "), integral = " + std::to_string(res.pdf_integral) +
+                  ", successes = " + std::to_string(res.success_fraction) +
                   ", pdf calls = " + std::to_string(res.pdf_evaluations);
     return res;
 }

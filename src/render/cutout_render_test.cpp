@@ -8,10 +8,10 @@
 #include <cmath>
 #include <string>
 
-#include "render/render.h"
 #include "io/images/image_test_files.h"
 #include "io/polygon_test_files.h"
 #include "io/scene_json/scene_file.h"
+#include "render/render.h"
 
 namespace sombra {
 namespace {
@@ -47,8 +47,9 @@ TEST(CutoutRender, CameraRaysSeeThroughTheStripAndTheShadowHasItsOutline) {
     TempFolder tmp;
     testing::write_png_file(tmp.path / "strip.png", 8, 1, 1, 8, {255, 255, 0, 0, 0, 0, 255, 255});
     tmp.write("floor.obj", "v -1 -1 0\nv 1 -1 0\nv 1 1 0\nv -1 1 0\nf 1 2 3 4\n");
-    tmp.write("leaf.obj", "v -0.6 -0.6 1\nv 0.6 -0.6 1\nv 0.6 0.6 1\nv -0.6 0.6 1\n"
-                          "vt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\nf 1/1 2/2 3/3 4/4\n");
+    tmp.write("leaf.obj",
+              "v -0.6 -0.6 1\nv 0.6 -0.6 1\nv 0.6 0.6 1\nv -0.6 0.6 1\n"
+              "vt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\nf 1/1 2/2 3/3 4/4\n");
     tmp.write("s.json", kScene);
     Diagnostics diag;
     const LoadedScene loaded = load_scene_file(tmp.path / "s.json", diag);

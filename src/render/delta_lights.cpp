@@ -9,9 +9,9 @@
 namespace sombra {
 
 template <class Recorder>
-void add_delta_lights(const LightSet& lights, const Accel& accel, const SurfaceInteraction& si, const Material& material,
-                      const BsdfPoint& bsdf_point, Vec3 wo, Vec3 beta, Vec3& radiance, RayCounters& counters,
-                      Recorder& recorder) {
+void add_delta_lights(const LightSet& lights, const Accel& accel, const SurfaceInteraction& si,
+                      const Material& material, const BsdfPoint& bsdf_point, Vec3 wo, Vec3 beta, Vec3& radiance,
+                      RayCounters& counters, Recorder& recorder) {
     const ShadingView view{si, material, bsdf_point, wo};
     const Vec3 shadow_origin = offset_ray_origin(si.position, si.position_error, si.n_g);
     for (std::uint32_t index = 0; index < lights.delta.size(); ++index) {
@@ -81,7 +81,8 @@ void add_delta_lights(const LightSet& lights, const Accel& accel, const SurfaceI
 
 template void add_delta_lights<NoRecorder>(const LightSet&, const Accel&, const SurfaceInteraction&, const Material&,
                                            const BsdfPoint&, Vec3, Vec3, Vec3&, RayCounters&, NoRecorder&);
-template void add_delta_lights<SampleRecorder>(const LightSet&, const Accel&, const SurfaceInteraction&, const Material&,
-                                               const BsdfPoint&, Vec3, Vec3, Vec3&, RayCounters&, SampleRecorder&);
+template void add_delta_lights<SampleRecorder>(const LightSet&, const Accel&, const SurfaceInteraction&,
+                                               const Material&, const BsdfPoint&, Vec3, Vec3, Vec3&, RayCounters&,
+                                               SampleRecorder&);
 
 }  // namespace sombra

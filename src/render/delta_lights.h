@@ -22,8 +22,8 @@ namespace sombra {
 // (render/sample_recorder.h) hears every light's outcome; instantiated for
 // NoRecorder and SampleRecorder.
 template <class Recorder>
-void add_delta_lights(const LightSet& lights, const Accel& accel, const SurfaceInteraction& si, const Material& material,
-                      const BsdfPoint& bsdf_point, Vec3 wo, Vec3 beta, Vec3& radiance, RayCounters& counters,
-                      Recorder& recorder);
+void add_delta_lights(const LightSet& lights, const Accel& accel, const SurfaceInteraction& si,
+                      const Material& material, const BsdfPoint& bsdf_point, Vec3 wo, Vec3 beta, Vec3& radiance,
+                      RayCounters& counters, Recorder& recorder);
 
 }  // namespace sombra

@@ -11,10 +11,10 @@
 #include <filesystem>
 #include <fstream>
 
-#include "render/render.h"
-#include "render/plane_view_test_util.h"
-#include "render/test_meshes.h"
 #include "io/scene_json/scene_file.h"
+#include "render/plane_view_test_util.h"
+#include "render/render.h"
+#include "render/test_meshes.h"
 
 namespace sombra {
 namespace {
@@ -25,7 +25,6 @@ using testing::plane_hit;
 
 constexpr double kPi = 3.14159265358979323846;
 
-
 RenderOutput render(const Scene& scene, const Camera& camera, RenderSettings settings) {
     const Accel accel = make_accel(scene, AccelKind::Bvh);
     RenderJob job = make_render_job(scene, accel, settings, 0);
@@ -33,7 +32,6 @@ RenderOutput render(const Scene& scene, const Camera& camera, RenderSettings set
     RenderProgress progress;
     return render_image(job, progress);
 }
-
 
 Scene diffuse_plane(Vec3 kd) {
     Scene scene;
@@ -62,7 +60,8 @@ TEST(DeltaLights, PlaneUnderASpotLightMatchesTheClosedFormInsideOnAndOutsideTheC
             const double dx = position.x - x, dy = position.y, dz = position.z - z;
             const double r = std::sqrt(dx * dx + dy * dy + dz * dz);
             const double cos_axis = -(spot.direction.x * dx + spot.direction.y * dy + spot.direction.z * dz) / r;
-            const double s = std::clamp((cos_axis - spot.cos_outer) / std::max(1e-3, double(spot.cos_inner) - spot.cos_outer), 0.0, 1.0);
+            const double s = std::clamp(
+                (cos_axis - spot.cos_outer) / std::max(1e-3, double(spot.cos_inner) - spot.cos_outer), 0.0, 1.0);
             const double geometric = dy / (r * r * r) / kPi;
             const Vec3 got = film.at(i, j);
             (s == 1 ? inside : s == 0 ? outside : falloff)++;
@@ -94,7 +93,7 @@ TEST(DeltaLights, PlaneUnderADirectionalLightIsUniformExceptInTheOccludersShadow
     const double len = std::sqrt(double(d.x) * d.x + double(d.y) * d.y + double(d.z) * d.z);
     const double cos_theta = -d.y / len;
     const double shift_x = d.x / -d.y, shift_z = d.z / -d.y;  // from y = 1 to y = 0
-    const double margin = 0.03;  // a pixel's footprint is 0.0225
+    const double margin = 0.03;                               // a pixel's footprint is 0.0225
     int shadowed = 0, lit = 0;
     for (int j = 0; j < h; ++j)
         for (int i = 0; i < w; ++i) {
@@ -118,8 +117,8 @@ TEST(DeltaLights, PlaneUnderADirectionalLightIsUniformExceptInTheOccludersShadow
 
 TEST(DeltaLights, LightsBehindTheSurfaceOrFacingAwayGiveNothingWithoutAShadowRay) {
     Scene scene = diffuse_plane(Vec3{0.5f});
-    scene.lights.push_back(make_directional_light({0, 1, 0}, Vec3{3}));               // shines upward: from below
-    scene.lights.push_back(make_spot_light({0, 1, 0}, {0, 1, 0}, Vec3{3}, 80, 10));   // points away from the plane
+    scene.lights.push_back(make_directional_light({0, 1, 0}, Vec3{3}));              // shines upward: from below
+    scene.lights.push_back(make_spot_light({0, 1, 0}, {0, 1, 0}, Vec3{3}, 80, 10));  // points away from the plane
     const Accel accel = make_accel(scene, AccelKind::Bvh);
     RenderSettings settings{4, 4, 1, 0};
     const RenderJob job = make_render_job(scene, accel, settings, 1);
@@ -162,8 +161,9 @@ TEST(DeltaLights, GltfSpotAndSunRenderLikeTheEquivalentSceneFile) {
     // A 4 × 4 quad at y = 0 (two triangles, float positions, uint16 indices),
     // a spot 3 above it looking down (rotated −90° about x: −z → −y), and a
     // sun whose node turns −z by 90° toward (0.6, −0.8, 0).
-    const std::string positions = "AAAAwAAAAAAAAADAAAAAQAAAAAAAAADAAAAAQAAAAAAAAABAAAAAwAAAAAAAAABA";  // (-2,0,-2) (2,0,-2) (2,0,2) (-2,0,2)
-    const std::string indices = "AAACAAEAAAADAAIA";  // 0 2 1, 0 3 2
+    const std::string positions =
+        "AAAAwAAAAAAAAADAAAAAQAAAAAAAAADAAAAAQAAAAAAAAABAAAAAwAAAAAAAAABA";  // (-2,0,-2) (2,0,-2) (2,0,2) (-2,0,2)
+    const std::string indices = "AAACAAEAAAADAAIA";                          // 0 2 1, 0 3 2
     // The rotation taking −z to (0.6, −0.8, 0), perpendicular to it: 90°
     // about the axis (−z) × target.
     const double angle = kPi / 2;
@@ -177,16 +177,18 @@ TEST(DeltaLights, GltfSpotAndSunRenderLikeTheEquivalentSceneFile) {
       "nodes": [{"mesh": 0},
                 {"translation": [0.2, 3, 0.1], "rotation": [-0.7071067811865476, 0, 0, 0.7071067811865476],
                  "extensions": {"KHR_lights_punctual": {"light": 0}}},
-                {"rotation": [)" << axis.x * sh << ", " << axis.y * sh << ", " << axis.z * sh << ", " << ch
-                                  << R"(], "extensions": {"KHR_lights_punctual": {"light": 1}}}],
+                {"rotation": [)" << axis.x * sh
+                                    << ", " << axis.y * sh << ", " << axis.z * sh << ", " << ch
+                                    << R"(], "extensions": {"KHR_lights_punctual": {"light": 1}}}],
       "meshes": [{"primitives": [{"attributes": {"POSITION": 0}, "indices": 1}]}],
       "accessors": [{"bufferView": 0, "componentType": 5126, "count": 4, "type": "VEC3", "min": [-2, 0, -2], "max": [2, 0, 2]},
                     {"bufferView": 1, "componentType": 5123, "count": 6, "type": "SCALAR"}],
       "bufferViews": [{"buffer": 0, "byteOffset": 0, "byteLength": 48}, {"buffer": 0, "byteOffset": 48, "byteLength": 12}],
       "buffers": [{"byteLength": 60, "uri": "data:application/octet-stream;base64,)"
-                              << positions << indices << R"("}]})";
+                                    << positions << indices << R"("}]})";
     std::ofstream(dir / "quad.obj") << "v -2 0 -2\nv 2 0 -2\nv 2 0 2\nv -2 0 2\nf 1 3 2\nf 1 4 3\n";
-    const std::string camera = R"("camera": {"origin": [0, 4, 3], "look_at": [0, 0, 0]}, "render": {"width": 48, "height": 36})";
+    const std::string camera =
+        R"("camera": {"origin": [0, 4, 3], "look_at": [0, 0, 0]}, "render": {"width": 48, "height": 36})";
     std::ofstream(dir / "gltf.json") << "{" << camera << R"(, "objects": [{"file": "lit.gltf"}]})";
     std::ofstream(dir / "json.json") << "{" << camera << R"(, "objects": [{"file": "quad.obj"}], "lights": [
         {"type": "spot", "position": [0.2, 3, 0.1], "direction": [0, -1, 0], "intensity": [6, 3, 1.5],

@@ -30,7 +30,8 @@ Vec3 trace_direct_recorded(const IntegratorContext& ctx, const Ray& ray, RayCoun
         SurfaceInteraction si = make_surface_interaction(scene.geometry, ray, hit);
         Material textured;
         const RayCone cone = ctx.ray_cones ? camera_ray_cone(ctx.camera_pixel_area, ray.dir) : RayCone{};
-        const float footprint = cone.active() ? surface_footprint(cone, hit.t * length(ray.dir), ray.dir, si.n_g) : 0.0f;
+        const float footprint =
+            cone.active() ? surface_footprint(cone, hit.t * length(ray.dir), ray.dir, si.n_g) : 0.0f;
         const Material& material = resolve_material(scene, si, textured, footprint);
         const Vec3 wo = -normalize(ray.dir);
         recorder.surface(ray, hit, si, material, Vec3{1.0f});

@@ -49,7 +49,8 @@ Distribution1D make_distribution_1d(std::span<const float> weights) {
         d.total = static_cast<float>(sum);
         d.integral = static_cast<float>(sum / static_cast<double>(n));
     } else {  // the uniform fallback
-        for (std::size_t i = 0; i < n; ++i) d.cdf[i + 1] = static_cast<float>(static_cast<double>(i + 1) / static_cast<double>(n));
+        for (std::size_t i = 0; i < n; ++i)
+            d.cdf[i + 1] = static_cast<float>(static_cast<double>(i + 1) / static_cast<double>(n));
     }
     d.cdf[n] = 1.0f;
     return d;
@@ -95,8 +96,8 @@ Distribution2D make_distribution_2d(std::span<const float> weights, int width, i
     d.conditional.reserve(static_cast<std::size_t>(height));
     std::vector<float> row_integrals(static_cast<std::size_t>(height));
     for (int j = 0; j < height; ++j) {
-        d.conditional.push_back(
-            make_distribution_1d(weights.subspan(static_cast<std::size_t>(j) * width, static_cast<std::size_t>(width))));
+        d.conditional.push_back(make_distribution_1d(
+            weights.subspan(static_cast<std::size_t>(j) * width, static_cast<std::size_t>(width))));
         row_integrals[j] = d.conditional.back().integral;
     }
     d.marginal = make_distribution_1d(row_integrals);

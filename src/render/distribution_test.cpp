@@ -20,9 +20,9 @@ const double kAlpha = 1 - std::pow(1 - 0.01, 1.0 / kChi2Tests);
 const std::vector<float> kWeights = {0.0f, 3.0f, 1.0f, 0.0f, 0.0f, 0.25f, 7.5f, 2.0f, 0.0f, 0.5f, 0.0f};
 
 TEST(Chi2, IncompleteGammaKnownValues) {
-    EXPECT_NEAR(chi2::gamma_q(1, 2), std::exp(-2.0), 1e-12);  // Q(1, x) = e^-x
+    EXPECT_NEAR(chi2::gamma_q(1, 2), std::exp(-2.0), 1e-12);               // Q(1, x) = e^-x
     EXPECT_NEAR(chi2::gamma_q(0.5, 0.5 * 3.841458820694124), 0.05, 1e-9);  // χ²(1) at 95%
-    EXPECT_NEAR(chi2::gamma_q(5, 0.5 * 23.209251158954356), 0.01, 1e-9);  // χ²(10) at 99%
+    EXPECT_NEAR(chi2::gamma_q(5, 0.5 * 23.209251158954356), 0.01, 1e-9);   // χ²(10) at 99%
 }
 
 TEST(Distribution1D, ProbabilitiesFollowTheWeights) {
@@ -115,10 +115,10 @@ TEST(Distribution1D, AllZeroIsUniformAndEmptySamplesNothing) {
 
 // A 5 × 4 grid with empty cells and an empty row.
 const int kW = 5, kH = 4;
-const std::vector<float> kGrid = {1, 0, 2, 0, 4,  //
-                                  0, 0, 0, 0, 0,  //
+const std::vector<float> kGrid = {1, 0, 2, 0,    4,  //
+                                  0, 0, 0, 0,    0,  //
                                   9, 3, 0, 0.5f, 1,  //
-                                  0, 0, 6, 0, 0};
+                                  0, 0, 6, 0,    0};
 
 TEST(Distribution2D, PdfIntegratesToOneAndFollowsTheWeights) {
     const Distribution2D d = make_distribution_2d(kGrid, kW, kH);
@@ -153,8 +153,10 @@ TEST(Distribution2D, SamplesFollowThePdfChi2AndSkipEmptyCells) {
     }
     for (int j = 0; j < ch; ++j)
         for (int i = 0; i < cw; ++i)
-            expected[j * cw + i] = n * pdf(d, (static_cast<float>(i) + 0.5f) / static_cast<float>(cw),
-                                                 (static_cast<float>(j) + 0.5f) / static_cast<float>(ch)) / (cw * ch);
+            expected[j * cw + i] = n *
+                                   pdf(d, (static_cast<float>(i) + 0.5f) / static_cast<float>(cw),
+                                       (static_cast<float>(j) + 0.5f) / static_cast<float>(ch)) /
+                                   (cw * ch);
     EXPECT_GT(chi2::pearson(observed, expected).p_value, kAlpha);
 }
 

@@ -115,7 +115,8 @@ Environment make_map_environment(HdrImage image, float scale, float rotate_y_deg
     const double radians = static_cast<double>(rotate_y_degrees) * kPiD / 180.0;
     env.cos_rotate = static_cast<float>(std::cos(radians));
     env.sin_rotate = static_cast<float>(std::sin(radians));
-    if (has_map(env)) env.distribution = make_distribution_2d(sampling_weights(env.image), env.image.width, env.image.height);
+    if (has_map(env))
+        env.distribution = make_distribution_2d(sampling_weights(env.image), env.image.width, env.image.height);
     return env;
 }
 

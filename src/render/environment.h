@@ -18,9 +18,9 @@
 namespace sombra {
 
 struct Environment {
-    Vec3 constant{0.0f};   // the radiance from every direction when there is no map
-    HdrImage image;        // the map; empty (width 0) for a constant environment
-    float scale = 1;       // radiance = scale × texel
+    Vec3 constant{0.0f};  // the radiance from every direction when there is no map
+    HdrImage image;       // the map; empty (width 0) for a constant environment
+    float scale = 1;      // radiance = scale × texel
     float rotate_y_degrees = 0;
     float cos_rotate = 1, sin_rotate = 0;  // of rotate_y_degrees
     // Over the map's texels, row 0 at v = 0: proportional to the maximum

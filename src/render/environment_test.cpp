@@ -30,7 +30,8 @@ const double kAlpha = 1 - std::pow(1 - 0.01, 1.0 / kChi2Tests);
 // Unit direction for z = cos θ ∈ [−1, 1] (about +y) and φ ∈ [0, 2π).
 Vec3 sphere_direction(double cos_theta, double phi) {
     const double r = std::sqrt(std::max(0.0, 1 - cos_theta * cos_theta));
-    return {static_cast<float>(r * std::cos(phi)), static_cast<float>(cos_theta), static_cast<float>(r * std::sin(phi))};
+    return {static_cast<float>(r * std::cos(phi)), static_cast<float>(cos_theta),
+            static_cast<float>(r * std::sin(phi))};
 }
 
 // Draws n samples and compares their histogram over (cos θ, φ) bins, φ =
@@ -79,7 +80,8 @@ double sphere_chi2(const Environment& env, int n, std::uint32_t seed) {
                     const double dz = (zs[a + 1] - zs[a]) / sub, dphi = (phis[b + 1] - phis[b]) / sub;
                     for (int x = 0; x < sub; ++x)
                         for (int y = 0; y < sub; ++y)
-                            sum += pdf_environment(env, sphere_direction(zs[a] + (x + 0.5) * dz, phis[b] + (y + 0.5) * dphi)) *
+                            sum += pdf_environment(env, sphere_direction(zs[a] + (x + 0.5) * dz,
+                                                                         phis[b] + (y + 0.5) * dphi)) *
                                    dz * dphi;
                 }
             expected[c * np + p] = sum * n;
@@ -93,7 +95,8 @@ double quadrature(const Environment& env) {
     double sum = 0;
     for (int c = 0; c < nc; ++c)
         for (int p = 0; p < np; ++p)
-            sum += luminance(eval_environment(env, sphere_direction(-1 + (c + 0.5) * 2.0 / nc, (p + 0.5) * 2 * kPi / np)));
+            sum +=
+                luminance(eval_environment(env, sphere_direction(-1 + (c + 0.5) * 2.0 / nc, (p + 0.5) * 2 * kPi / np)));
     return sum * (2.0 / nc) * (2 * kPi / np);
 }
 
@@ -238,7 +241,8 @@ HdrImage shared_sunset(bool& found) {
     Imf::FrameBuffer frame;
     const char* names[3] = {"R", "G", "B"};
     for (std::size_t c = 0; c < 3; ++c)
-        frame.insert(names[c], Imf::Slice::Make(Imf::FLOAT, rgb.data() + c, window, 12, 12 * static_cast<std::size_t>(w)));
+        frame.insert(names[c],
+                     Imf::Slice::Make(Imf::FLOAT, rgb.data() + c, window, 12, 12 * static_cast<std::size_t>(w)));
     in.setFrameBuffer(frame);
     in.readPixels(window.min.y, window.max.y);
     return make_image(w / 2, h / 2, [&](int i, int j) {
@@ -296,9 +300,9 @@ TEST(Environment, ConstantAndBlack) {
     EXPECT_FLOAT_EQ(environment_power_proxy(sky), float(4 * kPi) * luminance({0.5f, 1.0f, 2.0f}));
 
     EnvironmentSample s;
-    for (const Environment& black :
-         {make_constant_environment(Vec3(0.0f)), make_map_environment(make_image(4, 2, [](int, int) { return Vec3(0.0f); }), 1, 0),
-          make_map_environment(spot_map(), 0.0f, 0.0f)}) {
+    for (const Environment& black : {make_constant_environment(Vec3(0.0f)),
+                                     make_map_environment(make_image(4, 2, [](int, int) { return Vec3(0.0f); }), 1, 0),
+                                     make_map_environment(spot_map(), 0.0f, 0.0f)}) {
         EXPECT_TRUE(is_black(black));
         EXPECT_FALSE(sample_environment(black, 0.3f, 0.6f, s));
         EXPECT_EQ(pdf_environment(black, {0, 0, -1}), 0.0f);

@@ -10,12 +10,12 @@
 #include <string>
 #include <utility>
 
-#include "render/interaction.h"
-#include "render/shading.h"
 #include "io/gltf/gltf_test_files.h"
 #include "io/images/image_test_files.h"
 #include "io/polygon_test_files.h"
 #include "io/scene_json/scene_file.h"
+#include "render/interaction.h"
+#include "render/shading.h"
 
 namespace sombra {
 namespace {
@@ -31,7 +31,8 @@ const std::vector<Vec3> kCorners{{-1, -1, 0}, {1, -1, 0}, {1, 1, 0}, {-1, 1, 0}}
 // The quad with `material` (images 0 base.png, 1 n.png as textures 0 and 1),
 // the attributes `add` writes (names → accessors), placed by node `node`.
 template <class AddAttributes>
-GltfFile shading_quad(const nlohmann::json& material, AddAttributes add, nlohmann::json node = nlohmann::json::object()) {
+GltfFile shading_quad(const nlohmann::json& material, AddAttributes add,
+                      nlohmann::json node = nlohmann::json::object()) {
     GltfFile f;
     nlohmann::json attributes = add(f);
     attributes["POSITION"] = f.add_positions(kCorners);
@@ -69,7 +70,8 @@ protected:
         file.save(dir.path / "q.gltf");
         dir.write("s.json", R"({"camera": {"origin": [0, 0, 5], "look_at": [0, 0, 0]},
             "materials": {"grey": {"type": "diffuse", "kd": [0.5, 0.5, 0.5]}},
-            "objects": [{"file": "q.gltf")" + object_extra + "}]}");
+            "objects": [{"file": "q.gltf")" +
+                                object_extra + "}]}");
         Diagnostics diag;
         return load_scene_file(dir.path / "s.json", diag).scene;
     }
@@ -95,7 +97,8 @@ const Vec2 kPoints[] = {{-0.6f, -0.7f}, {0.5f, -0.2f}, {0.3f, 0.8f}, {-0.75f, 0.
 // Colours affine in (x, y) at the corners: linear interpolation over either
 // triangle reproduces the affine function anywhere, R = (100 + 50x)/255,
 // G = (120 + 40y)/255, B = 200/255, as unsigned bytes (A 255).
-const std::vector<std::uint8_t> kCornerBytes{50, 80, 200, 255, 150, 80, 200, 255, 150, 160, 200, 255, 50, 160, 200, 255};
+const std::vector<std::uint8_t> kCornerBytes{50,  80,  200, 255, 150, 80,  200, 255,
+                                             150, 160, 200, 255, 50,  160, 200, 255};
 Vec3 affine_colour(Vec2 p) { return Vec3{100 + 50 * p.x, 120 + 40 * p.y, 200} / 255.0f; }
 
 TEST_F(GltfShading, VertexColoursMultiplyBaseColourFactorAndTexture) {
@@ -160,7 +163,8 @@ GltfFile tangent_quad(float handedness, nlohmann::json node = nlohmann::json::ob
     return shading_quad(
         kNormalMapped,
         [=](GltfFile& f) {
-            const std::vector<float> t{0, 1, 0, handedness, 0, 1, 0, handedness, 0, 1, 0, handedness, 0, 1, 0, handedness};
+            const std::vector<float> t{0, 1, 0, handedness, 0, 1, 0, handedness,
+                                       0, 1, 0, handedness, 0, 1, 0, handedness};
             return nlohmann::json{{"TANGENT", f.add_array(t, gltf_test::kFloat, 4, "VEC4")}};
         },
         std::move(node));
@@ -177,7 +181,8 @@ Vec3 shading_normal_at(const Scene& scene, Vec2 p) {
 TEST_F(GltfShading, FileTangentsGiveTheNormalMapItsFrame) {
     const Vec3 m = normalize(decoded_texel());
     // Without tangents, the uv frame (+x, +y): the texel as it is.
-    expect_near(shading_normal_at(load(shading_quad(kNormalMapped, no_attributes)), {0.3f, -0.4f}), m, 1e-6f, "uv frame");
+    expect_near(shading_normal_at(load(shading_quad(kNormalMapped, no_attributes)), {0.3f, -0.4f}), m, 1e-6f,
+                "uv frame");
     // t = +y, n × t = −x: w = +1 gives (−m.y, m.x, m.z) = (0.48, 0.36, 0.8), w = −1 (m.y, m.x, m.z).
     for (const float w : {1.0f, -1.0f}) {
         const Vec3 want{-w * m.y, m.x, m.z};
@@ -196,10 +201,11 @@ TEST_F(GltfShading, MirroredTangentFramesShadeAsTheMirrorImage) {
     const Vec3 want{m.y, m.x, m.z};
     for (const Vec2 p : kPoints) {
         expect_near(shading_normal_at(load(tangent_quad(1, {{"scale", {-1, 1, 1}}})), p), want, 1e-5f, "node mirror");
-        expect_near(shading_normal_at(load(tangent_quad(1), R"(, "transform": [{"scale": [-1, 1, 1]}])"), p), want, 1e-5f,
-                    "scene mirror");
+        expect_near(shading_normal_at(load(tangent_quad(1), R"(, "transform": [{"scale": [-1, 1, 1]}])"), p), want,
+                    1e-5f, "scene mirror");
         // Both mirrors at once cancel.
-        expect_near(shading_normal_at(load(tangent_quad(1, {{"scale", {-1, 1, 1}}}), R"(, "transform": [{"scale": [-1, 1, 1]}])"), p),
+        expect_near(shading_normal_at(
+                        load(tangent_quad(1, {{"scale", {-1, 1, 1}}}), R"(, "transform": [{"scale": [-1, 1, 1]}])"), p),
                     Vec3{-m.y, m.x, m.z}, 1e-5f, "two mirrors");
     }
 }

@@ -5,9 +5,9 @@
 
 #include <cmath>
 
-#include "render/render.h"
 #include "io/scene_json/scene_file.h"
 #include "render/plane_view_test_util.h"
+#include "render/render.h"
 #include "render/test_meshes.h"
 
 namespace sombra {
@@ -25,8 +25,8 @@ Vec3 trace_direct(const Scene& scene, const Accel& accel, const Ray& ray, RayCou
     return sombra::trace_direct(IntegratorContext{&scene, &accel, &lights}, ray, counters);
 }
 
-
-RenderOutput render(const Scene& scene, AccelKind kind, const Camera& camera, int w, int h, int spp = 1, int threads = 0) {
+RenderOutput render(const Scene& scene, AccelKind kind, const Camera& camera, int w, int h, int spp = 1,
+                    int threads = 0) {
     const Accel accel = make_accel(scene, kind);
     RenderJob job;
     job.scene = &scene;

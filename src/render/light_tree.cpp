@@ -52,7 +52,8 @@ float orientation_measure(float cos_theta_o) {
     const float theta_w = std::min(theta_o + 0.5f * kPi, kPi);
     const float sin_theta_o = safe_sqrt(1 - cos_theta_o * cos_theta_o);
     return 2 * kPi * (1 - cos_theta_o) +
-           0.5f * kPi * (2 * theta_w * sin_theta_o - std::cos(theta_o - 2 * theta_w) - 2 * theta_o * sin_theta_o + cos_theta_o);
+           0.5f * kPi *
+               (2 * theta_w * sin_theta_o - std::cos(theta_o - 2 * theta_w) - 2 * theta_o * sin_theta_o + cos_theta_o);
 }
 
 struct Record {
@@ -137,7 +138,8 @@ Record* split(Record* first, Record* last, const LightTreeNode& node, bool media
             if (!(extent > 0.0f)) continue;
             std::array<Bin, kBins> bins;
             for (const Record* r = first; r != last; ++r) {
-                const int b = std::min(kBins - 1, static_cast<int>(kBins * ((r->centroid[axis] - cmin[axis]) / extent)));
+                const int b =
+                    std::min(kBins - 1, static_cast<int>(kBins * ((r->centroid[axis] - cmin[axis]) / extent)));
                 bins[static_cast<std::size_t>(b)].add(bin_of(*r));
             }
             // Kr favours cuts across the box's long side.
@@ -162,7 +164,9 @@ Record* split(Record* first, Record* last, const LightTreeNode& node, bool media
         if (best_axis >= 0) {
             const float extent = cmax[best_axis] - cmin[best_axis];
             Record* mid = std::partition(first, last, [&](const Record& r) {
-                return std::min(kBins - 1, static_cast<int>(kBins * ((r.centroid[best_axis] - cmin[best_axis]) / extent))) < best_bin;
+                return std::min(kBins - 1,
+                                static_cast<int>(kBins * ((r.centroid[best_axis] - cmin[best_axis]) / extent))) <
+                       best_bin;
             });
             if (mid != first && mid != last) return mid;
         }
@@ -171,7 +175,8 @@ Record* split(Record* first, Record* last, const LightTreeNode& node, bool media
     const Vec3 diag = node.bmax - node.bmin;
     const int axis = diag.x >= diag.y && diag.x >= diag.z ? 0 : (diag.y >= diag.z ? 1 : 2);
     Record* mid = first + count / 2;
-    std::nth_element(first, mid, last, [axis](const Record& a, const Record& b) { return a.centroid[axis] < b.centroid[axis]; });
+    std::nth_element(first, mid, last,
+                     [axis](const Record& a, const Record& b) { return a.centroid[axis] < b.centroid[axis]; });
     return mid;
 }
 

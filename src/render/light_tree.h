@@ -22,11 +22,11 @@ namespace sombra {
 // holds exactly one emitter, whose index (into LightSet::emitters) is in
 // `payload`.
 struct LightTreeNode {
-    Vec3 bmin;          // bounding box of the emitters' corners
-    float power = 0;    // Σ luminance(ke) · area · π · sides
+    Vec3 bmin;        // bounding box of the emitters' corners
+    float power = 0;  // Σ luminance(ke) · area · π · sides
     Vec3 bmax;
-    float cos_theta_o = 1;  // every emitter normal lies within θ_o of ±axis (see kTwoSided)
-    Vec3 axis;              // unit axis of the normal cone
+    float cos_theta_o = 1;      // every emitter normal lies within θ_o of ±axis (see kTwoSided)
+    Vec3 axis;                  // unit axis of the normal cone
     std::uint32_t payload = 0;  // kLeaf | kTwoSided | index
 
     static constexpr std::uint32_t kLeaf = 1u << 31;
@@ -49,8 +49,8 @@ struct LightTree {
 
 // What make_light_tree needs of one emitter.
 struct LightTreeEmitter {
-    Vec3 p0, p1, p2;   // corners; the winding normal (p1−p0)×(p2−p0) is the front
-    float power = 0;   // > 0
+    Vec3 p0, p1, p2;  // corners; the winding normal (p1−p0)×(p2−p0) is the front
+    float power = 0;  // > 0
     bool two_sided = false;
 };
 

@@ -62,7 +62,8 @@ struct Shading {
 std::vector<Shading> shading_points(std::uint64_t key) {
     std::vector<Shading> points;
     std::uint32_t c = 0;
-    for (int i = 0; i < 6; ++i) points.push_back({random_in_cube(c, key, 8.0f), i == 5 ? Vec3{0.0f} : random_direction(c, key)});
+    for (int i = 0; i < 6; ++i)
+        points.push_back({random_in_cube(c, key, 8.0f), i == 5 ? Vec3{0.0f} : random_direction(c, key)});
     return points;
 }
 
@@ -93,7 +94,8 @@ TEST(LightTree, PmfIsADistributionAndSamplingFollowsIt) {
         const int n = 200000;
         std::vector<double> counts(pmf.size(), 0.0);
         for (int k = 0; k < n; ++k) {
-            const LightTreeChoice choice = sample_light_tree(tree, s.x, s.n, hash_to_unit(static_cast<std::uint32_t>(k), 7));
+            const LightTreeChoice choice =
+                sample_light_tree(tree, s.x, s.n, hash_to_unit(static_cast<std::uint32_t>(k), 7));
             if (!(choice.probability > 0.0f)) {
                 counts.back() += 1;
                 continue;
@@ -161,13 +163,16 @@ TEST(LightTree, OneSidedEmittersFacingAwayGetNothing) {
     }
     EXPECT_EQ(sample_light_tree(tree, {3.5f, 30, 0}, {0, -1, 0}, 0.3f).probability, 0.0f);
     // Half of them turned to shine up: from above only those are chosen.
-    for (int i = 0; i < 8; i += 2) std::swap(emitters[static_cast<std::size_t>(i)].p1, emitters[static_cast<std::size_t>(i)].p2);
+    for (int i = 0; i < 8; i += 2)
+        std::swap(emitters[static_cast<std::size_t>(i)].p1, emitters[static_cast<std::size_t>(i)].p2);
     const LightTree mixed = make_light_tree(emitters);
     double sum = 0;
     for (std::uint32_t e = 0; e < 8; ++e) {
         const float p = pmf_light_tree(mixed, {3.5f, 30, 0}, {0, -1, 0}, e);
-        if (e % 2 == 0) EXPECT_GT(p, 0.0f);
-        else EXPECT_EQ(p, 0.0f);
+        if (e % 2 == 0)
+            EXPECT_GT(p, 0.0f);
+        else
+            EXPECT_EQ(p, 0.0f);
         sum += p;
     }
     EXPECT_NEAR(sum, 1.0, 1e-5);
@@ -203,7 +208,8 @@ Scene many_lights_scene() {
             const Vec3 b = cross(nrm, t);
             const float h = 0.1f + 0.1f * uniform(c, 7);
             const auto material = 1 + static_cast<std::uint32_t>(uniform(c, 8) * 6);
-            const Vec3 p0 = centre - h * t - h * b, p1 = centre + h * t - h * b, p2 = centre + h * t + h * b, p3 = centre - h * t + h * b;
+            const Vec3 p0 = centre - h * t - h * b, p1 = centre + h * t - h * b, p2 = centre + h * t + h * b,
+                       p3 = centre - h * t + h * b;
             // Wound so that the front faces along nrm.
             const bool along = dot(cross(p1 - p0, p2 - p0), nrm) > 0.0f;
             add_triangle(mesh, p0, along ? p1 : p2, along ? p2 : p1, material);

@@ -6,8 +6,8 @@
 #include <numbers>
 
 #include "render/shading.h"
-#include "scene/cutout.h"
 #include "render/spherical_triangle.h"
+#include "scene/cutout.h"
 
 namespace sombra {
 
@@ -69,7 +69,8 @@ bool sampled_point_exists(const Scene& scene, std::uint32_t triangle, Vec3 y) {
 
 }  // namespace
 
-LightSet make_light_set(const Scene& scene, Environment environment, bool sample_environment_light, LightSelection selection) {
+LightSet make_light_set(const Scene& scene, Environment environment, bool sample_environment_light,
+                        LightSelection selection) {
     LightSet lights;
     lights.delta = scene.lights;
     const TriangleMesh& mesh = scene.geometry;
@@ -134,8 +135,8 @@ bool sample_light(const LightSet& lights, const Scene& scene, Vec3 x, Vec3 n, fl
         choice = emitter_share * tc.probability;
     } else {
         const auto it = std::upper_bound(lights.choice_cdf.begin(), lights.choice_cdf.end(), u_choice);
-        chosen = static_cast<std::size_t>(std::min<std::ptrdiff_t>(it - lights.choice_cdf.begin(),
-                                                                   static_cast<std::ptrdiff_t>(lights.choice_cdf.size()) - 1));
+        chosen = static_cast<std::size_t>(std::min<std::ptrdiff_t>(
+            it - lights.choice_cdf.begin(), static_cast<std::ptrdiff_t>(lights.choice_cdf.size()) - 1));
         choice = lights.choice_probability[chosen];
     }
     if (!(choice > 0.0f)) return false;
@@ -218,7 +219,8 @@ LightKind light_kind(const LightSet& lights, const Scene& scene, std::uint32_t l
     }
     if (light >= lights.environment_light()) return LightKind::Environment;
     const std::uint32_t triangle = lights.emitters[light - lights.first_emitter()];
-    return scene.materials[scene.geometry.material_ids[triangle]].emits_front_only ? LightKind::Quad : LightKind::Triangle;
+    return scene.materials[scene.geometry.material_ids[triangle]].emits_front_only ? LightKind::Quad
+                                                                                   : LightKind::Triangle;
 }
 
 std::uint32_t emitter_light(const LightSet& lights, std::uint32_t triangle) {

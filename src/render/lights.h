@@ -96,12 +96,12 @@ LightSet make_light_set(const Scene& scene, Environment environment, bool sample
 
 // What arrives at a point from one sampled light.
 struct LightSample {
-    Vec3 radiance;   // L arriving along -wi (before the cosine and the BSDF)
-    Vec3 wi;         // unit direction from the point towards the light
-    Vec3 target;     // the sampled point on an emitter (for the shadow ray); unused for the environment
-    bool at_infinity = false;  // environment: the shadow ray has no end
-    float pdf = 0;   // solid-angle density, including the probability of choosing this light
-    std::uint32_t light = kNoLight;        // its identity in the light set
+    Vec3 radiance;                   // L arriving along -wi (before the cosine and the BSDF)
+    Vec3 wi;                         // unit direction from the point towards the light
+    Vec3 target;                     // the sampled point on an emitter (for the shadow ray); unused for the environment
+    bool at_infinity = false;        // environment: the shadow ray has no end
+    float pdf = 0;                   // solid-angle density, including the probability of choosing this light
+    std::uint32_t light = kNoLight;  // its identity in the light set
     std::uint32_t triangle = 0xffffffffu;  // the emitter triangle sampled (all ones for the environment)
 };
 

@@ -30,8 +30,9 @@ Scene two_emitters_and_a_floor() {
     dim.emits_front_only = true;
     scene.materials = {floor, bright, dim};
     add_triangle(scene.geometry, {-10, 0, -10}, {-10, 0, 10}, {10, 0, 10}, 0);
-    add_triangle(scene.geometry, {-1, 2, -1}, {1, 2, -1}, {0, 2.5f, 1}, 1);   // near: sampled by solid angle
-    add_triangle(scene.geometry, {5, 40, 5}, {5.5f, 40, 5}, {5, 40, 5.5f}, 2);  // far and small: by area; emits toward −y
+    add_triangle(scene.geometry, {-1, 2, -1}, {1, 2, -1}, {0, 2.5f, 1}, 1);  // near: sampled by solid angle
+    add_triangle(scene.geometry, {5, 40, 5}, {5.5f, 40, 5}, {5, 40, 5.5f},
+                 2);  // far and small: by area; emits toward −y
     return scene;
 }
 
@@ -58,7 +59,9 @@ TEST(Lights, SampledDensityEqualsTheDensityOfTheSampledPoint) {
     for (int k = 0; k < n; ++k) {
         const auto i = static_cast<std::uint32_t>(k);
         LightSample ls;
-        if (!sample_light(lights, scene, x, Vec3{0, 1, 0}, hash_to_unit(i, 1), hash_to_unit(i, 2), hash_to_unit(i, 3), ls)) continue;
+        if (!sample_light(lights, scene, x, Vec3{0, 1, 0}, hash_to_unit(i, 1), hash_to_unit(i, 2), hash_to_unit(i, 3),
+                          ls))
+            continue;
         ASSERT_TRUE(std::isfinite(ls.pdf));
         ASSERT_GT(ls.pdf, 0.0f);
         EXPECT_NEAR(length(ls.wi), 1.0f, 1e-5f);
@@ -125,7 +128,8 @@ TEST(Lights, OneSidedEmittersAreDarkFromBehind) {
     for (int k = 0; k < 2000; ++k) {
         const auto i = static_cast<std::uint32_t>(k);
         LightSample ls;
-        if (!sample_light(lights, scene, above, Vec3{0.0f}, hash_to_unit(i, 4), hash_to_unit(i, 5), hash_to_unit(i, 6), ls))
+        if (!sample_light(lights, scene, above, Vec3{0.0f}, hash_to_unit(i, 4), hash_to_unit(i, 5), hash_to_unit(i, 6),
+                          ls))
             continue;
         EXPECT_LT(ls.target.y, 10.0f);  // only the bright, two-sided one
         ++sampled;
@@ -151,7 +155,8 @@ TEST(Lights, EveryLightHasOneIdentityInTheSet) {
     // two-sided one is triangle 1, the one-sided "quad" triangle 2), then the
     // environment; sampled lights carry their identity.
     Scene scene = two_emitters_and_a_floor();
-    scene.lights = {make_spot_light({0, 3, 0}, {0, -1, 0}, Vec3{1}, 30, 10), make_directional_light({0, -1, 0}, Vec3{1})};
+    scene.lights = {make_spot_light({0, 3, 0}, {0, -1, 0}, Vec3{1}, 30, 10),
+                    make_directional_light({0, -1, 0}, Vec3{1})};
     const LightSet lights = make_light_set(scene, make_constant_environment(Vec3{0.2f}), true);
     ASSERT_EQ(lights.light_count(), 5u);
     EXPECT_EQ(lights.first_emitter(), 2u);

@@ -8,9 +8,9 @@
 #include <limits>
 
 #include "render/bsdf.h"
+#include "render/delta_lights.h"
 #include "render/integrator.h"
 #include "render/interaction.h"
-#include "render/delta_lights.h"
 #include "render/ray_cone.h"
 #include "render/sample_recorder.h"
 #include "render/shading.h"
@@ -48,7 +48,8 @@ Vec3 sample_one_light(const IntegratorContext& ctx, const ShadingView& view, flo
         recorder.sampled_light(&ls, view, &shadow, true, 0.0f, 0.0f, Vec3{0.0f});
         return Vec3{0.0f};
     }
-    const float bsdf_pdf = ctx.strategy == LightStrategy::Mis ? pdf_bsdf(view.material, view.bsdf_point, view.wo, ls.wi) : 0.0f;
+    const float bsdf_pdf =
+        ctx.strategy == LightStrategy::Mis ? pdf_bsdf(view.material, view.bsdf_point, view.wo, ls.wi) : 0.0f;
     const float weight = ctx.strategy == LightStrategy::Mis ? power_heuristic(ls.pdf, bsdf_pdf) : 1.0f;
     const Vec3 contribution = f * ls.radiance * (weight / ls.pdf);
     recorder.sampled_light(&ls, view, &shadow, false, bsdf_pdf, weight, contribution);
@@ -56,15 +57,15 @@ Vec3 sample_one_light(const IntegratorContext& ctx, const ShadingView& view, flo
 }
 
 template <class Recorder>
-Vec3 trace_path_recorded(const IntegratorContext& ctx, const Ray& camera_ray, SampleStream& samples, RayCounters& counters,
-                         Recorder& recorder) {
+Vec3 trace_path_recorded(const IntegratorContext& ctx, const Ray& camera_ray, SampleStream& samples,
+                         RayCounters& counters, Recorder& recorder) {
     const Scene& scene = *ctx.scene;
     const LightSet& lights = *ctx.lights;
     ++counters.camera_rays;
 
     Vec3 radiance{0.0f};
-    Vec3 beta{1.0f};           // the path's throughput: product of f·|cos|/pdf so far
-    float eta_scale = 1.0f;    // undoes refraction's (η_i/η_t)² in beta for Russian roulette
+    Vec3 beta{1.0f};             // the path's throughput: product of f·|cos|/pdf so far
+    float eta_scale = 1.0f;      // undoes refraction's (η_i/η_t)² in beta for Russian roulette
     bool previous_delta = true;  // the camera "vertex" counts as delta: no MIS for what it sees
     float previous_pdf = 0.0f;   // the BSDF's solid-angle density of the last bounce
     Vec3 previous_position{0.0f};
@@ -104,7 +105,8 @@ Vec3 trace_path_recorded(const IntegratorContext& ctx, const Ray& camera_ray, Sa
 
         SurfaceInteraction si = make_surface_interaction(scene.geometry, ray, hit);
         const float hit_distance = cone.active() ? hit.t * length(ray.dir) : 0.0f;
-        const Material& material = resolve_material(scene, si, textured, surface_footprint(cone, hit_distance, ray.dir, si.n_g));
+        const Material& material =
+            resolve_material(scene, si, textured, surface_footprint(cone, hit_distance, ray.dir, si.n_g));
         const Vec3 wo = -normalize(ray.dir);
         recorder.surface(ray, hit, si, material, beta);
 

@@ -9,10 +9,10 @@
 #include <numbers>
 #include <vector>
 
+#include "io/scene_json/scene_file.h"
 #include "render/integrator.h"
 #include "render/pbr_test_util.h"
 #include "render/render.h"
-#include "io/scene_json/scene_file.h"
 #include "render/test_meshes.h"
 
 namespace sombra {
@@ -39,7 +39,8 @@ struct Estimate {
     double mean() const { return sum / static_cast<double>(n); }
     double standard_error() const {
         const double m = mean();
-        const double var = std::max(0.0, sum2 / static_cast<double>(n) - m * m) * static_cast<double>(n) / static_cast<double>(n - 1);
+        const double var =
+            std::max(0.0, sum2 / static_cast<double>(n) - m * m) * static_cast<double>(n) / static_cast<double>(n - 1);
         return std::sqrt(var / static_cast<double>(n));
     }
 };
@@ -63,7 +64,8 @@ void add_sphere(TriangleMesh& mesh, Vec3 centre, float radius, int levels, std::
     };
     std::vector<Tri> tris;
     const Vec3 px{1, 0, 0}, nx{-1, 0, 0}, py{0, 1, 0}, ny{0, -1, 0}, pz{0, 0, 1}, nz{0, 0, -1};
-    tris = {{px, py, pz}, {py, nx, pz}, {nx, ny, pz}, {ny, px, pz}, {py, px, nz}, {nx, py, nz}, {ny, nx, nz}, {px, ny, nz}};
+    tris = {{px, py, pz}, {py, nx, pz}, {nx, ny, pz}, {ny, px, pz},
+            {py, px, nz}, {nx, py, nz}, {ny, nx, nz}, {px, ny, nz}};
     for (int l = 0; l < levels; ++l) {
         std::vector<Tri> finer;
         for (const Tri& t : tris) {
@@ -75,7 +77,8 @@ void add_sphere(TriangleMesh& mesh, Vec3 centre, float radius, int levels, std::
         }
         tris = std::move(finer);
     }
-    for (const Tri& t : tris) add_triangle(mesh, centre + radius * t.a, centre + radius * t.b, centre + radius * t.c, material);
+    for (const Tri& t : tris)
+        add_triangle(mesh, centre + radius * t.a, centre + radius * t.b, centre + radius * t.c, material);
 }
 
 Material diffuse(Vec3 kd) {
@@ -155,8 +158,8 @@ TEST(PathIntegrator, PbrPlaneUnderAConstantSkyShowsItsAlbedo) {
         Vec3 base;
         float metallic, roughness;
     };
-    const Case cases[] = {{Vec3{1.0f}, 0.0f, 0.3f}, {{0.8f, 0.5f, 0.2f}, 0.5f, 0.6f}, {Vec3{0.7f}, 0.0f, 0.0f},
-                          {Vec3{0.9f}, 1.0f, 1.0f}};
+    const Case cases[] = {
+        {Vec3{1.0f}, 0.0f, 0.3f}, {{0.8f, 0.5f, 0.2f}, 0.5f, 0.6f}, {Vec3{0.7f}, 0.0f, 0.0f}, {Vec3{0.9f}, 1.0f, 1.0f}};
     std::uint64_t seed = 40;
     for (const Case& c : cases) {
         SceneBuilder b;
@@ -176,7 +179,8 @@ TEST(PathIntegrator, PbrPlaneUnderAConstantSkyShowsItsAlbedo) {
             const Vec3 eye{static_cast<float>(std::sin(t)), static_cast<float>(std::cos(t)), 0};
             const Estimate e = run.estimate(eye, {0, 0, 0}, 6000, ++seed);
             const pbr_reference::Params p{c.base.x, c.metallic, c.roughness, 1.5};
-            const pbr_reference::Quadrature q = pbr_reference::albedo_with_error(p, std::acos(static_cast<double>(normalize(eye).y)), 400);
+            const pbr_reference::Quadrature q =
+                pbr_reference::albedo_with_error(p, std::acos(static_cast<double>(normalize(eye).y)), 400);
             EXPECT_LT(std::fabs(e.mean() - q.value), kZ * e.standard_error() + q.error)
                 << "r " << c.roughness << " m " << c.metallic << " at " << theta << "°: " << e.mean() << " ± "
                 << e.standard_error() << ", quadrature " << q.value;
@@ -206,7 +210,8 @@ TEST(PathIntegrator, ClosedEmittingBoxSumsTheGeometricSeries) {
     const Scene scene = b.finish();
     for (const int depth : {0, 1, 2, 5, 12}) {
         const PathRun run{scene, depth};
-        const Estimate e = run.estimate({0.1f, -0.2f, 0.3f}, {0.5f, 0.4f, -1}, 3000, 3 + static_cast<std::uint64_t>(depth));
+        const Estimate e =
+            run.estimate({0.1f, -0.2f, 0.3f}, {0.5f, 0.4f, -1}, 3000, 3 + static_cast<std::uint64_t>(depth));
         const double expected = le * (1.0 - std::pow(a, depth + 1)) / (1.0 - a);
         expect_agrees(e, expected, "closed box");
     }
@@ -242,7 +247,8 @@ TEST(PathIntegrator, PlaneUnderTriangleLightMatchesLambertsPolygonFormula) {
         for (const Vec3 x : {Vec3{0, 0, 0}, Vec3{0.7f, 0, 0.2f}, Vec3{-1.5f, 0, 1}}) {
             const double expected = kd.x / kPi * le.x * polygon_irradiance(light, x, {0, 1, 0});
             // Camera rays from just above the plane (below the light), straight down.
-            const Estimate e = run.estimate(x + Vec3{0.01f, 0.3f, 0.02f}, x, strategy == LightStrategy::BsdfOnly ? 40000 : 6000, 21);
+            const Estimate e =
+                run.estimate(x + Vec3{0.01f, 0.3f, 0.02f}, x, strategy == LightStrategy::BsdfOnly ? 40000 : 6000, 21);
             expect_agrees(e, expected, "polygon irradiance");
         }
     }
@@ -283,7 +289,8 @@ TEST(PathIntegrator, CutOutPartsOfAnEmitterGiveNoLight) {
             double expected = 0;
             for (const std::vector<Vec3>& part : left_and_right)
                 expected += kd.x / kPi * le.x * polygon_irradiance(part, x, {0, 1, 0});
-            const Estimate e = run.estimate(x + Vec3{0.01f, 0.3f, 0.02f}, x, strategy == LightStrategy::BsdfOnly ? 40000 : 6000, 23);
+            const Estimate e =
+                run.estimate(x + Vec3{0.01f, 0.3f, 0.02f}, x, strategy == LightStrategy::BsdfOnly ? 40000 : 6000, 23);
             expect_agrees(e, expected, "irradiance from the uncut parts");
         }
     }
@@ -309,7 +316,8 @@ TEST(PathIntegrator, PointLightInsideADiffuseSphereAtDepthOne) {
         Hit hit;
         ASSERT_TRUE(intersect(accel, ray, hit));
         const Index3 t = scene.geometry.triangles[hit.triangle];
-        const Vec3 p0 = scene.geometry.positions[t[0]], p1 = scene.geometry.positions[t[1]], p2 = scene.geometry.positions[t[2]];
+        const Vec3 p0 = scene.geometry.positions[t[0]], p1 = scene.geometry.positions[t[1]],
+                   p2 = scene.geometry.positions[t[2]];
         const Vec3 x = ray.origin + hit.t * ray.dir;
         const Vec3 n = normalize(cross(p1 - p0, p2 - p0));
         const double d2 = dot(x, x);
@@ -344,7 +352,8 @@ TEST(PathIntegrator, StrategiesAgreeUnderAnEnvironment) {
             const PathRun mis{scene, 3, LightStrategy::Mis};
             const Estimate m = mis.estimate({2, 1.5f, 3}, {0.3f, 0.1f, 1.5f}, 20000, 1234);
             const double z = (e.mean() - m.mean()) / std::hypot(e.standard_error(), m.standard_error());
-            EXPECT_LT(std::fabs(z), kZ) << "strategy " << static_cast<int>(strategy) << ": " << e.mean() << " vs " << m.mean();
+            EXPECT_LT(std::fabs(z), kZ) << "strategy " << static_cast<int>(strategy) << ": " << e.mean() << " vs "
+                                        << m.mean();
         }
     }
     EXPECT_GT(means[0], 0.1);

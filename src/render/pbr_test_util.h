@@ -12,7 +12,7 @@
 namespace sombra::pbr_reference {
 
 struct Params {
-    double base = 1;       // base_color, one channel
+    double base = 1;  // base_color, one channel
     double metallic = 0;
     double roughness = 0.5;
     double ior = 1.5;

@@ -49,7 +49,8 @@ inline std::string render_settings_problem(const RenderSettings& r) {
     if (r.width < 1 || r.width > kMaxImageSide) return "width" + side_range;
     if (r.height < 1 || r.height > kMaxImageSide) return "height" + side_range;
     if (r.spp < 1 || r.spp > kMaxSpp) return "spp must be between 1 and " + std::to_string(kMaxSpp);
-    if (r.max_depth < 0 || r.max_depth > kMaxDepth) return "max_depth must be between 0 and " + std::to_string(kMaxDepth);
+    if (r.max_depth < 0 || r.max_depth > kMaxDepth)
+        return "max_depth must be between 0 and " + std::to_string(kMaxDepth);
     const std::int64_t pixels = std::int64_t{r.width} * r.height;
     if (pixels > kMaxPixels)
         return "image of " + std::to_string(r.width) + "x" + std::to_string(r.height) +

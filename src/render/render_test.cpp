@@ -24,7 +24,8 @@ Rendered render_scene(const Scene& scene, AccelKind kind, RenderSettings setting
     RenderProgress progress;
     RenderOutput out = render_image(job, progress);
     EXPECT_FALSE(out.cancelled);
-    EXPECT_EQ(progress.samples_done.load(), static_cast<std::uint64_t>(settings.width * settings.height * settings.spp));
+    EXPECT_EQ(progress.samples_done.load(),
+              static_cast<std::uint64_t>(settings.width * settings.height * settings.spp));
     return {std::move(out.film), out.counters};
 }
 
@@ -33,7 +34,7 @@ Scene load_shared_scene(const char* name) {
     return load_scene_file(kShared / "scenes" / name, diag).scene;
 }
 
-#define SKIP_WITHOUT_SHARED()                                                                      \
+#define SKIP_WITHOUT_SHARED() \
     if (!std::filesystem::exists(kShared / "scenes")) GTEST_SKIP() << "shared/ not found at " << kShared
 
 // Brute force is the reference; the BVH must give the very same floats.

@@ -31,22 +31,23 @@ struct HitRecord {
     float t = 0;                           // ray parameter (the ray's direction is not unit length for camera rays)
     float distance = 0;                    // |x − ray origin|
     float b1 = 0, b2 = 0;                  // barycentric weights of the second and third corner
-    Vec3 position, n_g, n_s;               // n_g faces the ray's origin, n_s in n_g's hemisphere (after normal or bump maps)
-    bool outside = true;                   // arrived on the winding normal's side
-    Vec2 uv;                               // texture coordinates at the hit ((0, 0) without)
+    Vec3 position, n_g, n_s;  // n_g faces the ray's origin, n_s in n_g's hemisphere (after normal or bump maps)
+    bool outside = true;      // arrived on the winding normal's side
+    Vec2 uv;                  // texture coordinates at the hit ((0, 0) without)
     bool has_uv = false;
-    float uv_footprint = 0;  // mip-mapping: the ray cone's width in uv that textures were filtered over; 0: full resolution
+    float uv_footprint =
+        0;  // mip-mapping: the ray cone's width in uv that textures were filtered over; 0: full resolution
     // The material as the BSDFs saw it here: for a textured material, each
     // textured parameter is its value at uv (spec §12), not the constant.
     Material shaded;
 };
 
 enum class LightOutcome {
-    Behind,     // n_g·ω_i ≤ 0: the light is behind the surface
-    OnSurface,  // the light sits on the shaded point: it lights nothing
+    Behind,       // n_g·ω_i ≤ 0: the light is behind the surface
+    OnSurface,    // the light sits on the shaded point: it lights nothing
     OutsideCone,  // a spot light's cone does not reach the point (s = 0): no shadow ray
-    Blocked,    // the shadow ray met something (see blocker)
-    Visible,    // it contributes
+    Blocked,      // the shadow ray met something (see blocker)
+    Visible,      // it contributes
 };
 
 // Where a ray crossed a triangle whose surface is cut out at that point
@@ -65,84 +66,84 @@ inline constexpr std::size_t kMaxHolesListed = 8;
 struct DeltaLightRecord {
     std::uint32_t light = 0;  // its identity in the light set (= its index in Scene::lights)
     LightOutcome outcome = LightOutcome::Visible;
-    Vec3 wi;                  // unit, towards the light
-    float distance = 0;       // |c − x|; +∞ for a directional light
-    float cos_g = 0;          // n_g·ω_i
-    float cos_s = 0;          // |n_s·ω_i|
-    float spot_factor = 1;    // a spot's falloff s² at ω_i (1 for other kinds)
-    Vec3 incident;            // point: I/|c − x|²; spot: I·s²/|c − x|²; directional: E
-    Vec3 f_diffuse, f_lobe;   // f_r split into its diffuse term and its lobe (specular) term
-    Vec3 f;                   // f_r as the integrator evaluated it
-    BlockerRecord blocker;    // when Blocked
+    Vec3 wi;                        // unit, towards the light
+    float distance = 0;             // |c − x|; +∞ for a directional light
+    float cos_g = 0;                // n_g·ω_i
+    float cos_s = 0;                // |n_s·ω_i|
+    float spot_factor = 1;          // a spot's falloff s² at ω_i (1 for other kinds)
+    Vec3 incident;                  // point: I/|c − x|²; spot: I·s²/|c − x|²; directional: E
+    Vec3 f_diffuse, f_lobe;         // f_r split into its diffuse term and its lobe (specular) term
+    Vec3 f;                         // f_r as the integrator evaluated it
+    BlockerRecord blocker;          // when Blocked
     std::vector<HoleRecord> holes;  // when Visible: the cut-outs the shadow ray went through
     std::size_t holes_crossed = 0;  // how many in all (holes lists at most kMaxHolesListed)
-    Vec3 contribution;        // what was added to the sample's value (0 unless Visible)
+    Vec3 contribution;              // what was added to the sample's value (0 unless Visible)
 };
 
 // The one emitter or environment direction sampled for next-event
 // estimation at a path vertex, MIS-weighted against BSDF sampling.
 struct SampledLightRecord {
-    bool sampled = false;            // false: no light could be sampled (or none carries anything)
-    bool environment = false;        // the environment rather than an emitting triangle
-    std::uint32_t light = kNoTriangle;     // its identity in the light set (render/lights.h)
+    bool sampled = false;               // false: no light could be sampled (or none carries anything)
+    bool environment = false;           // the environment rather than an emitting triangle
+    std::uint32_t light = kNoTriangle;  // its identity in the light set (render/lights.h)
     std::uint32_t triangle = kNoTriangle;
-    Vec3 wi;                         // unit, towards the sampled point
-    Vec3 target;                     // the sampled point on the emitter
-    float distance = 0;              // to the sampled point (infinite for the environment)
-    Vec3 radiance;                   // L_e arriving along −ω_i
-    float light_pdf = 0;             // solid-angle density of next-event estimation (with the choice of light)
-    float bsdf_pdf = 0;              // the BSDF's density for the same direction
-    float mis_weight = 0;            // power heuristic (1 when only lights are sampled)
-    float cos_s = 0;                 // |n_s·ω_i|
-    float cos_light = 0;             // |n_light·ω_i| at the sampled point of an emitting triangle (0 for the environment)
-    Vec3 f_diffuse, f_lobe, f;       // f_r split and whole
+    Vec3 wi;                    // unit, towards the sampled point
+    Vec3 target;                // the sampled point on the emitter
+    float distance = 0;         // to the sampled point (infinite for the environment)
+    Vec3 radiance;              // L_e arriving along −ω_i
+    float light_pdf = 0;        // solid-angle density of next-event estimation (with the choice of light)
+    float bsdf_pdf = 0;         // the BSDF's density for the same direction
+    float mis_weight = 0;       // power heuristic (1 when only lights are sampled)
+    float cos_s = 0;            // |n_s·ω_i|
+    float cos_light = 0;        // |n_light·ω_i| at the sampled point of an emitting triangle (0 for the environment)
+    Vec3 f_diffuse, f_lobe, f;  // f_r split and whole
     LightOutcome outcome = LightOutcome::Visible;  // Behind (f_r = 0, no shadow ray), Blocked, or Visible
     BlockerRecord blocker;
-    std::vector<HoleRecord> holes;   // when Visible: the cut-outs the shadow ray went through
-    std::size_t holes_crossed = 0;   // how many in all
-    Vec3 contribution;               // β · f·|cos| · L_e · w / pdf
+    std::vector<HoleRecord> holes;  // when Visible: the cut-outs the shadow ray went through
+    std::size_t holes_crossed = 0;  // how many in all
+    Vec3 contribution;              // β · f·|cos| · L_e · w / pdf
 };
 
 // Light reached by following the path: emission of a hit surface, or the
 // environment when the ray left the scene.
 struct EmissionRecord {
     bool present = false;
-    Vec3 radiance;          // L_e
-    float mis_weight = 1;   // 1 for what the camera or a delta bounce sees
-    float bsdf_pdf = 0;     // density of the bounce that found it (0: camera or delta)
-    float light_pdf = 0;    // density with which next-event estimation would have found it
-    Vec3 contribution;      // β · L_e · w
+    Vec3 radiance;         // L_e
+    float mis_weight = 1;  // 1 for what the camera or a delta bounce sees
+    float bsdf_pdf = 0;    // density of the bounce that found it (0: camera or delta)
+    float light_pdf = 0;   // density with which next-event estimation would have found it
+    Vec3 contribution;     // β · L_e · w
 };
 
 // The direction sampled from the BSDF at a path vertex, and what became of the path.
 struct BounceRecord {
-    bool sampled = false;       // false: sampling produced no direction; the path ends
+    bool sampled = false;  // false: sampling produced no direction; the path ends
     Vec3 wi;
-    Vec3 f;                     // f_r(ω_o, ω_i) for a non-delta lobe
-    float pdf = 0;              // solid-angle density (delta: the lobe's selection probability)
+    Vec3 f;         // f_r(ω_o, ω_i) for a non-delta lobe
+    float pdf = 0;  // solid-angle density (delta: the lobe's selection probability)
     bool delta = false, transmission = false;
-    Vec3 weight;                // f·|n_s·ω_i| / pdf
-    Vec3 throughput;            // β after this bounce (before Russian roulette)
-    bool roulette = false;      // Russian roulette was played after this bounce
-    float roulette_q = 1;       // survival probability
-    float roulette_u = 0;       // the random number it drew
+    Vec3 weight;            // f·|n_s·ω_i| / pdf
+    Vec3 throughput;        // β after this bounce (before Russian roulette)
+    bool roulette = false;  // Russian roulette was played after this bounce
+    float roulette_q = 1;   // survival probability
+    float roulette_u = 0;   // the random number it drew
     bool survived = true;
-    Vec3 throughput_after;      // β after roulette (÷ q for survivors)
+    Vec3 throughput_after;  // β after roulette (÷ q for survivors)
 };
 
 // One vertex of the path: a surface hit (or the ray's escape when !hit).
 struct VertexRecord {
-    int depth = 0;                 // scattering events before this vertex
-    Vec3 ray_origin, ray_dir;      // the ray that arrived here (direction unit length)
+    int depth = 0;             // scattering events before this vertex
+    Vec3 ray_origin, ray_dir;  // the ray that arrived here (direction unit length)
     bool hit = false;
     HitRecord surface;
     std::vector<HoleRecord> holes;  // cut-outs the arriving ray crossed before the hit (or escaping)
     std::size_t holes_crossed = 0;  // how many in all (holes lists at most kMaxHolesListed)
-    Vec3 throughput;               // β arriving here
-    EmissionRecord emission;       // surface emission, or the environment on a miss
+    Vec3 throughput;                // β arriving here
+    EmissionRecord emission;        // surface emission, or the environment on a miss
     std::vector<DeltaLightRecord> delta_lights;
     SampledLightRecord sampled_light;
-    bool delta_material = false;   // no next-event estimation at a delta BSDF
+    bool delta_material = false;  // no next-event estimation at a delta BSDF
     BounceRecord bounce;
 };
 

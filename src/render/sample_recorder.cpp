@@ -37,7 +37,8 @@ void SampleRecorder::find_holes(const Ray& ray, float t_end, std::vector<HoleRec
         const Material& m = (*cutouts.materials)[mesh.material_ids[i]];
         if (!m.textures.alpha_test) continue;
         float t, b1, b2;
-        if (!intersect_triangle(ray.origin, ray.dir, prepare_triangle(mesh, mesh.triangles[i]), t_end, t, b1, b2)) continue;
+        if (!intersect_triangle(ray.origin, ray.dir, prepare_triangle(mesh, mesh.triangles[i]), t_end, t, b1, b2))
+            continue;
         const float alpha = surface_alpha(cutouts, m, triangle, b1, b2);
         if (cut_out_at(m, alpha)) holes.push_back({triangle, t, alpha, m.textures.alpha_cutoff});
     }
@@ -134,7 +135,8 @@ void SampleRecorder::sampled_light(const LightSample* ls, const ShadingView& vie
         if (!ls->at_infinity && ls->triangle < scene_.geometry.triangles.size()) {
             const Index3& tri = scene_.geometry.triangles[ls->triangle];
             const Vec3 p0 = scene_.geometry.positions[tri[0]];
-            const Vec3 n_light = normalize(cross(scene_.geometry.positions[tri[1]] - p0, scene_.geometry.positions[tri[2]] - p0));
+            const Vec3 n_light =
+                normalize(cross(scene_.geometry.positions[tri[1]] - p0, scene_.geometry.positions[tri[2]] - p0));
             r.cos_light = std::fabs(dot(n_light, ls->wi));
         }
         const BsdfTerms terms = eval_bsdf_terms(view.material, view.bsdf_point, view.wo, ls->wi);
@@ -145,9 +147,9 @@ void SampleRecorder::sampled_light(const LightSample* ls, const ShadingView& vie
         r.bsdf_pdf = shadow && !blocked ? bsdf_pdf : pdf_bsdf(view.material, view.bsdf_point, view.wo, ls->wi);
         r.mis_weight = w;
         // Without a shadow ray the BSDF was 0 there: the light is behind the surface, or the lobe sends nothing its way.
-        r.outcome = blocked                                              ? LightOutcome::Blocked
+        r.outcome = blocked                                       ? LightOutcome::Blocked
                     : !shadow && dot(view.si.n_g, ls->wi) <= 0.0f ? LightOutcome::Behind
-                                                                     : LightOutcome::Visible;
+                                                                  : LightOutcome::Visible;
         if (blocked && shadow) r.blocker = find_blocker(*shadow);
         if (!blocked && shadow) find_holes(*shadow, shadow->tmax, r.holes, r.holes_crossed);
     }

@@ -21,7 +21,8 @@ Rgba lookup(const Scene& scene, const TextureRef& ref, Vec2 uv, float uv_footpri
 float uv_per_world(const TriangleMesh& mesh, std::uint32_t triangle) {
     const Index3& p = mesh.triangles[triangle];
     const Index3& t = mesh.uv_indices[triangle];
-    const float world = length(cross(mesh.positions[p[1]] - mesh.positions[p[0]], mesh.positions[p[2]] - mesh.positions[p[0]]));
+    const float world =
+        length(cross(mesh.positions[p[1]] - mesh.positions[p[0]], mesh.positions[p[2]] - mesh.positions[p[0]]));
     const Vec2 t0 = mesh.uvs[t[0]], t1 = mesh.uvs[t[1]], t2 = mesh.uvs[t[2]];
     const float uv = std::fabs((t1.x - t0.x) * (t2.y - t0.y) - (t1.y - t0.y) * (t2.x - t0.x));
     const float scale = std::sqrt(uv / world);
@@ -107,8 +108,10 @@ Vec3 mapped_normal(const Scene& scene, const MaterialTextures& t, const SurfaceI
         // Central differences one texel apart around the hit.
         const float du = 1.0f / static_cast<float>(h.width), dv = 1.0f / static_cast<float>(h.height);
         const auto height = [&](float u, float v) { return lookup(scene, t.bump_map, Vec2{u, v}, si.uv_footprint)[0]; };
-        const float dhdu = t.bump_scale * (height(si.uv.x + 0.5f * du, si.uv.y) - height(si.uv.x - 0.5f * du, si.uv.y)) / du;
-        const float dhdv = t.bump_scale * (height(si.uv.x, si.uv.y + 0.5f * dv) - height(si.uv.x, si.uv.y - 0.5f * dv)) / dv;
+        const float dhdu =
+            t.bump_scale * (height(si.uv.x + 0.5f * du, si.uv.y) - height(si.uv.x - 0.5f * du, si.uv.y)) / du;
+        const float dhdv =
+            t.bump_scale * (height(si.uv.x, si.uv.y + 0.5f * dv) - height(si.uv.x, si.uv.y - 0.5f * dv)) / dv;
         n = apply_bump(front, dpdu, dpdv, dhdu, dhdv);
     }
     if (!si.outside) n = -n;
@@ -138,7 +141,8 @@ Vec3 apply_bump(Vec3 n, Vec3 dpdu, Vec3 dpdv, float dhdu, float dhdv) {
     return dot(bumped, n) < 0.0f ? -bumped / len : bumped / len;
 }
 
-const Material& resolve_material(const Scene& scene, SurfaceInteraction& si, Material& scratch, float surface_footprint) {
+const Material& resolve_material(const Scene& scene, SurfaceInteraction& si, Material& scratch,
+                                 float surface_footprint) {
     const Material& m = scene.materials[si.material];
     // Vertex colours (glTF COLOR_0) tint a pbr material's base colour, so
     // such a hit resolves even without textures; other types ignore them.
@@ -147,7 +151,8 @@ const Material& resolve_material(const Scene& scene, SurfaceInteraction& si, Mat
         m.type == MaterialType::Pbr && interpolate_color(scene.geometry, si.triangle, si.b1, si.b2, vertex_color);
     if (!m.textured && !colored) return m;
     copy_parameters(m, scratch);
-    if (surface_footprint > 0.0f && si.has_uv) si.uv_footprint = surface_footprint * uv_per_world(scene.geometry, si.triangle);
+    if (surface_footprint > 0.0f && si.has_uv)
+        si.uv_footprint = surface_footprint * uv_per_world(scene.geometry, si.triangle);
     if (colored) scratch.base_color = m.base_color * rgb_of(vertex_color);
     const MaterialTextures& t = m.textures;
     for (const RgbTextureSlot& slot : kRgbTextureSlots) {
@@ -159,7 +164,8 @@ const Material& resolve_material(const Scene& scene, SurfaceInteraction& si, Mat
     for (const ScalarTextureSlot& slot : kScalarTextureSlots) {
         const TextureRef& ref = t.*slot.texture;
         if (!ref.is_set()) continue;
-        scratch.*slot.value = std::clamp(m.*slot.value * lookup(scene, ref, si.uv, si.uv_footprint)[ref.channel & 3u], 0.0f, 1.0f);
+        scratch.*slot.value =
+            std::clamp(m.*slot.value * lookup(scene, ref, si.uv, si.uv_footprint)[ref.channel & 3u], 0.0f, 1.0f);
     }
     if (si.has_uv && (t.normal_map.is_set() || t.bump_map.is_set())) si.n_s = mapped_normal(scene, t, si);
     return scratch;

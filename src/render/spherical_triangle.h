@@ -13,9 +13,9 @@ namespace sombra {
 // corners and its solid angle Ω in steradians. Computed in double: Arvo's
 // formulas subtract nearly equal angles for small triangles.
 struct SphericalTriangle {
-    Vec3d a{}, b{}, c{};      // unit directions from x to p0, p1, p2
-    double solid_angle = 0;   // Ω; 0 when degenerate or seen edge-on
-    double alpha = 0;         // the spherical triangle's angle at a
+    Vec3d a{}, b{}, c{};     // unit directions from x to p0, p1, p2
+    double solid_angle = 0;  // Ω; 0 when degenerate or seen edge-on
+    double alpha = 0;        // the spherical triangle's angle at a
 };
 
 SphericalTriangle make_spherical_triangle(Vec3 x, Vec3 p0, Vec3 p1, Vec3 p2);

@@ -46,11 +46,13 @@ double uniformity_p_value(Vec3 x, Vec3 p0, Vec3 p1, Vec3 p2, int samples, std::u
     for (int i = 0; i < n; ++i)
         for (int j = 0; i + j < n; ++j) {
             const double b1 = double(i) / n, b2 = double(j) / n, s = 1.0 / n;
-            const Vec3 a = lerp3(p0, p1, p2, b1, b2), b = lerp3(p0, p1, p2, b1 + s, b2), c = lerp3(p0, p1, p2, b1, b2 + s);
+            const Vec3 a = lerp3(p0, p1, p2, b1, b2), b = lerp3(p0, p1, p2, b1 + s, b2),
+                       c = lerp3(p0, p1, p2, b1, b2 + s);
             expected[2 * (i * n + j)] = make_spherical_triangle(x, a, b, c).solid_angle / t.solid_angle * samples;
             if (i + j + 1 < n) {
                 const Vec3 d = lerp3(p0, p1, p2, b1 + s, b2 + s);
-                expected[2 * (i * n + j) + 1] = make_spherical_triangle(x, b, d, c).solid_angle / t.solid_angle * samples;
+                expected[2 * (i * n + j) + 1] =
+                    make_spherical_triangle(x, b, d, c).solid_angle / t.solid_angle * samples;
             }
         }
     const Vec3 e1 = p1 - p0, e2 = p2 - p0, normal = cross(e1, e2);
@@ -86,11 +88,11 @@ TEST(SphericalTriangle, SamplesAreUniformOverTheSolidAngle) {
         Vec3 x, p0, p1, p2;
     };
     const Case cases[] = {
-        {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}},                   // an octant
-        {{0.1f, 0.2f, 0}, {-1, -1, 2}, {1.5f, -0.5f, 2}, {0, 1, 2}},    // ahead, large
-        {{0, 0, 0}, {5, 0.2f, 1}, {5, 0.3f, 1.2f}, {5.1f, 0.9f, 1}},    // small and thin
-        {{0, 0.01f, 0}, {-1, 0, -1}, {1, 0, -1}, {0, 0, 1}},            // almost on its plane
-        {{3, 2, 1}, {0, 0, 0}, {0.2f, 0, 0}, {0, 0, 4}},                // long sliver, oblique
+        {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}},                 // an octant
+        {{0.1f, 0.2f, 0}, {-1, -1, 2}, {1.5f, -0.5f, 2}, {0, 1, 2}},  // ahead, large
+        {{0, 0, 0}, {5, 0.2f, 1}, {5, 0.3f, 1.2f}, {5.1f, 0.9f, 1}},  // small and thin
+        {{0, 0.01f, 0}, {-1, 0, -1}, {1, 0, -1}, {0, 0, 1}},          // almost on its plane
+        {{3, 2, 1}, {0, 0, 0}, {0.2f, 0, 0}, {0, 0, 4}},              // long sliver, oblique
     };
     const double significance = 1e-3 / std::size(cases);
     std::uint64_t seed = 1;

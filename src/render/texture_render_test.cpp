@@ -9,11 +9,11 @@
 #include <cmath>
 #include <string>
 
-#include "render/render.h"
-#include "render/shading.h"
 #include "io/images/image_test_files.h"
 #include "io/polygon_test_files.h"
 #include "io/scene_json/scene_file.h"
+#include "render/render.h"
+#include "render/shading.h"
 
 namespace sombra {
 namespace {
@@ -22,7 +22,8 @@ using testing::TempFolder;
 
 // A camera framing the square [-1, 1]² of the plane z = 0 exactly: pixel
 // (i, j) of W × H looks at x = (2i + 1)/W − 1, y = 1 − (2j + 1)/H.
-const std::string kCamera = R"("camera": {"origin": [0, 0, 4], "left": [-1, 0, 0], "up": [0, 1, 0], "forward": [0, 0, -4]})";
+const std::string kCamera =
+    R"("camera": {"origin": [0, 0, 4], "left": [-1, 0, 0], "up": [0, 1, 0], "forward": [0, 0, -4]})";
 // That square, counter-clockwise seen from the camera, uv (0, 0) at its bottom left.
 const std::string kQuadObj = "v -1 -1 0\nv 1 -1 0\nv 1 1 0\nv -1 1 0\nvt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\n";
 
@@ -46,8 +47,7 @@ class TextureRender : public ::testing::Test {
 protected:
     void SetUp() override {
         // Top row red, green; bottom row blue, white: no two corners alike.
-        testing::write_png_file(tmp.path / "corners.png", 2, 2, 3, 8,
-                                {255, 0, 0, 0, 255, 0, 0, 0, 255, 255, 255, 255});
+        testing::write_png_file(tmp.path / "corners.png", 2, 2, 3, 8, {255, 0, 0, 0, 255, 0, 0, 0, 255, 255, 255, 255});
     }
     TempFolder tmp;
 };
@@ -56,8 +56,8 @@ TEST_F(TextureRender, ObjQuadShowsEachTexelWhereTheGeometryPutsIt) {
     // Emission textured by map_Ke, no lights: each pixel is the texture at its uv.
     tmp.write("quad.obj", "mtllib quad.mtl\n" + kQuadObj + "usemtl glow\nf 1/1 2/2 3/3 4/4\n");
     tmp.write("quad.mtl", "newmtl glow\nKd 0 0 0\nKe 1 1 1\nmap_Ke corners.png\n");
-    tmp.write("s.json", R"({"render": {"width": 4, "height": 4}, )" + kCamera +
-                            R"(, "objects": [{"file": "quad.obj"}]})");
+    tmp.write("s.json",
+              R"({"render": {"width": 4, "height": 4}, )" + kCamera + R"(, "objects": [{"file": "quad.obj"}]})");
     const Film film = render_file(tmp.path / "s.json");
     // Pixel (0, 0) sees uv (1/8, 7/8): ¾·¾ of the top-left texel (red), ¼·¾
     // of green (right of it), ¾·¼ of blue (below), ¼·¼ of white; repeat wraps
@@ -121,13 +121,14 @@ TEST_F(TextureRender, ConstantNormalMapShadesLikeAPlaneWithThatNormal) {
     const Vec3 n = decoded_normal();
     char normal_line[128];
     std::snprintf(normal_line, sizeof normal_line, "vn %.9g %.9g %.9g\n", n.x, n.y, n.z);
-    tmp.write("tilted.obj", "v -1 -1 0\nv 1 -1 0\nv 1 1 0\nv -1 1 0\n" + std::string(normal_line) +
-                                "f 1//1 2//1 3//1 4//1\n");
+    tmp.write("tilted.obj",
+              "v -1 -1 0\nv 1 -1 0\nv 1 1 0\nv -1 1 0\n" + std::string(normal_line) + "f 1//1 2//1 3//1 4//1\n");
     const auto scene = [&](const std::string& file, const std::string& extra) {
         return R"({"render": {"width": 8, "height": 8}, )" + kCamera +
                R"(, "materials": {"m": {"type": "phong", "kd": [0.5, 0.5, 0.5], "ks": [0.4, 0.4, 0.4], "shininess": 20)" +
                extra + R"(}}, "lights": [{"position": [0.5, 0.8, 1.5], "intensity": [4, 4, 4]}],
-                  "objects": [{"file": ")" + file + R"(", "material": "m"}]})";
+                  "objects": [{"file": ")" +
+               file + R"(", "material": "m"}]})";
     };
     tmp.write("mapped.json", scene("mapped.obj", R"(, "normal_map": "n.png")"));
     tmp.write("tilted.json", scene("tilted.obj", ""));
@@ -141,7 +142,8 @@ TEST_F(TextureRender, ConstantNormalMapShadesLikeAPlaneWithThatNormal) {
             const Vec3 want = tilted.at(i, j);
             expect_near(mapped.at(i, j), want, 1e-5f + 1e-4f * max_component(want),
                         "pixel " + std::to_string(i) + ", " + std::to_string(j));
-            largest_difference_from_flat = std::max(largest_difference_from_flat, max_component(abs(flat.at(i, j) - want)));
+            largest_difference_from_flat =
+                std::max(largest_difference_from_flat, max_component(abs(flat.at(i, j) - want)));
         }
     EXPECT_GT(largest_difference_from_flat, 0.01f) << "the tilt must show, or this test proves nothing";
 }

@@ -24,7 +24,7 @@ CameraSpec lens_spec(float radius, float fov = 40) {
 
 // The point of `ray` on the plane `distance` along the camera's unit forward axis.
 Vec3d on_plane(const Camera& c, const Ray& ray, double distance) {
-    const Vec3d f = to_double(c.forward) , o = to_double(c.origin), ro = to_double(ray.origin), d = to_double(ray.dir);
+    const Vec3d f = to_double(c.forward), o = to_double(c.origin), ro = to_double(ray.origin), d = to_double(ray.dir);
     const double f_len = length(f);
     const Vec3d fu{f.x / f_len, f.y / f_len, f.z / f_len};
     const double tau = (distance - dot(ro - o, fu)) / dot(d, fu);

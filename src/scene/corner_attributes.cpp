@@ -35,7 +35,8 @@ void append_attribute(std::vector<T>& out_values, std::vector<Index3>& out_indic
     }
     for (const Index3& corners : in_indices) {
         Index3 mapped;
-        for (int c = 0; c < 3; ++c) mapped[c] = corners[c] < usable.size() && usable[corners[c]] ? base + corners[c] : kNone;
+        for (int c = 0; c < 3; ++c)
+            mapped[c] = corners[c] < usable.size() && usable[corners[c]] ? base + corners[c] : kNone;
         if (mirrored) std::swap(mapped[1], mapped[2]);
         out_indices.push_back(mapped);
     }

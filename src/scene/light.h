@@ -50,7 +50,8 @@ inline Vec3 unit_direction(Vec3 v) {
 
 // Angles in degrees from the axis, 0 ≤ inner ≤ outer ≤ 90 and outer > 0
 // (checked by the readers); `axis` need not be unit length.
-inline PunctualLight make_spot_light(Vec3 position, Vec3 axis, Vec3 intensity, float outer_degrees, float inner_degrees) {
+inline PunctualLight make_spot_light(Vec3 position, Vec3 axis, Vec3 intensity, float outer_degrees,
+                                     float inner_degrees) {
     constexpr double kRadiansPerDegree = 3.14159265358979323846 / 180.0;
     PunctualLight light;
     light.type = LightType::Spot;

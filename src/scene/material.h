@@ -91,8 +91,9 @@ struct Material {
     Vec3 ke{0.0f};        // emitted radiance (two-sided unless emits_front_only)
     Vec3 kr{1.0f};        // Mirror reflectance, each channel in [0, 1]
     Vec3 kt{1.0f};        // Dielectric transmission tint, each channel in [0, 1]
-    float ior = 1.5f;     // Dielectric index of refraction inside, > 1 (outside is 1); Pbr: sets f0 = ((1 − ior)/(1 + ior))²
-    float roughness = 0;  // Conductor and Pbr roughness r in [0, 1]; GGX α = r²
+    float ior =
+        1.5f;  // Dielectric index of refraction inside, > 1 (outside is 1); Pbr: sets f0 = ((1 − ior)/(1 + ior))²
+    float roughness = 0;    // Conductor and Pbr roughness r in [0, 1]; GGX α = r²
     Vec3 base_color{1.0f};  // Pbr base colour, each channel in [0, 1]: diffuse albedo, and f0 of the metal
     float metallic = 0.0f;  // Pbr metalness m in [0, 1]: the mix (1 − m)·dielectric + m·metal
     // Quad lights (§10) emit only toward the side their winding normal
@@ -117,8 +118,10 @@ struct RgbTextureSlot {
     bool reflectance;
 };
 inline constexpr RgbTextureSlot kRgbTextureSlots[] = {
-    {"kd", &Material::kd, &MaterialTextures::kd, true}, {"ks", &Material::ks, &MaterialTextures::ks, true},
-    {"kr", &Material::kr, &MaterialTextures::kr, true}, {"kt", &Material::kt, &MaterialTextures::kt, true},
+    {"kd", &Material::kd, &MaterialTextures::kd, true},
+    {"ks", &Material::ks, &MaterialTextures::ks, true},
+    {"kr", &Material::kr, &MaterialTextures::kr, true},
+    {"kt", &Material::kt, &MaterialTextures::kt, true},
     {"ke", &Material::ke, &MaterialTextures::ke, false},
     {"base_color", &Material::base_color, &MaterialTextures::base_color, true},
 };

@@ -41,9 +41,9 @@ struct CameraSpec {
 // the background, is seen by rays that leave the scene and, under the path
 // integrator, lights it.
 struct EnvironmentMap {
-    std::string file;        // as written in the scene file (for messages)
-    HdrImage image;          // finite, non-negative linear RGB
-    float scale = 1;         // radiance = scale × texel, scale ≥ 0
+    std::string file;  // as written in the scene file (for messages)
+    HdrImage image;    // finite, non-negative linear RGB
+    float scale = 1;   // radiance = scale × texel, scale ≥ 0
     float rotate_y_degrees = 0;
 };
 
@@ -63,7 +63,7 @@ struct Scene {
     std::vector<Material> materials;
     std::vector<Texture> textures;  // the materials' TextureRefs index this table (spec §12)
     std::vector<PunctualLight> lights;
-    TriangleMesh geometry;  // all objects, world space; material_ids index materials
+    TriangleMesh geometry;             // all objects, world space; material_ids index materials
     std::vector<SceneObject> objects;  // in triangle order, covering geometry's triangles
 };
 

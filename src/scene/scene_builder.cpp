@@ -30,8 +30,8 @@ bool indices_in_range(const TriangleMesh& mesh) {
 }  // namespace
 
 MeshSizes sizes_of(const TriangleMesh& mesh) {
-    return MeshSizes{mesh.positions.size(), mesh.triangles.size(), mesh.normals.size(),  mesh.uvs.size(),
-                     mesh.tangents.size(),  mesh.colors.size(),    mesh.has_normals(),   mesh.has_uvs(),
+    return MeshSizes{mesh.positions.size(), mesh.triangles.size(), mesh.normals.size(), mesh.uvs.size(),
+                     mesh.tangents.size(),  mesh.colors.size(),    mesh.has_normals(),  mesh.has_uvs(),
                      mesh.has_tangents(),   mesh.has_colors()};
 }
 
@@ -49,7 +49,9 @@ MeshSizes& operator+=(MeshSizes& sum, const MeshSizes& more) {
     return sum;
 }
 
-std::uint32_t SceneBuilder::add_texture(Texture texture) { return sombra::add_texture(scene_.textures, std::move(texture)); }
+std::uint32_t SceneBuilder::add_texture(Texture texture) {
+    return sombra::add_texture(scene_.textures, std::move(texture));
+}
 
 std::uint32_t SceneBuilder::add_material(Material material) {
     material.textured = any_texture(material.textures);
@@ -61,7 +63,8 @@ std::uint32_t SceneBuilder::add_materials(std::span<const Material> materials, s
     const std::size_t first = scene_.materials.size();
     scene_.materials.insert(scene_.materials.end(), materials.begin(), materials.end());
     std::vector<std::uint32_t> texture_index(textures.size());
-    for (std::size_t i = 0; i < textures.size(); ++i) texture_index[i] = sombra::add_texture(scene_.textures, textures[i]);
+    for (std::size_t i = 0; i < textures.size(); ++i)
+        texture_index[i] = sombra::add_texture(scene_.textures, textures[i]);
     renumber_textures(first, texture_index);
     return u32(first);
 }
@@ -151,7 +154,8 @@ MeshProblem SceneBuilder::add_mesh(const TriangleMesh& in, std::span<const Mater
     }
     MaterialJoin join{add_materials(materials, textures), materials.size(), std::nullopt};
     for (std::size_t i = 0; i < in.triangles.size(); ++i)
-        out.material_ids.push_back(scene_material(i < in.material_ids.size() ? in.material_ids[i] : kNoMaterialId, join));
+        out.material_ids.push_back(
+            scene_material(i < in.material_ids.size() ? in.material_ids[i] : kNoMaterialId, join));
     return MeshProblem::None;
 }
 

@@ -44,7 +44,8 @@ Material material_with_kd_texture(const std::string& name, std::uint32_t texture
 TEST(SceneBuilder, PlacedMeshesMoveMirrorAndRenormalise) {
     SceneBuilder b;
     const std::uint32_t grey = b.add_material(Material{"grey", MaterialType::Diffuse, Vec3{0.5f}});
-    ASSERT_EQ(b.add_mesh(corner_triangle(), {}, {}, MeshPlacement{"/objects/0", "a.obj", make_translate({0, 0, 5}), grey}),
+    ASSERT_EQ(b.add_mesh(corner_triangle(), {}, {},
+                         MeshPlacement{"/objects/0", "a.obj", make_translate({0, 0, 5}), grey}),
               MeshProblem::None);
     // A mirror (x → −x) keeps the winding's side by swapping corners 1 and 2.
     ASSERT_EQ(b.add_mesh(corner_triangle(), {}, {}, MeshPlacement{"/objects/1", "a.obj", make_scale({-1, 1, 1}), grey}),
@@ -130,7 +131,7 @@ TEST(SceneBuilder, MovedMeshEqualsCopiedMesh) {
 TEST(SceneBuilder, ProblemsAreReportedInOrder) {
     TriangleMesh bad = corner_triangle();
     bad.triangles.push_back({0, 1, 3});  // vertex 3 does not exist
-    bad.positions[1] = {4, 0, 0};          // 4 × 3e38 overflows a float
+    bad.positions[1] = {4, 0, 0};        // 4 × 3e38 overflows a float
     SceneBuilder b;
     EXPECT_EQ(b.add_mesh(bad, {}, {}, MeshPlacement{"o", "", Transform{}, 0}), MeshProblem::BadVertexIndex);
     // Placement is checked first: a finite vertex sent to infinity.

@@ -51,8 +51,9 @@ Span span(float u, int n, TextureWrap wrap) {
 
 // The RGBA of texel (column x, row y from the top) of a grid `width` texels wide.
 Rgba texel(const float* texels, int width, int channels, int x, int y) {
-    const std::size_t at = (static_cast<std::size_t>(y) * static_cast<std::size_t>(width) + static_cast<std::size_t>(x)) *
-                           static_cast<std::size_t>(channels);
+    const std::size_t at =
+        (static_cast<std::size_t>(y) * static_cast<std::size_t>(width) + static_cast<std::size_t>(x)) *
+        static_cast<std::size_t>(channels);
     const float* p = texels + at;
     switch (channels) {
         case 1: return {p[0], p[0], p[0], 1.0f};

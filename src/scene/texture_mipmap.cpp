@@ -32,7 +32,8 @@ std::vector<BoxTaps> box_taps(int n, int m) {
         BoxTaps& t = taps[static_cast<std::size_t>(i)];
         t.first = static_cast<int>(lo / m);
         for (int k = t.first; static_cast<long long>(k) * m < hi; ++k) {
-            const long long overlap = std::min(hi, static_cast<long long>(k + 1) * m) - std::max(lo, static_cast<long long>(k) * m);
+            const long long overlap =
+                std::min(hi, static_cast<long long>(k + 1) * m) - std::max(lo, static_cast<long long>(k) * m);
             assert(t.count < 3);
             t.weight[static_cast<std::size_t>(t.count++)] = static_cast<double>(overlap) / static_cast<double>(n);
         }
@@ -45,7 +46,8 @@ TextureLevel half_level(const float* from, int width, int height, int channels) 
     TextureLevel to;
     to.width = width / 2;
     to.height = height / 2;
-    to.texels.resize(static_cast<std::size_t>(to.width) * static_cast<std::size_t>(to.height) * static_cast<std::size_t>(channels));
+    to.texels.resize(static_cast<std::size_t>(to.width) * static_cast<std::size_t>(to.height) *
+                     static_cast<std::size_t>(channels));
     const auto c = static_cast<std::size_t>(channels);
     if (width % 2 == 0 && height % 2 == 0) {
         // Both sides even (every level of a power-of-two texture): plain 2 × 2
@@ -80,12 +82,15 @@ TextureLevel half_level(const float* from, int width, int height, int channels) 
                 for (int b = 0; b < ry.count; ++b) {
                     const std::size_t row = static_cast<std::size_t>(ry.first + b) * static_cast<std::size_t>(width);
                     for (int a = 0; a < rx.count; ++a) {
-                        const double w = ry.weight[static_cast<std::size_t>(b)] * rx.weight[static_cast<std::size_t>(a)];
+                        const double w =
+                            ry.weight[static_cast<std::size_t>(b)] * rx.weight[static_cast<std::size_t>(a)];
                         const float* p = from + (row + static_cast<std::size_t>(rx.first + a)) * c;
                         for (std::size_t k = 0; k < c; ++k) sum[k] += w * static_cast<double>(p[k]);
                     }
                 }
-                float* out = to.texels.data() + (static_cast<std::size_t>(y) * static_cast<std::size_t>(to.width) + static_cast<std::size_t>(x)) * c;
+                float* out = to.texels.data() + (static_cast<std::size_t>(y) * static_cast<std::size_t>(to.width) +
+                                                 static_cast<std::size_t>(x)) *
+                                                    c;
                 for (std::size_t k = 0; k < c; ++k) out[k] = static_cast<float>(sum[k]);
             }
         }

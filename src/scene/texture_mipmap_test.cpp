@@ -91,7 +91,9 @@ TEST(MipPyramid, EveryLevelKeepsTheTexturesMean) {
 
 TEST(MipPyramid, CostsAtMostAThirdOfTheTexture) {
     const auto check = [](int width, int height) {
-        Texture t = make_texture(width, height, 1, std::vector<float>(static_cast<std::size_t>(width) * static_cast<std::size_t>(height), 1.0f));
+        Texture t =
+            make_texture(width, height, 1,
+                         std::vector<float>(static_cast<std::size_t>(width) * static_cast<std::size_t>(height), 1.0f));
         build_mip_pyramid(t);
         std::size_t levels = 0;
         int w = width, h = height;

@@ -66,8 +66,8 @@ enum class Semantic { Position, Normal, Tangent, Texcoord, Color };
 
 struct AccessorReader {
     const tinygltf::Model& model;
-    std::string file;         // the path, for messages
-    bool quantized = false;   // the file lists KHR_mesh_quantization in extensionsUsed
+    std::string file;        // the path, for messages
+    bool quantized = false;  // the file lists KHR_mesh_quantization in extensionsUsed
 };
 
 // Accessor `index` as `components` floats per element (3 for positions and
@@ -95,13 +95,13 @@ std::size_t accessor_count(const AccessorReader& r, int index, const std::string
 // One triangle primitive in the file's coordinates, read and checked.
 struct PrimitiveData {
     std::vector<Vec3> positions;
-    std::vector<Vec3> normals;           // empty, or one per position
-    std::vector<Vec2> uvs;               // empty, or one per position; sombra's convention (v = 0 at the bottom)
-    std::vector<VertexTangent> tangents; // empty, or one per position (TANGENT; not yet normalised)
-    std::vector<Rgba> colors;            // empty, or one per position (COLOR_0, clamped to [0, 1])
-    std::vector<std::uint32_t> indices;  // three per triangle, each < positions.size()
-    int material = -1;                   // index into the file's materials; -1: none
-    std::size_t clamped_colors = 0;      // colour components the file gave outside [0, 1]
+    std::vector<Vec3> normals;            // empty, or one per position
+    std::vector<Vec2> uvs;                // empty, or one per position; sombra's convention (v = 0 at the bottom)
+    std::vector<VertexTangent> tangents;  // empty, or one per position (TANGENT; not yet normalised)
+    std::vector<Rgba> colors;             // empty, or one per position (COLOR_0, clamped to [0, 1])
+    std::vector<std::uint32_t> indices;   // three per triangle, each < positions.size()
+    int material = -1;                    // index into the file's materials; -1: none
+    std::size_t clamped_colors = 0;       // colour components the file gave outside [0, 1]
 };
 
 // TANGENT as read (x, y, z, w per vertex) → tangents, the handedness the

@@ -102,25 +102,27 @@ View make_view(const AccessorReader& r, int index, const std::string& what) {
 
     v.stride = bv.byteStride == 0 ? element : bv.byteStride;
     if (bv.byteStride != 0 && (bv.byteStride < element || bv.byteStride % size != 0))
-        fail(r, index, what, "byteStride " + std::to_string(bv.byteStride) + " does not fit elements of " +
-                                 std::to_string(element) + " bytes");
+        fail(r, index, what,
+             "byteStride " + std::to_string(bv.byteStride) + " does not fit elements of " + std::to_string(element) +
+                 " bytes");
     if ((bv.byteOffset + a.byteOffset) % size != 0 || a.byteOffset % size != 0)
         fail(r, index, what, "byteOffset is not a multiple of the component size (" + std::to_string(size) + ")");
 
     // Everything read must lie in the view, and the view in the buffer.
     if (bv.byteOffset > buffer.size() || bv.byteLength > buffer.size() - bv.byteOffset)
-        fail(r, index, what, "bufferView " + std::to_string(a.bufferView) + " (" + std::to_string(bv.byteLength) +
-                                 " bytes at " + std::to_string(bv.byteOffset) + ") overruns its buffer of " +
-                                 std::to_string(buffer.size()) + " bytes");
+        fail(r, index, what,
+             "bufferView " + std::to_string(a.bufferView) + " (" + std::to_string(bv.byteLength) + " bytes at " +
+                 std::to_string(bv.byteOffset) + ") overruns its buffer of " + std::to_string(buffer.size()) +
+                 " bytes");
     // byteOffset + (count − 1) × stride + element ≤ byteLength, without overflow.
     const std::uint64_t last = static_cast<std::uint64_t>(a.count) - 1;
     const bool fits = a.byteOffset <= bv.byteLength && element <= bv.byteLength - a.byteOffset &&
                       last <= (bv.byteLength - a.byteOffset - element) / v.stride;
     if (!fits)
-        fail(r, index, what, std::to_string(a.count) + " elements of " + std::to_string(element) + " bytes, stride " +
-                                 std::to_string(v.stride) + ", at byteOffset " + std::to_string(a.byteOffset) +
-                                 " overrun bufferView " + std::to_string(a.bufferView) + " (" +
-                                 std::to_string(bv.byteLength) + " bytes)");
+        fail(r, index, what,
+             std::to_string(a.count) + " elements of " + std::to_string(element) + " bytes, stride " +
+                 std::to_string(v.stride) + ", at byteOffset " + std::to_string(a.byteOffset) + " overrun bufferView " +
+                 std::to_string(a.bufferView) + " (" + std::to_string(bv.byteLength) + " bytes)");
     v.data = buffer.data() + bv.byteOffset + a.byteOffset;
     return v;
 }
@@ -194,7 +196,12 @@ std::string type_problem(const View& v, Semantic semantic, bool quantized) {
             break;
     }
     if (v.components != want)
-        return std::string("type ") + type_name(v.type) + " where " + (semantic == Semantic::Color ? "VEC3 or VEC4" : type_name(want == 2 ? TINYGLTF_TYPE_VEC2 : want == 3 ? TINYGLTF_TYPE_VEC3 : TINYGLTF_TYPE_VEC4)) + " is expected";
+        return std::string("type ") + type_name(v.type) + " where " +
+               (semantic == Semantic::Color ? "VEC3 or VEC4"
+                                            : type_name(want == 2   ? TINYGLTF_TYPE_VEC2
+                                                        : want == 3 ? TINYGLTF_TYPE_VEC3
+                                                                    : TINYGLTF_TYPE_VEC4)) +
+               " is expected";
     if (!ok)
         return std::string(v.normalized ? "normalized " : "") + component_name(t) + " components are not allowed here" +
                (quantized || !small_int ? "" : " (without KHR_mesh_quantization)");
@@ -244,9 +251,9 @@ std::vector<std::uint32_t> read_indices(const AccessorReader& r, int index, std:
             std::memcpy(&x, p, 4);
         }
         if (x >= vertex_count)
-            fail(r, index, what, "index " + std::to_string(x) + " (element " + std::to_string(i) +
-                                     ") is out of range: the primitive has " + std::to_string(vertex_count) +
-                                     " vertices");
+            fail(r, index, what,
+                 "index " + std::to_string(x) + " (element " + std::to_string(i) +
+                     ") is out of range: the primitive has " + std::to_string(vertex_count) + " vertices");
         out[i] = x;
     }
     return out;

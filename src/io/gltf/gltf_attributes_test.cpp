@@ -89,7 +89,8 @@ TEST(GltfAttributes, Vec3FloatColoursGetAlphaOne) {
                               diag);
     const auto by_position = colors_by_position(m.mesh);
     for (std::size_t i = 0; i < 4; ++i)
-        EXPECT_EQ(by_position.at({kCorners[i].x, kCorners[i].y, kCorners[i].z}), (Rgba{rgb[i].x, rgb[i].y, rgb[i].z, 1.0f}));
+        EXPECT_EQ(by_position.at({kCorners[i].x, kCorners[i].y, kCorners[i].z}),
+                  (Rgba{rgb[i].x, rgb[i].y, rgb[i].z, 1.0f}));
     EXPECT_TRUE(diag.warnings.empty()) << diag.warnings.front();
 }
 
@@ -97,16 +98,16 @@ TEST(GltfAttributes, NormalisedUnsignedColoursAreScaledToOne) {
     const std::vector<std::uint8_t> bytes{255, 0, 51, 255, 0, 255, 0, 128, 0, 0, 255, 0, 102, 204, 153, 51};
     const std::vector<std::uint16_t> shorts{65535, 0, 13107, 0, 65535, 0, 0, 65535, 0, 26214, 52428, 39321};
     Diagnostics diag;
-    const LoadedMesh a = load(quad_with([&](GltfFile& f) {
-                                  return nlohmann::json{
-                                      {"COLOR_0", f.add_array(bytes, gltf_test::kUnsignedByte, 4, "VEC4", true)}};
-                              }),
-                              diag);
-    const LoadedMesh b = load(quad_with([&](GltfFile& f) {
-                                  return nlohmann::json{
-                                      {"COLOR_0", f.add_array(shorts, gltf_test::kUnsignedShort, 4, "VEC3", true)}};
-                              }),
-                              diag);
+    const LoadedMesh a =
+        load(quad_with([&](GltfFile& f) {
+                 return nlohmann::json{{"COLOR_0", f.add_array(bytes, gltf_test::kUnsignedByte, 4, "VEC4", true)}};
+             }),
+             diag);
+    const LoadedMesh b =
+        load(quad_with([&](GltfFile& f) {
+                 return nlohmann::json{{"COLOR_0", f.add_array(shorts, gltf_test::kUnsignedShort, 4, "VEC3", true)}};
+             }),
+             diag);
     const auto bytes_at = colors_by_position(a.mesh), shorts_at = colors_by_position(b.mesh);
     for (std::size_t i = 0; i < 4; ++i) {
         const std::array<float, 3> p{kCorners[i].x, kCorners[i].y, kCorners[i].z};
@@ -132,7 +133,8 @@ TEST(GltfAttributes, FloatColoursOutsideTheUnitRangeAreClampedWithAWarning) {
     EXPECT_EQ(colors_by_position(m.mesh).at({0, 0, 0}), (Rgba{1, 0, 0.5f, 1}));
     EXPECT_EQ(colors_by_position(m.mesh).at({1, 0, 0}), (Rgba{0, 0, 0, 1}));
     ASSERT_EQ(diag.warnings.size(), 1u);
-    EXPECT_NE(diag.warnings[0].find("COLOR_0: 3 components outside [0, 1] clamped"), std::string::npos) << diag.warnings[0];
+    EXPECT_NE(diag.warnings[0].find("COLOR_0: 3 components outside [0, 1] clamped"), std::string::npos)
+        << diag.warnings[0];
 }
 
 // Tangents (x, y, z, w) per corner of kCorners: lengths other than 1 and both handednesses.
@@ -140,7 +142,9 @@ const std::vector<float> kTangents{2, 0, 0, 1, 0, 3, 0, -1, 0.6f, 0.8f, 0, 1, 0,
 
 GltfFile tangent_quad(nlohmann::json node = nlohmann::json::object()) {
     return quad_with(
-        [](GltfFile& f) { return nlohmann::json{{"TANGENT", f.add_array(kTangents, gltf_test::kFloat, 4, "VEC4")}}; },
+        [](GltfFile& f) {
+            return nlohmann::json{{"TANGENT", f.add_array(kTangents, gltf_test::kFloat, 4, "VEC4")}};
+        },
         std::move(node));
 }
 
@@ -173,8 +177,8 @@ TEST(GltfAttributes, NodeTransformsTurnTangentsAndMirrorsFlipTheirHandedness) {
     expect_near(by_position.at({-1, 1, 0}), {-0.6f, 0.8f, 0, -1}, "corner 2 mirrored");
     expect_near(by_position.at({0, 1, 0}), {0, 0, -1, 1}, "corner 3 mirrored");
     for (const Index3& t : mirrored.triangles)
-        EXPECT_GT(testing::twice_area_along(mirrored.positions[t[0]], mirrored.positions[t[1]], mirrored.positions[t[2]],
-                                            {0, 0, 1}),
+        EXPECT_GT(testing::twice_area_along(mirrored.positions[t[0]], mirrored.positions[t[1]],
+                                            mirrored.positions[t[2]], {0, 0, 1}),
                   0);
 }
 
@@ -197,11 +201,12 @@ TEST(GltfAttributes, ZeroTangentsAreDroppedWithAWarningAndNonFiniteOnesAreAnErro
     std::vector<float> tangents = kTangents;
     tangents[0] = 0;  // corner 0: (0, 0, 0)
     Diagnostics diag;
-    const TriangleMesh m = load(quad_with([&](GltfFile& f) {
-                                    return nlohmann::json{{"TANGENT", f.add_array(tangents, gltf_test::kFloat, 4, "VEC4")}};
-                                }),
-                                diag)
-                               .mesh;
+    const TriangleMesh m =
+        load(quad_with([&](GltfFile& f) {
+                 return nlohmann::json{{"TANGENT", f.add_array(tangents, gltf_test::kFloat, 4, "VEC4")}};
+             }),
+             diag)
+            .mesh;
     ASSERT_TRUE(m.has_tangents());
     for (std::size_t t = 0; t < m.triangles.size(); ++t)
         for (int c = 0; c < 3; ++c)
@@ -230,11 +235,13 @@ GltfFile draco_quad(bool colour_marked_normalised) {
     builder.Start(2);
     const int position = builder.AddAttribute(draco::GeometryAttribute::POSITION, 3, draco::DT_FLOAT32);
     const int tangent = builder.AddAttribute(draco::GeometryAttribute::GENERIC, 4, draco::DT_FLOAT32);
-    const int colour = builder.AddAttribute(draco::GeometryAttribute::COLOR, 3, draco::DT_UINT8, colour_marked_normalised);
+    const int colour =
+        builder.AddAttribute(draco::GeometryAttribute::COLOR, 3, draco::DT_UINT8, colour_marked_normalised);
     const std::uint8_t rgb[4][3] = {{255, 0, 0}, {0, 255, 0}, {0, 0, 255}, {51, 102, 153}};
     for (int face = 0; face < 2; ++face) {
         const std::uint32_t* c = kQuadIndices.data() + 3 * face;
-        builder.SetAttributeValuesForFace(position, draco::FaceIndex(face), &kCorners[c[0]], &kCorners[c[1]], &kCorners[c[2]]);
+        builder.SetAttributeValuesForFace(position, draco::FaceIndex(face), &kCorners[c[0]], &kCorners[c[1]],
+                                          &kCorners[c[2]]);
         builder.SetAttributeValuesForFace(tangent, draco::FaceIndex(face), &kTangents[4 * c[0]], &kTangents[4 * c[1]],
                                           &kTangents[4 * c[2]]);
         builder.SetAttributeValuesForFace(colour, draco::FaceIndex(face), rgb[c[0]], rgb[c[1]], rgb[c[2]]);
@@ -246,10 +253,11 @@ GltfFile draco_quad(bool colour_marked_normalised) {
 
     GltfFile f;
     const int view = f.add_view(encoded.data(), encoded.size());
-    f.doc["accessors"] = {{{"componentType", gltf_test::kFloat}, {"count", 4}, {"type", "VEC3"}},
-                          {{"componentType", gltf_test::kFloat}, {"count", 4}, {"type", "VEC4"}},
-                          {{"componentType", gltf_test::kUnsignedByte}, {"count", 4}, {"type", "VEC3"}, {"normalized", true}},
-                          {{"componentType", gltf_test::kUnsignedInt}, {"count", 6}, {"type", "SCALAR"}}};
+    f.doc["accessors"] = {
+        {{"componentType", gltf_test::kFloat}, {"count", 4}, {"type", "VEC3"}},
+        {{"componentType", gltf_test::kFloat}, {"count", 4}, {"type", "VEC4"}},
+        {{"componentType", gltf_test::kUnsignedByte}, {"count", 4}, {"type", "VEC3"}, {"normalized", true}},
+        {{"componentType", gltf_test::kUnsignedInt}, {"count", 6}, {"type", "SCALAR"}}};
     f.doc["meshes"] = {{{"primitives",
                          {{{"attributes", {{"POSITION", 0}, {"TANGENT", 1}, {"COLOR_0", 2}}},
                            {"indices", 3},

@@ -42,14 +42,20 @@ const Broken kBroken[] = {
          primitive(f)["indices"] = f.add_indices(bad);
      },
      "index 7 (element 2) is out of range"},
-    {"missing buffer file", [](GltfFile& f) { f.doc["buffers"] = {{{"byteLength", 16}, {"uri", "gone.bin"}}}; }, "gone.bin"},
+    {"missing buffer file",
+     [](GltfFile& f) {
+         f.doc["buffers"] = {{{"byteLength", 16}, {"uri", "gone.bin"}}};
+     },
+     "gone.bin"},
     {"accessor past its buffer view", [](GltfFile& f) { f.doc["accessors"][0]["count"] = 5; }, "overrun bufferView"},
     {"huge count", [](GltfFile& f) { f.doc["accessors"][0]["count"] = 4294967295u; }, "overrun bufferView"},
     {"huge byteOffset", [](GltfFile& f) { f.doc["accessors"][0]["byteOffset"] = 18446744073709551612u; }, "accessor 0"},
     {"view past its buffer", [](GltfFile& f) { f.doc["bufferViews"][0]["byteLength"] = 1 << 20; }, ""},
     {"misaligned accessor", [](GltfFile& f) { f.doc["accessors"][1]["byteOffset"] = 2; }, "not a multiple"},
-    {"byteStride smaller than an element", [](GltfFile& f) { f.doc["bufferViews"][0]["byteStride"] = 4; }, "byteStride"},
-    {"float indices", [](GltfFile& f) { f.doc["accessors"][3]["componentType"] = gltf_test::kFloat; }, "unsigned integers"},
+    {"byteStride smaller than an element", [](GltfFile& f) { f.doc["bufferViews"][0]["byteStride"] = 4; },
+     "byteStride"},
+    {"float indices", [](GltfFile& f) { f.doc["accessors"][3]["componentType"] = gltf_test::kFloat; },
+     "unsigned integers"},
     {"VEC2 positions", [](GltfFile& f) { f.doc["accessors"][0]["type"] = "VEC2"; }, "VEC3 is expected"},
     {"short positions without quantization",
      [](GltfFile& f) { f.doc["accessors"][0]["componentType"] = gltf_test::kShort; }, "KHR_mesh_quantization"},
@@ -80,7 +86,11 @@ const Broken kBroken[] = {
     {"child out of range", [](GltfFile& f) { f.doc["nodes"][0]["children"] = {9}; }, "child 9"},
     {"node names a missing mesh", [](GltfFile& f) { f.doc["nodes"][0]["mesh"] = 3; }, "mesh 3"},
     {"material out of range", [](GltfFile& f) { primitive(f)["material"] = 2; }, "material 2"},
-    {"non-finite node transform", [](GltfFile& f) { f.doc["nodes"][0]["scale"] = {1, 1e39, 1}; }, "not finite"},
+    {"non-finite node transform",
+     [](GltfFile& f) {
+         f.doc["nodes"][0]["scale"] = {1, 1e39, 1};
+     },
+     "not finite"},
     {"projective matrix",
      [](GltfFile& f) { f.doc["nodes"][0]["matrix"] = {1, 0, 0, 1, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1}; }, "last row"},
     {"unsupported required extension", [](GltfFile& f) { f.use_extension("KHR_materials_volume", true); },
@@ -91,7 +101,10 @@ const Broken kBroken[] = {
     {"not glTF 2", [](GltfFile& f) { f.doc["asset"]["version"] = "1.0"; }, "version"},
     {"GLB with a wrong length", [](GltfFile& f) { f.doc["asset"]["generator"] = "x"; }, "", "m.glb"},
     {"second buffer in the BIN chunk",
-     [](GltfFile& f) { f.doc["buffers"] = {{{"byteLength", 4}}, {{"byteLength", 4}}}; }, "only buffer 0", "m.glb"},
+     [](GltfFile& f) {
+         f.doc["buffers"] = {{{"byteLength", 4}}, {{"byteLength", 4}}};
+     },
+     "only buffer 0", "m.glb"},
 };
 
 TEST(GltfBroken, EachBrokenFileIsOneErrorNamingTheFile) {

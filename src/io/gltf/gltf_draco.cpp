@@ -100,18 +100,19 @@ PrimitiveData decode_draco(const AccessorReader& r, const tinygltf::Primitive& p
     in.Init(reinterpret_cast<const char*>(bytes.data()), bytes.size());
     draco::Decoder decoder;
     auto decoded = decoder.DecodeMeshFromBuffer(&in);
-    if (!decoded.ok()) throw Error(r.file, what + ": Draco cannot decode the mesh: " + decoded.status().error_msg_string());
+    if (!decoded.ok())
+        throw Error(r.file, what + ": Draco cannot decode the mesh: " + decoded.status().error_msg_string());
     const std::unique_ptr<draco::Mesh> mesh = std::move(decoded).value();
     if (!mesh) throw Error(r.file, what + ": Draco cannot decode the mesh");
 
     const tinygltf::Value& attributes = extension.Has("attributes") ? extension.Get("attributes") : tinygltf::Value();
-    if (!draco_id(attributes, "POSITION"))
-        throw Error(r.file, what + ": " + kDraco + " maps no POSITION attribute");
+    if (!draco_id(attributes, "POSITION")) throw Error(r.file, what + ": " + kDraco + " maps no POSITION attribute");
     const std::vector<float> positions =
         read_attribute(*mesh, draco_id(attributes, "POSITION"), 3, r.file, what, "POSITION");
-    const std::vector<float> normals = primitive.attributes.count("NORMAL")
-                                           ? read_attribute(*mesh, draco_id(attributes, "NORMAL"), 3, r.file, what, "NORMAL")
-                                           : std::vector<float>{};
+    const std::vector<float> normals =
+        primitive.attributes.count("NORMAL")
+            ? read_attribute(*mesh, draco_id(attributes, "NORMAL"), 3, r.file, what, "NORMAL")
+            : std::vector<float>{};
     const std::vector<float> uvs =
         primitive.attributes.count("TEXCOORD_0")
             ? read_attribute(*mesh, draco_id(attributes, "TEXCOORD_0"), 2, r.file, what, "TEXCOORD_0")
@@ -128,10 +129,12 @@ PrimitiveData decode_draco(const AccessorReader& r, const tinygltf::Primitive& p
     out.material = primitive.material;
     const std::size_t points = mesh->num_points();
     out.positions.resize(points);
-    for (std::size_t i = 0; i < points; ++i) out.positions[i] = {positions[3 * i], positions[3 * i + 1], positions[3 * i + 2]};
+    for (std::size_t i = 0; i < points; ++i)
+        out.positions[i] = {positions[3 * i], positions[3 * i + 1], positions[3 * i + 2]};
     if (!normals.empty()) {
         out.normals.resize(points);
-        for (std::size_t i = 0; i < points; ++i) out.normals[i] = {normals[3 * i], normals[3 * i + 1], normals[3 * i + 2]};
+        for (std::size_t i = 0; i < points; ++i)
+            out.normals[i] = {normals[3 * i], normals[3 * i + 1], normals[3 * i + 2]};
     }
     if (!uvs.empty()) {
         out.uvs.resize(points);

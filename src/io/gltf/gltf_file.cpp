@@ -26,7 +26,7 @@ constexpr std::uintmax_t kMaxFileBytes = std::uintmax_t{1} << 30;
 // buffers; each is read whole, so this bounds what such a file costs.
 constexpr std::uint64_t kMaxExternalBytes = std::uint64_t{2} << 30;
 
-constexpr std::uint32_t kGlbMagic = 0x46546C67;  // "glTF"
+constexpr std::uint32_t kGlbMagic = 0x46546C67;   // "glTF"
 constexpr std::uint32_t kChunkJson = 0x4E4F534A;  // "JSON"
 constexpr std::uint32_t kChunkBin = 0x004E4942;   // "BIN\0"
 
@@ -141,7 +141,8 @@ void check_glb_buffers(const nlohmann::json& json, const std::string& where) {
     for (std::size_t i = 1; i < buffers->size(); ++i) {
         const nlohmann::json& b = (*buffers)[i];
         if (b.is_object() && !b.contains("uri"))
-            throw Error(where, "buffer " + std::to_string(i) + " has no uri: only buffer 0 may refer to the GLB's BIN chunk");
+            throw Error(where,
+                        "buffer " + std::to_string(i) + " has no uri: only buffer 0 may refer to the GLB's BIN chunk");
     }
 }
 
@@ -169,7 +170,8 @@ bool strip_draco_indices(nlohmann::json& json) {
 std::string rebuild_glb(const std::string& bytes, std::string_view json_chunk, std::string json) {
     while (json.size() % 4 != 0) json.push_back(' ');
     const std::size_t bin_start = 20 + json_chunk.size();
-    const std::string_view rest = bin_start < bytes.size() ? std::string_view(bytes).substr(bin_start) : std::string_view();
+    const std::string_view rest =
+        bin_start < bytes.size() ? std::string_view(bytes).substr(bin_start) : std::string_view();
     std::string out(20, '\0');
     const auto put = [&out](std::size_t at, std::uint64_t value) {
         for (int i = 0; i < 4; ++i) out[at + std::size_t(i)] = static_cast<char>((value >> (8 * i)) & 0xff);
@@ -185,8 +187,8 @@ std::string rebuild_glb(const std::string& bytes, std::string_view json_chunk, s
 }
 
 bool supported_extension(const std::string& name) {
-    static const std::set<std::string> supported{kDraco, kQuantization, kLights, kIor, kEmissiveStrength,
-                                                 kTextureTransform};
+    static const std::set<std::string> supported{kDraco, kQuantization,     kLights,
+                                                 kIor,   kEmissiveStrength, kTextureTransform};
     return supported.count(name) > 0;
 }
 
@@ -260,7 +262,8 @@ tinygltf::Model parse_file(const fs::path& path, Diagnostics& diag) {
     const std::string folder = access.folder.string();
     bool ok = false;
     try {
-        ok = binary ? loader.LoadBinaryFromMemory(&model, &err, &warn, reinterpret_cast<const unsigned char*>(bytes.data()),
+        ok = binary ? loader.LoadBinaryFromMemory(&model, &err, &warn,
+                                                  reinterpret_cast<const unsigned char*>(bytes.data()),
                                                   static_cast<unsigned int>(bytes.size()), folder)
                     : loader.LoadASCIIFromString(&model, &err, &warn, bytes.data(),
                                                  static_cast<unsigned int>(bytes.size()), folder);

@@ -23,8 +23,8 @@ namespace {
 // What a member must be.
 enum class Type {
     Number,
-    Index,          // a non-negative integer that fits an int: tinygltf stores one, so more would wrap
-    Size,           // a non-negative integer of up to 64 bits (byte offsets and lengths, counts)
+    Index,  // a non-negative integer that fits an int: tinygltf stores one, so more would wrap
+    Size,   // a non-negative integer of up to 64 bits (byte offsets and lengths, counts)
     String,
     Bool,
     Object,         // an object whose members follow `shape`
@@ -54,8 +54,10 @@ struct Shape {
 using T = Type;
 
 // textureInfo (glTF 2.0 §5.22) and its two extended forms.
-constexpr Member kTextureTransformMembers[] = {
-    {"offset", T::Numbers, nullptr, 2}, {"rotation", T::Number}, {"scale", T::Numbers, nullptr, 2}, {"texCoord", T::Index}};
+constexpr Member kTextureTransformMembers[] = {{"offset", T::Numbers, nullptr, 2},
+                                               {"rotation", T::Number},
+                                               {"scale", T::Numbers, nullptr, 2},
+                                               {"texCoord", T::Index}};
 constexpr Shape kTextureTransformShape{kTextureTransformMembers};
 constexpr Member kTextureInfoExtensions[] = {{kTextureTransform, T::Object, &kTextureTransformShape}};
 constexpr Shape kTextureInfoExtensionsShape{kTextureInfoExtensions};
@@ -144,12 +146,13 @@ constexpr Member kSparse[] = {{"count", T::Index},  // an int in tinygltf
                               {"indices", T::Object, &kSparseIndicesShape},
                               {"values", T::Object, &kSparseValuesShape}};
 constexpr Shape kSparseShape{kSparse};
-constexpr Member kAccessor[] = {{"name", T::String},        {"bufferView", T::Index}, {"byteOffset", T::Size},
-                                {"componentType", T::Index}, {"normalized", T::Bool},  {"count", T::Size},
-                                {"type", T::String},         {"max", T::Numbers},      {"min", T::Numbers},
-                                {"sparse", T::Object, &kSparseShape}};
+constexpr Member kAccessor[] = {{"name", T::String},     {"bufferView", T::Index},
+                                {"byteOffset", T::Size}, {"componentType", T::Index},
+                                {"normalized", T::Bool}, {"count", T::Size},
+                                {"type", T::String},     {"max", T::Numbers},
+                                {"min", T::Numbers},     {"sparse", T::Object, &kSparseShape}};
 constexpr Shape kAccessorShape{kAccessor};
-constexpr Member kBufferView[] = {{"name", T::String},     {"buffer", T::Index},     {"byteOffset", T::Size},
+constexpr Member kBufferView[] = {{"name", T::String},     {"buffer", T::Index},    {"byteOffset", T::Size},
                                   {"byteLength", T::Size}, {"byteStride", T::Size}, {"target", T::Index}};
 constexpr Shape kBufferViewShape{kBufferView};
 constexpr Member kBuffer[] = {{"name", T::String}, {"uri", T::String}, {"byteLength", T::Size}};
@@ -158,7 +161,8 @@ constexpr Shape kBufferShape{kBuffer};
 // texture, image, sampler
 constexpr Member kTexture[] = {{"name", T::String}, {"sampler", T::Index}, {"source", T::Index}};
 constexpr Shape kTextureShape{kTexture};
-constexpr Member kImage[] = {{"name", T::String}, {"uri", T::String}, {"mimeType", T::String}, {"bufferView", T::Index}};
+constexpr Member kImage[] = {
+    {"name", T::String}, {"uri", T::String}, {"mimeType", T::String}, {"bufferView", T::Index}};
 constexpr Shape kImageShape{kImage};
 constexpr Member kSampler[] = {
     {"name", T::String}, {"magFilter", T::Index}, {"minFilter", T::Index}, {"wrapS", T::Index}, {"wrapT", T::Index}};
@@ -168,7 +172,8 @@ constexpr Shape kSamplerShape{kSampler};
 constexpr Member kPerspective[] = {
     {"aspectRatio", T::Number}, {"yfov", T::Number}, {"zfar", T::Number}, {"znear", T::Number}};
 constexpr Shape kPerspectiveShape{kPerspective};
-constexpr Member kOrthographic[] = {{"xmag", T::Number}, {"ymag", T::Number}, {"zfar", T::Number}, {"znear", T::Number}};
+constexpr Member kOrthographic[] = {
+    {"xmag", T::Number}, {"ymag", T::Number}, {"zfar", T::Number}, {"znear", T::Number}};
 constexpr Shape kOrthographicShape{kOrthographic};
 constexpr Member kCamera[] = {{"name", T::String},
                               {"type", T::String},
@@ -184,7 +189,7 @@ constexpr Shape kNamedShape{kNamed};
 // KHR_lights_punctual's lights
 constexpr Member kSpot[] = {{"innerConeAngle", T::Number}, {"outerConeAngle", T::Number}};
 constexpr Shape kSpotShape{kSpot};
-constexpr Member kLight[] = {{"name", T::String},     {"type", T::String},   {"color", T::Numbers, nullptr, 3},
+constexpr Member kLight[] = {{"name", T::String},      {"type", T::String},  {"color", T::Numbers, nullptr, 3},
                              {"intensity", T::Number}, {"range", T::Number}, {"spot", T::Object, &kSpotShape}};
 constexpr Shape kLightShape{kLight};
 constexpr Member kLightsMembers[] = {{"lights", T::Objects, &kLightShape}};
@@ -254,7 +259,8 @@ public:
 
     void object(const nlohmann::json& v, const Shape& shape, const std::string& at) {
         for (const Member& m : shape.members)
-            if (const auto it = v.find(m.key); it != v.end()) value(*it, m.type, m.shape, m.count, json_child(at, m.key));
+            if (const auto it = v.find(m.key); it != v.end())
+                value(*it, m.type, m.shape, m.count, json_child(at, m.key));
         if (shape.others)
             for (const auto& [key, member] : v.items()) value(member, *shape.others, nullptr, 0, json_child(at, key));
     }

@@ -15,8 +15,8 @@ namespace sombra {
 namespace {
 
 using gltf_test::GltfFile;
-using testing::TempFolder;
 using nlohmann::json;
+using testing::TempFolder;
 
 // A quad whose file holds most members sombra reads, each of its right type:
 // a material with factors, textureInfo objects and extensions, a texture,
@@ -27,21 +27,21 @@ GltfFile typed_quad() {
     f.doc["meshes"][0]["primitives"][0]["mode"] = 4;
     const json transform = {{"offset", {0, 0}}, {"rotation", 0}, {"scale", {1, 1}}};
     const json texture_info = {{"index", 0}, {"texCoord", 0}, {"extensions", {{"KHR_texture_transform", transform}}}};
-    f.doc["materials"] = {{{"name", "m"},
-                           {"pbrMetallicRoughness",
-                            {{"baseColorFactor", {1, 1, 1, 1}},
-                             {"baseColorTexture", texture_info},
-                             {"metallicFactor", 0},
-                             {"roughnessFactor", 0.5}}},
-                           {"normalTexture", {{"index", 0}, {"scale", 1}}},
-                           {"occlusionTexture", {{"index", 0}, {"strength", 1}}},
-                           {"emissiveFactor", {0, 0, 0}},
-                           {"alphaMode", "OPAQUE"},
-                           {"alphaCutoff", 0.5},
-                           {"doubleSided", false},
-                           {"extensions",
-                            {{"KHR_materials_ior", {{"ior", 1.5}}},
-                             {"KHR_materials_emissive_strength", {{"emissiveStrength", 1}}}}}}};
+    f.doc["materials"] = {
+        {{"name", "m"},
+         {"pbrMetallicRoughness",
+          {{"baseColorFactor", {1, 1, 1, 1}},
+           {"baseColorTexture", texture_info},
+           {"metallicFactor", 0},
+           {"roughnessFactor", 0.5}}},
+         {"normalTexture", {{"index", 0}, {"scale", 1}}},
+         {"occlusionTexture", {{"index", 0}, {"strength", 1}}},
+         {"emissiveFactor", {0, 0, 0}},
+         {"alphaMode", "OPAQUE"},
+         {"alphaCutoff", 0.5},
+         {"doubleSided", false},
+         {"extensions",
+          {{"KHR_materials_ior", {{"ior", 1.5}}}, {"KHR_materials_emissive_strength", {{"emissiveStrength", 1}}}}}}};
     f.doc["textures"] = {{{"sampler", 0}, {"source", 0}}};
     f.doc["samplers"] = {{{"magFilter", 9729}, {"wrapS", 10497}, {"wrapT", 33071}}};
     f.doc["images"] = {{{"uri", "missing.png"}}};  // a warning: the constant is used
@@ -108,7 +108,8 @@ const WrongType kWrongTypes[] = {
      "/extensionsUsed", "expected an array of strings, got a string"},
     {"a string for a texture transform's offset",
      [](GltfFile& f) {
-         material(f)["pbrMetallicRoughness"]["baseColorTexture"]["extensions"]["KHR_texture_transform"]["offset"] = "0 0";
+         material(f)["pbrMetallicRoughness"]["baseColorTexture"]["extensions"]["KHR_texture_transform"]["offset"] =
+             "0 0";
      },
      "/materials/0/pbrMetallicRoughness/baseColorTexture/extensions/KHR_texture_transform/offset",
      "expected an array of 2 numbers, got a string"},
@@ -121,7 +122,8 @@ const WrongType kWrongTypes[] = {
      },
      "/materials/0/pbrMetallicRoughness/baseColorTexture/extensions/KHR_texture_transform",
      "expected an object, got a string"},
-    {"a string for the asset", [](GltfFile& f) { f.doc["asset"] = "2.0"; }, "/asset", "expected an object, got a string"},
+    {"a string for the asset", [](GltfFile& f) { f.doc["asset"] = "2.0"; }, "/asset",
+     "expected an object, got a string"},
     {"a number for a primitive's extensions", [](GltfFile& f) { primitive(f)["extensions"] = 7; },
      "/meshes/0/primitives/0/extensions", "expected an object, got 7"},
     // string
@@ -132,7 +134,8 @@ const WrongType kWrongTypes[] = {
     {"an array for alphaMode", [](GltfFile& f) { material(f)["alphaMode"] = {"MASK"}; }, "/materials/0/alphaMode",
      "expected a string, got an array"},
     // uint
-    {"a negative texture index", [](GltfFile& f) { material(f)["pbrMetallicRoughness"]["baseColorTexture"]["index"] = -1; },
+    {"a negative texture index",
+     [](GltfFile& f) { material(f)["pbrMetallicRoughness"]["baseColorTexture"]["index"] = -1; },
      "/materials/0/pbrMetallicRoughness/baseColorTexture/index", "expected a non-negative integer, got -1"},
     {"a fraction for indices", [](GltfFile& f) { primitive(f)["indices"] = 1.5; }, "/meshes/0/primitives/0/indices",
      "expected a non-negative integer, got 1.5"},
@@ -146,9 +149,13 @@ const WrongType kWrongTypes[] = {
      "/meshes/0/primitives/0/attributes/POSITION", "expected a non-negative integer, got a string"},
     {"an attribute whose name needs escaping", [](GltfFile& f) { primitive(f)["attributes"]["_A/B~"] = -2; },
      "/meshes/0/primitives/0/attributes/_A~1B~0", "expected a non-negative integer, got -2"},
-    {"a negative light index", [](GltfFile& f) { f.doc["nodes"][1]["extensions"]["KHR_lights_punctual"]["light"] = -1; },
+    {"a negative light index",
+     [](GltfFile& f) { f.doc["nodes"][1]["extensions"]["KHR_lights_punctual"]["light"] = -1; },
      "/nodes/1/extensions/KHR_lights_punctual/light", "expected a non-negative integer, got -1"},
-    {"a negative morph target accessor", [](GltfFile& f) { primitive(f)["targets"] = {{{"POSITION", -1}}}; },
+    {"a negative morph target accessor",
+     [](GltfFile& f) {
+         primitive(f)["targets"] = {{{"POSITION", -1}}};
+     },
      "/meshes/0/primitives/0/targets/0/POSITION", "expected a non-negative integer, got -1"},
     // bool
     {"a string for doubleSided", [](GltfFile& f) { material(f)["doubleSided"] = "yes"; }, "/materials/0/doubleSided",
@@ -228,7 +235,8 @@ TEST(GltfJsonTypes, RequiredExtensionsAndTheVersionComeFirst) {
 TEST(GltfJsonTypes, AssimpWrongTypeModelsNameTheMember) {
     const std::filesystem::path root = "/usr/share/assimp/models/glTF2";
     if (!std::filesystem::is_directory(root / "wrongTypes"))
-        GTEST_SKIP() << root / "wrongTypes" << " not found (Debian package assimp-testmodels, tools/install-deps.sh)";
+        GTEST_SKIP() << root / "wrongTypes"
+                     << " not found (Debian package assimp-testmodels, tools/install-deps.sh)";
     const struct {
         const char* file;
         const char* pointer;

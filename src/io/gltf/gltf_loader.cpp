@@ -55,7 +55,8 @@ Transform local_transform(const tinygltf::Node& n, int index, const std::string&
     if (!n.rotation.empty()) {
         x = n.rotation[0], y = n.rotation[1], z = n.rotation[2], w = n.rotation[3];
         const double len = std::sqrt(x * x + y * y + z * z + w * w);
-        if (!(len > 1e-12) || !std::isfinite(len)) throw Error(file, node_name(index) + ": rotation is not a unit quaternion");
+        if (!(len > 1e-12) || !std::isfinite(len))
+            throw Error(file, node_name(index) + ": rotation is not a unit quaternion");
         x /= len, y /= len, z /= len, w /= len;
     }
     // Rotation matrix of the unit quaternion (x, y, z, w), columns scaled by s.
@@ -97,7 +98,8 @@ std::vector<Instance> walk_nodes(const tinygltf::Model& model, const std::string
             chain.push_back(n);
             n = parent[std::size_t(n)];
         }
-        if (n != -1 && state[std::size_t(n)] == 1) throw Error(file, node_name(n) + " is its own ancestor (a node cycle)");
+        if (n != -1 && state[std::size_t(n)] == 1)
+            throw Error(file, node_name(n) + " is its own ancestor (a node cycle)");
         for (const int c : chain) state[std::size_t(c)] = 2;
     }
 
@@ -117,9 +119,11 @@ std::vector<Instance> walk_nodes(const tinygltf::Model& model, const std::string
     std::vector<Instance> stack;
     for (auto root = roots.rbegin(); root != roots.rend(); ++root) {
         if (*root < 0 || static_cast<std::size_t>(*root) >= count)
-            throw Error(file, "the scene names " + node_name(*root) + ", but the file has " + std::to_string(count) + " nodes");
+            throw Error(file, "the scene names " + node_name(*root) + ", but the file has " + std::to_string(count) +
+                                  " nodes");
         if (parent[std::size_t(*root)] != -1)
-            throw Error(file, "the scene's root " + node_name(*root) + " is a child of " + node_name(parent[std::size_t(*root)]));
+            throw Error(file, "the scene's root " + node_name(*root) + " is a child of " +
+                                  node_name(parent[std::size_t(*root)]));
         stack.push_back({*root, Transform{}});
     }
     while (!stack.empty()) {
@@ -130,7 +134,8 @@ std::vector<Instance> walk_nodes(const tinygltf::Model& model, const std::string
         const tinygltf::Node& n = model.nodes[std::size_t(top.node)];
         top.world = compose(local_transform(n, top.node, file), top.world);
         out.push_back(top);
-        for (auto child = n.children.rbegin(); child != n.children.rend(); ++child) stack.push_back({*child, top.world});
+        for (auto child = n.children.rbegin(); child != n.children.rend(); ++child)
+            stack.push_back({*child, top.world});
     }
     return out;
 }
@@ -144,7 +149,8 @@ PrimitiveData read_primitive(const gltf::AccessorReader& r, const tinygltf::Prim
     if (attribute("POSITION") < 0) throw gltf::Unsupported{"primitives without POSITION"};
     PrimitiveData out;
     out.material = p.material;
-    const std::vector<float> pos = read_floats(r, attribute("POSITION"), gltf::Semantic::Position, "POSITION of " + what);
+    const std::vector<float> pos =
+        read_floats(r, attribute("POSITION"), gltf::Semantic::Position, "POSITION of " + what);
     const std::size_t n = pos.size() / 3;
     if (n >= kNoNormal) throw Error(r.file, what + ": too many vertices");
     out.positions.resize(n);
@@ -156,7 +162,8 @@ PrimitiveData read_primitive(const gltf::AccessorReader& r, const tinygltf::Prim
         for (std::size_t i = 0; i < n; ++i) out.normals[i] = {nor[3 * i], nor[3 * i + 1], nor[3 * i + 2]};
     }
     if (attribute("TEXCOORD_0") >= 0) {
-        const std::vector<float> uv = read_floats(r, attribute("TEXCOORD_0"), gltf::Semantic::Texcoord, "TEXCOORD_0 of " + what);
+        const std::vector<float> uv =
+            read_floats(r, attribute("TEXCOORD_0"), gltf::Semantic::Texcoord, "TEXCOORD_0 of " + what);
         if (uv.size() / 2 != n) throw Error(r.file, what + ": TEXCOORD_0 and POSITION differ in count");
         out.uvs.resize(n);
         // glTF's v = 0 is the image's top row; sombra's uvs (like OBJ's) put v = 0 at the bottom.
@@ -203,7 +210,7 @@ void append_instance(MeshBuilder& b, const PrimitiveData& p, const Transform& wo
     for (const VertexTangent& t : p.tangents)
         b.tangents.push_back({transform_vector(world, t.direction), mirrored ? -t.handedness : t.handedness});
     b.colors.insert(b.colors.end(), p.colors.begin(), p.colors.end());
-    const auto corners = [](bool present, std::uint32_t first, const std::uint32_t (&c)[3], std::uint32_t (&out)[3]) {
+    const auto corners = [](bool present, std::uint32_t first, const std::uint32_t(&c)[3], std::uint32_t(&out)[3]) {
         for (int k = 0; k < 3; ++k) out[k] = first + c[k];
         return present ? std::span<const std::uint32_t>(out) : std::span<const std::uint32_t>{};
     };
@@ -226,7 +233,8 @@ std::optional<ModelCamera> place_camera(const tinygltf::Model& model, int index,
                               std::to_string(model.cameras.size()));
     const tinygltf::Camera& c = model.cameras[std::size_t(index)];
     if (c.type != "perspective") {
-        diag.warn(file, "camera " + std::to_string(index) + " is " + c.type + ", not perspective: the model is framed automatically");
+        diag.warn(file, "camera " + std::to_string(index) + " is " + c.type +
+                            ", not perspective: the model is framed automatically");
         return std::nullopt;
     }
     const double yfov = c.perspective.yfov * 180.0 / std::numbers::pi;
@@ -240,7 +248,8 @@ std::optional<ModelCamera> place_camera(const tinygltf::Model& model, int index,
     cam.aspect = c.perspective.aspectRatio > 0 ? static_cast<float>(c.perspective.aspectRatio) : 0.0f;
     if (!(yfov > 0 && yfov < 180) || !std::isfinite(cam.aspect) || !is_finite(cam.origin) || !is_finite(cam.forward) ||
         !is_finite(cam.up)) {
-        diag.warn(file, "camera " + std::to_string(index) + " is unusable (field of view, aspect or placement): the model is framed automatically");
+        diag.warn(file, "camera " + std::to_string(index) +
+                            " is unusable (field of view, aspect or placement): the model is framed automatically");
         return std::nullopt;
     }
     return cam;
@@ -267,7 +276,8 @@ LoadedMesh load_gltf(const std::filesystem::path& path, Diagnostics& diag) {
             throw Error(file, node_name(in.node) + " names mesh " + std::to_string(m) + ", but the file has " +
                                   std::to_string(model.meshes.size()));
         for (const tinygltf::Primitive& p : model.meshes[std::size_t(m)].primitives) {
-            const int counted = p.indices >= 0 ? p.indices : (p.attributes.count("POSITION") ? p.attributes.at("POSITION") : -1);
+            const int counted =
+                p.indices >= 0 ? p.indices : (p.attributes.count("POSITION") ? p.attributes.at("POSITION") : -1);
             if (p.mode == TINYGLTF_MODE_TRIANGLES && counted >= 0)
                 triangles += gltf::accessor_count(reader, counted, "mesh " + std::to_string(m)) / 3;
         }
@@ -277,7 +287,7 @@ LoadedMesh load_gltf(const std::filesystem::path& path, Diagnostics& diag) {
 
     MeshBuilder builder(file);
     std::map<int, std::vector<std::optional<PrimitiveData>>> decoded;  // mesh → its primitives, read once
-    std::optional<std::pair<int, ModelCamera>> camera;                  // the lowest camera index placed
+    std::optional<std::pair<int, ModelCamera>> camera;                 // the lowest camera index placed
     std::vector<PunctualLight> lights;
     bool any_triangles = false;
     std::size_t clamped_colors = 0;

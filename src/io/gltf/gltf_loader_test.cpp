@@ -89,7 +89,8 @@ TEST(GltfLoader, NodeTransformsComposeParentTimesChild) {
                 make_translate({1, 2, 3}));
     ASSERT_EQ(m.mesh.positions.size(), 4u);
     const Vec3 file_corners[4] = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}};
-    for (int i = 0; i < 4; ++i) expect_near(m.mesh.positions[std::size_t(i)], transform_point(expected, file_corners[i]));
+    for (int i = 0; i < 4; ++i)
+        expect_near(m.mesh.positions[std::size_t(i)], transform_point(expected, file_corners[i]));
     // Normals follow: +z turned 90° about +y is +x.
     expect_near(m.mesh.normals[0], {1, 0, 0});
 }
@@ -119,7 +120,7 @@ TEST(GltfLoader, QuantizedAccessorsAreNormalised) {
     ASSERT_EQ(m.mesh.positions.size(), 3u);
     expect_near(m.mesh.positions[1], {1, 0, 0});
     expect_near(m.mesh.positions[2], {1, 1, 0});
-    expect_near(Vec3{m.mesh.uvs[0].x, m.mesh.uvs[0].y, 0}, {0, 0, 0});          // (0, 1) flipped
+    expect_near(Vec3{m.mesh.uvs[0].x, m.mesh.uvs[0].y, 0}, {0, 0, 0});             // (0, 1) flipped
     expect_near(Vec3{m.mesh.uvs[2].x, m.mesh.uvs[2].y, 0}, {128 / 255.0f, 1, 0});  // (128/255, 0) flipped
 
     // Without the extension, integer positions are a wrong component type.
@@ -131,17 +132,21 @@ TEST(GltfLoader, QuantizedAccessorsAreNormalised) {
 TEST(GltfLoader, MaterialsBecomePbrWithTheirTextureReferencesKept) {
     GltfFile f = quad_file();
     f.doc["meshes"][0]["primitives"][0]["material"] = 0;
-    f.doc["materials"] = {{{"name", "red"},
-                           {"pbrMetallicRoughness",
-                            {{"baseColorFactor", {0.9, 0.2, 0.1, 0.5}}, {"metallicFactor", 0.25}, {"roughnessFactor", 0.75},
-                             {"baseColorTexture",
-                              {{"index", 0},
-                               {"texCoord", 0},
-                               {"extensions", {{"KHR_texture_transform", {{"offset", {0.5, 0}}, {"scale", {2, 2}}, {"rotation", 0.1}}}}}}}}},
-                           {"emissiveFactor", {0.5, 0.25, 0}},
-                           {"alphaMode", "MASK"},
-                           {"extensions", {{"KHR_materials_emissive_strength", {{"emissiveStrength", 4}}},
-                                           {"KHR_materials_ior", {{"ior", 1.33}}}}}}};
+    f.doc["materials"] = {
+        {{"name", "red"},
+         {"pbrMetallicRoughness",
+          {{"baseColorFactor", {0.9, 0.2, 0.1, 0.5}},
+           {"metallicFactor", 0.25},
+           {"roughnessFactor", 0.75},
+           {"baseColorTexture",
+            {{"index", 0},
+             {"texCoord", 0},
+             {"extensions",
+              {{"KHR_texture_transform", {{"offset", {0.5, 0}}, {"scale", {2, 2}}, {"rotation", 0.1}}}}}}}}},
+         {"emissiveFactor", {0.5, 0.25, 0}},
+         {"alphaMode", "MASK"},
+         {"extensions",
+          {{"KHR_materials_emissive_strength", {{"emissiveStrength", 4}}}, {"KHR_materials_ior", {{"ior", 1.33}}}}}}};
     f.doc["textures"] = {{{"source", 0}, {"sampler", 0}}};
     f.doc["images"] = {{{"uri", "red.png"}}};
     f.doc["samplers"] = {{{"wrapS", 33071}, {"wrapT", 33648}}};
@@ -240,14 +245,14 @@ TEST(GltfLoader, LightsAreConvertedFromCandelaAndLuxAndPlacedByTheirNode) {
 TEST(GltfLoader, SpotConeAnglesAreCheckedAndEqualAnglesAccepted) {
     for (const auto& [inner, outer, error, warnings] :
          std::vector<std::tuple<double, double, const char*, std::size_t>>{
-             {0.5, 0.5, "", 0},            // Blender's spot without blend: inner = outer
-             {0.7, 0.5, "", 1},            // inner > outer: read as equal, with a warning
+             {0.5, 0.5, "", 0},  // Blender's spot without blend: inner = outer
+             {0.7, 0.5, "", 1},  // inner > outer: read as equal, with a warning
              {0.0, 0.0, "outerConeAngle", 0},
              {0.0, 1.6, "outerConeAngle", 0},  // beyond π/2
              {-0.1, 0.5, "innerConeAngle", 0}}) {
         GltfFile f = lit_quad();
         f.doc["extensions"]["KHR_lights_punctual"]["lights"][1]["spot"] = {{"innerConeAngle", inner},
-                                                                          {"outerConeAngle", outer}};
+                                                                           {"outerConeAngle", outer}};
         TempFolder dir;
         f.save(dir.path / "m.gltf");
         Diagnostics diag;
@@ -277,7 +282,8 @@ TEST(GltfLoader, QuickLookUsesTheFilesFirstCamera) {
     f.add_node({{"camera", 1}});
     f.add_node({{"camera", 0}, {"translation", {0, 0, 4}}, {"rotation", {0, h, 0, h}}});  // looks along −x
     f.doc["scenes"][0]["nodes"] = {0, 1, 5, 6};
-    f.doc["cameras"] = {{{"type", "perspective"}, {"perspective", {{"yfov", 0.5}, {"aspectRatio", 2.0}, {"znear", 0.1}}}},
+    f.doc["cameras"] = {{{"type", "perspective"},
+                         {"perspective", {{"yfov", 0.5}, {"aspectRatio", 2.0}, {"znear", 0.1}}}},
                         {{"type", "perspective"}, {"perspective", {{"yfov", 1.0}, {"znear", 0.1}}}}};
     TempFolder dir;
     f.save(dir.path / "m.gltf");

@@ -64,7 +64,7 @@ float finite_number(const tinygltf::Value& v, float fallback) {
 // One textureInfo (index, texCoord, extensions) as a GltfTextureRef; an empty
 // one when index is -1. A texture or image index out of range is an error.
 GltfTextureRef texture_ref(const MaterialContext& c, int index, int texcoord, const tinygltf::ExtensionMap& extensions,
-                       const char* slot) {
+                           const char* slot) {
     GltfTextureRef ref;
     if (index < 0) return ref;
     const tinygltf::Model& m = c.model;
@@ -137,7 +137,8 @@ Materials convert_materials(const tinygltf::Model& model, const std::string& fil
                 diag.warn(file, c.what + ": " + kIor + " ior " + std::to_string(*ior) + " is not > 1: 1.5 used");
         }
         const Vec3 emissive = read_colour(c, g.emissiveFactor, Vec3{0.0f}, "emissiveFactor");
-        const float strength = static_cast<float>(extension_number(g, kEmissiveStrength, "emissiveStrength").value_or(1.0));
+        const float strength =
+            static_cast<float>(extension_number(g, kEmissiveStrength, "emissiveStrength").value_or(1.0));
         if (!std::isfinite(strength) || strength < 0.0f)
             throw Error(file, c.what + ": emissiveStrength must be finite and >= 0");
         m.ke = max(emissive, Vec3{0.0f}) * strength;
@@ -146,19 +147,23 @@ Materials convert_materials(const tinygltf::Model& model, const std::string& fil
         GltfMaterialTextures refs;
         refs.base_color = texture_ref(c, pbr.baseColorTexture.index, pbr.baseColorTexture.texCoord,
                                       pbr.baseColorTexture.extensions, "baseColorTexture");
-        refs.metallic_roughness = texture_ref(c, pbr.metallicRoughnessTexture.index, pbr.metallicRoughnessTexture.texCoord,
-                                              pbr.metallicRoughnessTexture.extensions, "metallicRoughnessTexture");
+        refs.metallic_roughness =
+            texture_ref(c, pbr.metallicRoughnessTexture.index, pbr.metallicRoughnessTexture.texCoord,
+                        pbr.metallicRoughnessTexture.extensions, "metallicRoughnessTexture");
         refs.normal = texture_ref(c, g.normalTexture.index, g.normalTexture.texCoord, g.normalTexture.extensions,
                                   "normalTexture");
         refs.normal.strength = finite_number(tinygltf::Value(g.normalTexture.scale), 1);
-        refs.emissive = texture_ref(c, g.emissiveTexture.index, g.emissiveTexture.texCoord, g.emissiveTexture.extensions,
-                                    "emissiveTexture");
+        refs.emissive = texture_ref(c, g.emissiveTexture.index, g.emissiveTexture.texCoord,
+                                    g.emissiveTexture.extensions, "emissiveTexture");
         refs.occlusion = texture_ref(c, g.occlusionTexture.index, g.occlusionTexture.texCoord,
                                      g.occlusionTexture.extensions, "occlusionTexture");
         refs.occlusion.strength = finite_number(tinygltf::Value(g.occlusionTexture.strength), 1);
-        refs.alpha_mode = g.alphaMode == "MASK" ? AlphaMode::Mask : g.alphaMode == "BLEND" ? AlphaMode::Blend : AlphaMode::Opaque;
+        refs.alpha_mode = g.alphaMode == "MASK"    ? AlphaMode::Mask
+                          : g.alphaMode == "BLEND" ? AlphaMode::Blend
+                                                   : AlphaMode::Opaque;
         refs.alpha_cutoff = finite_number(tinygltf::Value(g.alphaCutoff), 0.5f);
-        refs.base_alpha = pbr.baseColorFactor.size() == 4 ? finite_number(tinygltf::Value(pbr.baseColorFactor[3]), 1) : 1;
+        refs.base_alpha =
+            pbr.baseColorFactor.size() == 4 ? finite_number(tinygltf::Value(pbr.baseColorFactor[3]), 1) : 1;
         out.materials.push_back(std::move(m));
         out.texture_refs.push_back(std::move(refs));
     }
@@ -168,8 +173,8 @@ Materials convert_materials(const tinygltf::Model& model, const std::string& fil
 std::optional<PunctualLight> punctual_light(const tinygltf::Model& model, int index, const std::string& file,
                                             std::string& skipped_type, Diagnostics& diag) {
     if (index < 0 || static_cast<std::size_t>(index) >= model.lights.size())
-        throw Error(file, std::string(kLights) + ": a node names light " + std::to_string(index) + ", but the file has " +
-                              std::to_string(model.lights.size()));
+        throw Error(file, std::string(kLights) + ": a node names light " + std::to_string(index) +
+                              ", but the file has " + std::to_string(model.lights.size()));
     const tinygltf::Light& light = model.lights[static_cast<std::size_t>(index)];
     if (light.type != "point" && light.type != "spot" && light.type != "directional") {
         skipped_type = light.type.empty() ? "untyped" : light.type;

@@ -12,8 +12,8 @@
 #include <utility>
 #include <vector>
 
-#include "core/vec2.h"
 #include "core/base64.h"
+#include "core/vec2.h"
 #include "core/vec3.h"
 
 namespace sombra::gltf_test {
@@ -46,7 +46,8 @@ struct GltfFile {
     template <class T>
     int add_array(const std::vector<T>& values, int component_type, std::size_t count, const char* type,
                   bool normalized = false) {
-        return add_accessor(add_view(values.data(), values.size() * sizeof(T)), component_type, count, type, normalized);
+        return add_accessor(add_view(values.data(), values.size() * sizeof(T)), component_type, count, type,
+                            normalized);
     }
     int add_positions(const std::vector<Vec3>& p) { return add_array(p, kFloat, p.size(), "VEC3"); }
     int add_normals(const std::vector<Vec3>& n) { return add_array(n, kFloat, n.size(), "VEC3"); }
@@ -78,7 +79,8 @@ struct GltfFile {
     std::string gltf() const {
         nlohmann::json d = doc;
         if (!bin.empty() && !d.contains("buffers"))  // a test may have written its own
-            d["buffers"] = {{{"byteLength", bin.size()}, {"uri", "data:application/octet-stream;base64," + base64_encode(bin)}}};
+            d["buffers"] = {
+                {{"byteLength", bin.size()}, {"uri", "data:application/octet-stream;base64," + base64_encode(bin)}}};
         return d.dump();
     }
     std::string glb() const {

@@ -70,7 +70,8 @@ private:
         // A file beside the model, never outside its folder.
         const std::filesystem::path relative = std::filesystem::path(decode_uri(image.uri)).lexically_normal();
         if (relative.is_absolute() || relative.empty() || *relative.begin() == "..")
-            throw Error(file_, "image " + std::to_string(index) + ": '" + image.uri + "' lies outside the model's folder");
+            throw Error(file_,
+                        "image " + std::to_string(index) + ": '" + image.uri + "' lies outside the model's folder");
         const std::filesystem::path file = path_.parent_path() / relative;
         std::error_code ec;
         if (!std::filesystem::exists(file, ec)) {

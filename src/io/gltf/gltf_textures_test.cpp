@@ -9,11 +9,11 @@
 #include <set>
 
 #include "core/base64.h"
-#include "scene/cutout.h"
 #include "io/gltf/gltf_test_files.h"
 #include "io/images/image_test_files.h"
 #include "io/mesh_file.h"
 #include "io/polygon_test_files.h"
+#include "scene/cutout.h"
 
 namespace sombra {
 namespace {
@@ -162,8 +162,8 @@ TEST(GltfTextures, MaskCutsWhereFactorTimesImageAlphaIsBelowTheCutoff) {
             EXPECT_EQ(exists_at(m, x, 0.3f), x < edge) << what << " at x = " << x;
         }
     };
-    expect_cut_beyond(load("MASK", 0.4, 1.0), 0.75f, "MASK 0.4");      // 1 − 0.8x < 0.4
-    expect_cut_beyond(load("MASK", 0.4, 0.5), 0.25f, "factor 0.5");    // 0.5(1 − 0.8x) < 0.4
+    expect_cut_beyond(load("MASK", 0.4, 1.0), 0.75f, "MASK 0.4");                            // 1 − 0.8x < 0.4
+    expect_cut_beyond(load("MASK", 0.4, 0.5), 0.25f, "factor 0.5");                          // 0.5(1 − 0.8x) < 0.4
     expect_cut_beyond(load("BLEND", 0.9, 1.0), 0.625f, "BLEND at 0.5, its cutoff ignored");  // 1 − 0.8x < 0.5
     expect_cut_beyond(load("OPAQUE", 0.4, 0.1), 2.0f, "OPAQUE ignores alpha");
 }
@@ -206,7 +206,8 @@ TEST(GltfTextures, MissingImageIsAWarningAndAPathOutOfTheFolderAnError) {
         load_mesh_file(dir.path / "e.gltf", diag);
         ADD_FAILURE() << "a path out of the model's folder loaded";
     } catch (const Error& e) {
-        EXPECT_NE(e.message().find("'../secret.png' lies outside the model's folder"), std::string::npos) << e.message();
+        EXPECT_NE(e.message().find("'../secret.png' lies outside the model's folder"), std::string::npos)
+            << e.message();
     }
 }
 

@@ -14,10 +14,10 @@ enum class GltfWrap { Repeat, ClampToEdge, MirroredRepeat };
 
 // One textureInfo of a glTF material.
 struct GltfTextureRef {
-    int texture = -1;   // index into the file's textures; -1: the slot is empty
-    int image = -1;     // the texture's source image; -1 when it names none
-    std::string uri;    // the image's uri as written (relative to the file's folder); "" when embedded
-    int texcoord = 0;   // which TEXCOORD_n the lookup uses (KHR_texture_transform may override it)
+    int texture = -1;  // index into the file's textures; -1: the slot is empty
+    int image = -1;    // the texture's source image; -1 when it names none
+    std::string uri;   // the image's uri as written (relative to the file's folder); "" when embedded
+    int texcoord = 0;  // which TEXCOORD_n the lookup uses (KHR_texture_transform may override it)
     GltfWrap wrap_s = GltfWrap::Repeat;
     GltfWrap wrap_t = GltfWrap::Repeat;
     // KHR_texture_transform, in glTF's uv convention (v = 0 at the image's top):
@@ -42,8 +42,8 @@ struct GltfMaterialTextures {
     GltfTextureRef emissive;            // times ke
     GltfTextureRef occlusion;           // ignored by the spec (§13), kept for completeness
     AlphaMode alpha_mode = AlphaMode::Opaque;
-    float alpha_cutoff = 0.5f;      // MASK: cut out where alpha < cutoff
-    float base_alpha = 1.0f;        // baseColorFactor's A
+    float alpha_cutoff = 0.5f;  // MASK: cut out where alpha < cutoff
+    float base_alpha = 1.0f;    // baseColorFactor's A
 
     bool any() const {
         return base_color.present() || metallic_roughness.present() || normal.present() || emissive.present() ||

@@ -38,7 +38,8 @@ std::string one_line(std::string s) {
 // The size limits of core/image_limits.h, checked before any pixel is allocated.
 void check_size(const std::filesystem::path& path, std::int64_t width, std::int64_t height) {
     if (width < 1 || height < 1)
-        throw Error(path.string(), "image has no pixels (" + std::to_string(width) + "×" + std::to_string(height) + ")");
+        throw Error(path.string(),
+                    "image has no pixels (" + std::to_string(width) + "×" + std::to_string(height) + ")");
     if (width > kMaxImageSide || height > kMaxImageSide || width * height > kMaxPixels)
         throw Error(path.string(), "image is " + std::to_string(width) + "×" + std::to_string(height) +
                                        " pixels, more than the limit of " + std::to_string(kMaxImageSide) +
@@ -55,18 +56,20 @@ std::size_t check_pixels(const std::filesystem::path& path, HdrImage& image, con
         std::string problem;
         for (std::size_t c = 0; c < 3 && problem.empty(); ++c) {
             float& v = image.rgb[3 * p + c];
-            if (std::isnan(v)) problem = "NaN";
-            else if (std::isinf(v)) problem = "infinite";
+            if (std::isnan(v))
+                problem = "NaN";
+            else if (std::isinf(v))
+                problem = "infinite";
             else if (v < 0.0f && options.clamp_negative) {
                 v = 0.0f;
                 ++clamped;
-            } else if (v < 0.0f) problem = "negative (" + format_number(v) + ")" + options.negative_hint;
+            } else if (v < 0.0f)
+                problem = "negative (" + format_number(v) + ")" + options.negative_hint;
         }
         if (!problem.empty()) {
             const auto x = p % static_cast<std::size_t>(image.width);
             const auto y = p / static_cast<std::size_t>(image.width);
-            throw Error(path.string(),
-                        "pixel (" + std::to_string(x) + ", " + std::to_string(y) + ") is " + problem);
+            throw Error(path.string(), "pixel (" + std::to_string(x) + ", " + std::to_string(y) + ") is " + problem);
         }
     }
     return clamped;
@@ -171,8 +174,7 @@ HdrImage read_radiance(const std::filesystem::path& path) {
     float* pixels = stbi_loadf_from_callbacks(&callbacks, &source, &width, &height, &components, 3);
     if (!pixels) throw Error(path.string(), std::string("cannot read as Radiance HDR: ") + stbi_failure_reason());
     const std::unique_ptr<float, void (*)(void*)> owner(pixels, &stbi_image_free);
-    if (source.came_up_short || std::ferror(source.file))
-        throw Error(path.string(), "Radiance HDR file is truncated");
+    if (source.came_up_short || std::ferror(source.file)) throw Error(path.string(), "Radiance HDR file is truncated");
     check_size(path, width, height);  // the same header, read again: the same size
 
     HdrImage image;

@@ -43,8 +43,8 @@ std::string rgbe(float r, float g, float b) {
 }
 
 std::string hdr_header(int width, int height) {
-    return "#?RADIANCE\n# written by sombra's test\nFORMAT=32-bit_rle_rgbe\n\n-Y " + std::to_string(height) +
-           " +X " + std::to_string(width) + "\n";
+    return "#?RADIANCE\n# written by sombra's test\nFORMAT=32-bit_rle_rgbe\n\n-Y " + std::to_string(height) + " +X " +
+           std::to_string(width) + "\n";
 }
 
 // A Radiance file with flat (unencoded) scanlines.
@@ -89,14 +89,15 @@ std::string error_of(const fs::path& file) {
 
 std::vector<float> ramp(int width, int height) {
     std::vector<float> rgb;
-    for (int i = 0; i < width * height * 3; ++i) rgb.push_back(0.25f * static_cast<float>(i % 7) + 0.125f * static_cast<float>(i % 3));
+    for (int i = 0; i < width * height * 3; ++i)
+        rgb.push_back(0.25f * static_cast<float>(i % 7) + 0.125f * static_cast<float>(i % 3));
     return rgb;
 }
 
 TEST(HdrImage, ExrReadsBackTheSameFloats) {
     TempFolder folder;
-    const std::vector<float> rgb = {0.1f, 2.5f, 1e-6f, 1000.0f, 0.0f, 3.25f, 7.0f, 8.0f, 9.0f,
-                                    0.5f, 0.25f, 0.125f, 1e4f, 2e-3f, 0.3f, 4.0f, 5.0f, 6.0f};
+    const std::vector<float> rgb = {0.1f, 2.5f,  1e-6f,  1000.0f, 0.0f,  3.25f, 7.0f, 8.0f, 9.0f,
+                                    0.5f, 0.25f, 0.125f, 1e4f,    2e-3f, 0.3f,  4.0f, 5.0f, 6.0f};
     write_exr(folder.path / "a.exr", 3, 2, rgb);
     const HdrImage image = read_hdr_image(folder.path / "a.exr");
     EXPECT_EQ(image.width, 3);
@@ -160,8 +161,9 @@ TEST(HdrImage, MissingFileAndWrongExtension) {
 
 TEST(HdrImage, GarbageAndTruncatedFiles) {
     TempFolder folder;
-    EXPECT_NE(error_of(folder.write("garbage.exr", "this is not an OpenEXR file at all")).find("cannot read as OpenEXR"),
-              std::string::npos);
+    EXPECT_NE(
+        error_of(folder.write("garbage.exr", "this is not an OpenEXR file at all")).find("cannot read as OpenEXR"),
+        std::string::npos);
     EXPECT_NE(error_of(folder.write("empty.exr", "")), "");
     EXPECT_NE(error_of(folder.write("garbage.hdr", "hello")).find("not a Radiance HDR file"), std::string::npos);
     EXPECT_NE(error_of(folder.write("empty.hdr", "")), "");
@@ -193,7 +195,8 @@ TEST(HdrImage, NegativeNanAndInfinitePixelsNameThePixel) {
         float bad;
         const char* what;
     };
-    for (const Case& c : {Case{-0.5f, "negative (-0.5)"}, Case{nan, "NaN"}, Case{inf, "infinite"}, Case{-inf, "infinite"}}) {
+    for (const Case& c :
+         {Case{-0.5f, "negative (-0.5)"}, Case{nan, "NaN"}, Case{inf, "infinite"}, Case{-inf, "infinite"}}) {
         std::vector<float> rgb(3 * 4 * 3, 1.0f);
         rgb[3 * (2 * 4 + 1) + 2] = c.bad;  // pixel (1, 2), blue
         rgb[3 * (2 * 4 + 3) + 0] = -1.0f;  // a later one, not named

@@ -57,9 +57,12 @@ inline void write_png_file(const std::filesystem::path& file, int width, int hei
 inline void write_stb_file(const std::filesystem::path& file, const std::string& format, int width, int height,
                            int channels, const std::vector<unsigned char>& values) {
     int ok = 0;
-    if (format == "tga") ok = stbi_write_tga(file.c_str(), width, height, channels, values.data());
-    else if (format == "bmp") ok = stbi_write_bmp(file.c_str(), width, height, channels, values.data());
-    else if (format == "jpg") ok = stbi_write_jpg(file.c_str(), width, height, channels, values.data(), 100);
+    if (format == "tga")
+        ok = stbi_write_tga(file.c_str(), width, height, channels, values.data());
+    else if (format == "bmp")
+        ok = stbi_write_bmp(file.c_str(), width, height, channels, values.data());
+    else if (format == "jpg")
+        ok = stbi_write_jpg(file.c_str(), width, height, channels, values.data(), 100);
     if (!ok) throw std::runtime_error("cannot write " + file.string());
 }
 

@@ -135,9 +135,9 @@ Texture decode_stb(std::span<const unsigned char> bytes, Format format, const ch
     source = MemorySource{bytes};
     int got_width = 0, got_height = 0, got_channels = 0;
     void* pixels = sixteen ? static_cast<void*>(stbi_load_16_from_callbacks(&kCallbacks, &source, &got_width,
-                                                                             &got_height, &got_channels, channels))
-                           : static_cast<void*>(stbi_load_from_callbacks(&kCallbacks, &source, &got_width,
-                                                                          &got_height, &got_channels, channels));
+                                                                            &got_height, &got_channels, channels))
+                           : static_cast<void*>(stbi_load_from_callbacks(&kCallbacks, &source, &got_width, &got_height,
+                                                                         &got_channels, channels));
     if (!pixels) throw Error(where, std::string("cannot decode as ") + format_name + ": " + stb_reason());
     const std::unique_ptr<void, void (*)(void*)> owner(pixels, &stbi_image_free);
     if (source.wanted_more) throw Error(where, std::string(format_name) + " file is truncated");
@@ -160,9 +160,10 @@ Texture decode_stb(std::span<const unsigned char> bytes, Format format, const ch
     const auto fill = [&](const auto* v, unsigned max_code) {
         if (count <= max_code) {
             for (std::size_t i = 0; i < count; ++i)
-                t.texels[i] = is_colour_channel(encoding, static_cast<int>(i % static_cast<std::size_t>(channels)), channels)
-                                  ? srgb_decode(v[i], max_code)
-                                  : static_cast<float>(v[i]) / static_cast<float>(max_code);
+                t.texels[i] =
+                    is_colour_channel(encoding, static_cast<int>(i % static_cast<std::size_t>(channels)), channels)
+                        ? srgb_decode(v[i], max_code)
+                        : static_cast<float>(v[i]) / static_cast<float>(max_code);
             return;
         }
         std::vector<float> data(max_code + 1), colour;

@@ -45,9 +45,9 @@ TEST(Texture, TexelCentresGiveTheTexelsAndBilinearBlendsBetween) {
     EXPECT_EQ(at(kSquare, 0.75f, 0.25f), 1.0f);
     EXPECT_EQ(at(kSquare, 0.25f, 0.75f), 2.0f);
     EXPECT_EQ(at(kSquare, 0.75f, 0.75f), 4.0f);
-    EXPECT_EQ(at(kSquare, 0.5f, 0.5f), 1.75f);          // (0 + 1 + 2 + 4) / 4
-    EXPECT_EQ(at(kSquare, 0.375f, 0.25f), 0.25f);       // a quarter of the way from a to b
-    EXPECT_EQ(at(kSquare, 0.25f, 0.625f), 1.5f);        // three quarters from a to c
+    EXPECT_EQ(at(kSquare, 0.5f, 0.5f), 1.75f);     // (0 + 1 + 2 + 4) / 4
+    EXPECT_EQ(at(kSquare, 0.375f, 0.25f), 0.25f);  // a quarter of the way from a to b
+    EXPECT_EQ(at(kSquare, 0.25f, 0.625f), 1.5f);   // three quarters from a to c
     EXPECT_EQ(at(kSquare, 0.625f, 0.375f), 0.75f * (0.25f * 0 + 0.75f * 1) + 0.25f * (0.25f * 2 + 0.75f * 4));
 }
 
@@ -91,7 +91,8 @@ double srgb_reference(double c) { return c <= 0.04045 ? c / 12.92 : std::pow((c 
 TEST(Texture, EightBitColourIsSrgbDecodedAtEveryCodeAndDataIsNot) {
     TempFolder tmp;
     std::vector<std::uint16_t> codes;  // 256 × 1 grey + alpha: value c, alpha c
-    for (int c = 0; c < 256; ++c) codes.insert(codes.end(), {static_cast<std::uint16_t>(c), static_cast<std::uint16_t>(c)});
+    for (int c = 0; c < 256; ++c)
+        codes.insert(codes.end(), {static_cast<std::uint16_t>(c), static_cast<std::uint16_t>(c)});
     write_png_file(tmp.path / "ramp.png", 256, 1, 2, 8, codes);
     const Texture colour = read_texture_file(tmp.path / "ramp.png", TextureEncoding::Color);
     const Texture data = read_texture_file(tmp.path / "ramp.png", TextureEncoding::Data);
@@ -100,7 +101,8 @@ TEST(Texture, EightBitColourIsSrgbDecodedAtEveryCodeAndDataIsNot) {
     for (int c = 0; c < 256; ++c) {
         const float expected = static_cast<float>(srgb_reference(c / 255.0));
         EXPECT_EQ(colour.texels[2 * c], expected) << "code " << c;
-        EXPECT_EQ(colour.texels[2 * c + 1], static_cast<float>(c) / 255.0f) << "alpha is never sRGB-decoded, code " << c;
+        EXPECT_EQ(colour.texels[2 * c + 1], static_cast<float>(c) / 255.0f)
+            << "alpha is never sRGB-decoded, code " << c;
         EXPECT_EQ(data.texels[2 * c], static_cast<float>(c) / 255.0f) << "code " << c;
     }
     // A few values known to a few digits: the curve's join and its midpoint.
@@ -130,7 +132,8 @@ TEST(Texture, SixteenBitColourIsSrgbDecodedAtEveryCode) {
     // goes through a table of the 65536 codes, which must give the formula's floats.
     TempFolder tmp;
     std::vector<std::uint16_t> codes;
-    for (int c = 0; c < 65536; ++c) codes.insert(codes.end(), {static_cast<std::uint16_t>(c), static_cast<std::uint16_t>(65535 - c)});
+    for (int c = 0; c < 65536; ++c)
+        codes.insert(codes.end(), {static_cast<std::uint16_t>(c), static_cast<std::uint16_t>(65535 - c)});
     write_png_file(tmp.path / "all.png", 256, 256, 2, 16, codes);
     const Texture colour = read_texture_file(tmp.path / "all.png", TextureEncoding::Color);
     ASSERT_EQ(colour.texels.size(), codes.size());
@@ -173,7 +176,8 @@ TEST(Texture, DecodeFromMemoryNamesTheSource) {
     EXPECT_EQ(t.source, "model.glb: /images/0");
     EXPECT_EQ(t.texels, (std::vector<float>{1.0f, 128 / 255.0f, 0.0f}));
     try {
-        decode_texture(std::vector<unsigned char>(bytes.begin(), bytes.begin() + 20), TextureEncoding::Data, "m.glb: /images/1");
+        decode_texture(std::vector<unsigned char>(bytes.begin(), bytes.begin() + 20), TextureEncoding::Data,
+                       "m.glb: /images/1");
         ADD_FAILURE() << "a truncated buffer decoded";
     } catch (const Error& e) {
         EXPECT_EQ(e.where(), "m.glb: /images/1");
@@ -235,7 +239,8 @@ TEST(Texture, BrokenTruncatedAndHugeImagesAreOneLineErrors) {
     write_stb_file(tmp.path / "full.bmp", "bmp", 64, 64, 3, noise8);
     const auto half = [&](const char* name) {
         const std::vector<unsigned char> b = testing::read_file_bytes(tmp.path / name);
-        return tmp.write(std::string("half-") + name, std::string(b.begin(), b.begin() + static_cast<long>(b.size() / 2)));
+        return tmp.write(std::string("half-") + name,
+                         std::string(b.begin(), b.begin() + static_cast<long>(b.size() / 2)));
     };
     EXPECT_NE(error_of(half("full.png")).find("PNG"), std::string::npos);
     EXPECT_NE(error_of(half("full.jpg")).find("JPEG"), std::string::npos);

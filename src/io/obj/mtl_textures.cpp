@@ -41,10 +41,14 @@ void MtlTextureReader::apply(const tinyobj::material_t& mtl, const fs::path& mtl
         ref = load(name, options, TextureEncoding::Color, folder, mtl_path);
         if (ref.is_set()) value = Vec3{1.0f};
     };
-    if (m.type == MaterialType::Pbr) colour(mtl.diffuse_texname, mtl.diffuse_texopt, m.base_color, t.base_color);
-    else colour(mtl.diffuse_texname, mtl.diffuse_texopt, m.kd, t.kd);
-    if (m.type == MaterialType::Mirror) colour(mtl.specular_texname, mtl.specular_texopt, m.kr, t.kr);
-    else if (m.type == MaterialType::Phong) colour(mtl.specular_texname, mtl.specular_texopt, m.ks, t.ks);
+    if (m.type == MaterialType::Pbr)
+        colour(mtl.diffuse_texname, mtl.diffuse_texopt, m.base_color, t.base_color);
+    else
+        colour(mtl.diffuse_texname, mtl.diffuse_texopt, m.kd, t.kd);
+    if (m.type == MaterialType::Mirror)
+        colour(mtl.specular_texname, mtl.specular_texopt, m.kr, t.kr);
+    else if (m.type == MaterialType::Phong)
+        colour(mtl.specular_texname, mtl.specular_texopt, m.ks, t.ks);
     colour(mtl.emissive_texname, mtl.emissive_texopt, m.ke, t.ke);
 
     if (m.type == MaterialType::Pbr) {  // map_Pr, map_Pm: grey data replacing Pr, Pm

@@ -24,11 +24,11 @@
 
 #include "core/error.h"
 #include "core/format.h"
-#include "scene/material.h"
 #include "io/mesh_builder.h"
 #include "io/obj/mtl_scan.h"
 #include "io/obj/mtl_textures.h"
 #include "io/obj/obj_parse.h"
+#include "scene/material.h"
 
 namespace sombra {
 
@@ -126,7 +126,6 @@ bool MtlBesideObj::operator()(const std::string& name, std::vector<tinyobj::mate
     return true;
 }
 
-
 namespace {
 
 // An MTL scalar clamped to [0, 1] (NaN becomes 0), with a warning when it changed.
@@ -141,7 +140,8 @@ float clamp_unit(tinyobj::real_t value, const char* key, const tinyobj::material
 
 }  // namespace
 
-Material material_from_mtl(const tinyobj::material_t& mtl, MtlPbrKeys pbr, const std::string& where, Diagnostics& diag) {
+Material material_from_mtl(const tinyobj::material_t& mtl, MtlPbrKeys pbr, const std::string& where,
+                           Diagnostics& diag) {
     Material m;
     m.name = mtl.name;
     m.kd = clamp_rgb(mtl.diffuse, 1, "Kd", mtl, where, diag);
@@ -174,8 +174,9 @@ Material material_from_mtl(const tinyobj::material_t& mtl, MtlPbrKeys pbr, const
                                  format_number(kMaxMtlShininess) + "]");
         }
         if (breaks_energy_conservation(m))
-            diag.warn(where, "material '" + mtl.name +
-                                 "': Kd + Ks exceeds 1 in some channel: the material reflects more light than it receives");
+            diag.warn(where,
+                      "material '" + mtl.name +
+                          "': Kd + Ks exceeds 1 in some channel: the material reflects more light than it receives");
     }
     return m;
 }
@@ -274,12 +275,13 @@ struct ObjMaterials {
     void use(std::string_view name) {
         const auto it = index_of.find(std::string(name));
         current = it != index_of.end() ? it->second : -1;
-        if (it == index_of.end()) notes += "unknown material '" + std::string(name) + "' (usemtl): its faces get the default material\n";
+        if (it == index_of.end())
+            notes += "unknown material '" + std::string(name) + "' (usemtl): its faces get the default material\n";
     }
 
     std::uint32_t current_id() const {
         return current >= 0 && std::size_t(current) < materials.size() ? static_cast<std::uint32_t>(current)
-                                                                         : kNoMaterial;
+                                                                       : kNoMaterial;
     }
 };
 
@@ -311,8 +313,10 @@ LoadedMesh load_obj(const std::filesystem::path& path, Diagnostics& diag) {
     // Applies the `usemtl` and `mtllib` lines before the face-th face, in file order.
     auto apply_directives_before = [&](std::size_t face) {
         for (; directive != geometry.directives.cend() && directive->face <= face; ++directive) {
-            if (directive->kind == ObjDirective::Kind::Usemtl) mtl.use(directive->text);
-            else mtl.read_library(directive->text);
+            if (directive->kind == ObjDirective::Kind::Usemtl)
+                mtl.use(directive->text);
+            else
+                mtl.read_library(directive->text);
         }
     };
     std::size_t face = 0;

@@ -111,8 +111,10 @@ TEST(ObjMaterials, OutOfRangeValuesAreClampedWithWarnings) {
 
 TEST(ObjMaterials, PhongThatReflectsMoreThanItReceivesWarns) {
     TempFolder tmp;
-    tmp.write("e.mtl", "newmtl hot\nKd 0.8 0.2 0.2\nKs 0.5 0.5 0.5\nNs 10\nnewmtl ok\nKd 0.5 0.2 0.2\nKs 0.5 0.5 0.5\n");
-    const auto obj = tmp.write("e.obj", "mtllib e.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl hot\nf 1 2 3\nusemtl ok\nf 1 3 2\n");
+    tmp.write("e.mtl",
+              "newmtl hot\nKd 0.8 0.2 0.2\nKs 0.5 0.5 0.5\nNs 10\nnewmtl ok\nKd 0.5 0.2 0.2\nKs 0.5 0.5 0.5\n");
+    const auto obj =
+        tmp.write("e.obj", "mtllib e.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl hot\nf 1 2 3\nusemtl ok\nf 1 3 2\n");
     Diagnostics diag;
     const LoadedMesh loaded = load_obj(obj, diag);
     ASSERT_EQ(diag.warnings.size(), 1u);
@@ -208,11 +210,12 @@ TEST(ObjMaterials, PrAndPmMakeAPbrMaterial) {
                  "newmtl mirror\nKs 1 1 1\nPm 1\nillum 5\n"
                  "newmtl out_of_range\nKd 0.5 0.5 0.5\nPr 1.5\nPm -2\n"
                  "newmtl phong\nKd 0.2 0.2 0.2\nKs 0.5 0.5 0.5\n# Pr 0.5\nPrx 0.5\nmap_Pr r.png\n");
-    const fs::path obj = folder.write("m.obj",
-                                      "mtllib m.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\n"
-                                      "usemtl plastic\nf 1 2 3\nusemtl rough_only\nf 1 2 3\nusemtl metal_only\nf 1 2 3\n"
-                                      "usemtl smooth\nf 1 2 3\nusemtl mirror\nf 1 2 3\nusemtl out_of_range\nf 1 2 3\n"
-                                      "usemtl phong\nf 1 2 3\n");
+    const fs::path obj =
+        folder.write("m.obj",
+                     "mtllib m.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\n"
+                     "usemtl plastic\nf 1 2 3\nusemtl rough_only\nf 1 2 3\nusemtl metal_only\nf 1 2 3\n"
+                     "usemtl smooth\nf 1 2 3\nusemtl mirror\nf 1 2 3\nusemtl out_of_range\nf 1 2 3\n"
+                     "usemtl phong\nf 1 2 3\n");
     Diagnostics diag;
     const LoadedMesh loaded = load_obj(obj, diag);
     ASSERT_EQ(loaded.mesh.triangle_count(), 7u);
@@ -247,8 +250,10 @@ TEST(ObjMaterials, PrAndPmMakeAPbrMaterial) {
     EXPECT_EQ(clamped.roughness, 1.0f);
     EXPECT_EQ(clamped.metallic, 0.0f);
     ASSERT_EQ(diag.warnings.size(), 2u);
-    EXPECT_NE(diag.warnings[0].find("material 'out_of_range': Pr 1.5 clamped to [0, 1]"), std::string::npos) << diag.warnings[0];
-    EXPECT_NE(diag.warnings[1].find("material 'out_of_range': Pm -2 clamped to [0, 1]"), std::string::npos) << diag.warnings[1];
+    EXPECT_NE(diag.warnings[0].find("material 'out_of_range': Pr 1.5 clamped to [0, 1]"), std::string::npos)
+        << diag.warnings[0];
+    EXPECT_NE(diag.warnings[1].find("material 'out_of_range': Pm -2 clamped to [0, 1]"), std::string::npos)
+        << diag.warnings[1];
 
     EXPECT_EQ(material_of(loaded, 6).type, MaterialType::Phong);  // a comment, Prx and map_Pr are not Pr
 }
@@ -257,8 +262,8 @@ TEST(ObjMaterials, PbrKeyScanFollowsTinyobjloadersMaterialOrder) {
     // Keys before the first newmtl belong to no material; "newmtl" alone names
     // none (the blank after it is trimmed), so its keys go to the one before;
     // the last material is always added.
-    const std::vector<MtlPbrKeys> keys = scan_mtl_pbr_keys(
-        "Pr 0.5\nnewmtl a\nPm 1\nnewmtl \nPr 1\nnewmtl b\rPr 0.1\rnewmtl c\n\tPm\t0.2");
+    const std::vector<MtlPbrKeys> keys =
+        scan_mtl_pbr_keys("Pr 0.5\nnewmtl a\nPm 1\nnewmtl \nPr 1\nnewmtl b\rPr 0.1\rnewmtl c\n\tPm\t0.2");
     ASSERT_EQ(keys.size(), 3u);
     EXPECT_TRUE(keys[0].roughness && keys[0].metallic);
     EXPECT_TRUE(keys[1].roughness && !keys[1].metallic);

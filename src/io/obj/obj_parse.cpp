@@ -217,9 +217,10 @@ void parse_chunk(Chunk& chunk, const Totals& totals, std::vector<Vec3>& position
                 } else {
                     for (const ObjCorner& c : corners) {
                         if ((c.position < 0 || c.position >= totals.positions) && chunk.out_of_range.line == 0) {
-                            chunk.out_of_range = {line, {"face index " + std::to_string(c.position + 1) +
-                                                         " out of range (the file has " +
-                                                         std::to_string(totals.positions) + " vertices)"}};
+                            chunk.out_of_range = {line,
+                                                  {"face index " + std::to_string(c.position + 1) +
+                                                   " out of range (the file has " + std::to_string(totals.positions) +
+                                                   " vertices)"}};
                         }
                         out.positions.push_back(static_cast<std::uint32_t>(c.position));
                         const bool has_normal = c.normal >= 0 && c.normal < totals.normals;
@@ -234,8 +235,9 @@ void parse_chunk(Chunk& chunk, const Totals& totals, std::vector<Vec3>& position
                 }
             } else if (kind == LineKind::Polyline || kind == LineKind::Points) {
                 if (!obj_index_line_readable(k + 2, content_end) && chunk.unreadable.line == 0) {
-                    chunk.unreadable = {line, {std::string(kind == LineKind::Polyline ? "`l`" : "`p`") +
-                                               " line: an index is 0 or not a number"}};
+                    chunk.unreadable = {line,
+                                        {std::string(kind == LineKind::Polyline ? "`l`" : "`p`") +
+                                         " line: an index is 0 or not a number"}};
                 }
             } else {
                 const bool usemtl = kind == LineKind::Usemtl;
@@ -285,7 +287,8 @@ ObjGeometry parse_obj(std::string_view text, const std::string& where, std::size
             const Problem& found = chunk.*kind;
             if (found.line == 0) continue;
             std::string what = found.problem.what;
-            if (found.problem.needs_total) what += obj_total_suffix(found.problem.part, part_totals[found.problem.part]);
+            if (found.problem.needs_total)
+                what += obj_total_suffix(found.problem.part, part_totals[found.problem.part]);
             throw Error(where + ":" + std::to_string(found.line), what);
         }
     }

@@ -78,8 +78,8 @@ enum class ObjLineStatus {
 
 struct ObjLineProblem {
     std::string what;
-    int part = 0;             // 0 position, 1 texture coordinate, 2 normal
-    bool needs_total = false; // the message ends with the file's count of that part
+    int part = 0;              // 0 position, 1 texture coordinate, 2 normal
+    bool needs_total = false;  // the message ends with the file's count of that part
 };
 
 // Reads the corners of a face line: `args` is the text after "f" and its

@@ -138,7 +138,7 @@ int obj_atoi(const char* first, const char* last) {
         magnitude = magnitude > (limit - digit) / 10 ? limit : magnitude * 10 + digit;
     }
     const std::uint64_t as_long = negative ? 0 - magnitude : magnitude;  // two's complement
-    return static_cast<int>(static_cast<std::uint32_t>(as_long));       // atoi's cut to int
+    return static_cast<int>(static_cast<std::uint32_t>(as_long));        // atoi's cut to int
 }
 
 namespace {
@@ -150,8 +150,7 @@ constexpr std::int64_t kBeyondInt32 = std::int64_t{0x7fffffff} + 1;
 // The common corner forms, v, v/vt, v//vn and v/vt/vn with 1 to 9 digits
 // each, none 0, no position before the first: nothing to check further, and
 // tinyobjloader reads them the same. False (corners untouched) for anything else.
-bool read_plain_corners(const char* p, const char* end, const ObjIndexCounts& before,
-                        std::vector<ObjCorner>& corners) {
+bool read_plain_corners(const char* p, const char* end, const ObjIndexCounts& before, std::vector<ObjCorner>& corners) {
     const std::size_t first = corners.size();
     auto part = [&](std::int64_t& value) {
         const bool negative = p != end && *p == '-';
@@ -212,7 +211,8 @@ bool leading_integer(std::string_view part, SpelledIndex& out) {
     if (i < part.size() && (part[i] == '+' || part[i] == '-')) ++i;
     const std::size_t first_digit = i;
     std::int64_t value = 0;
-    for (; i < part.size() && is_digit(part[i]); ++i) value = std::min<std::int64_t>(value * 10 + (part[i] - '0'), kBeyondInt32);
+    for (; i < part.size() && is_digit(part[i]); ++i)
+        value = std::min<std::int64_t>(value * 10 + (part[i] - '0'), kBeyondInt32);
     if (i == first_digit) return false;
     out = {negative ? -value : value, part.substr(0, i)};
     return true;
@@ -242,7 +242,8 @@ bool find_index_problem(std::string_view args, std::int64_t positions_before, Ob
             SpelledIndex index{};
             if (!leading_integer(spelled, index)) {
                 if (not_a_number(spelled)) {
-                    problem = {"face corner '" + quoted(corner) + "' is not made of indices (v, v/vt, v//vn or v/vt/vn)"};
+                    problem = {"face corner '" + quoted(corner) +
+                               "' is not made of indices (v, v/vt, v//vn or v/vt/vn)"};
                     return true;
                 }
             } else {

@@ -15,8 +15,8 @@
 #include <limits>
 
 #include "core/error.h"
-#include "scene/mesh.h"
 #include "io/polygon_test_files.h"
+#include "scene/mesh.h"
 
 namespace sombra {
 namespace {
@@ -59,12 +59,29 @@ TEST(ObjRealNumbers, MatchStrtofBitForBitOnDragonCoordinates) {
 
 TEST(ObjRealNumbers, MatchStrtofOnHardCases) {
     // Halfway cases, denormals, the float range's edges, long mantissas.
-    for (const char* text : {"1.00000005960464477539062", "1.000000059604644775390625", "1.00000017881393432617187499",
-                             "3.4028235e38", "3.40282356779733661637539395458142568448e38", "3.4028236e38", "1e-45",
-                             "7e-46", "7.1e-46", "1.17549435e-38", "0.000000000000000000000000000000000000000000001",
-                             "123456789012345678901234567890", "-0", "-0.0e5", "1e999", "-1e999", "1e-999",
-                             "-1e-999", "4.9406564584124654e-324", "1.8e308", "2e400",
-                             ".000000000000000000000000000000000000000000000000000000000000000000000000000000001e-300"}) {
+    for (const char* text :
+         {"1.00000005960464477539062",
+          "1.000000059604644775390625",
+          "1.00000017881393432617187499",
+          "3.4028235e38",
+          "3.40282356779733661637539395458142568448e38",
+          "3.4028236e38",
+          "1e-45",
+          "7e-46",
+          "7.1e-46",
+          "1.17549435e-38",
+          "0.000000000000000000000000000000000000000000001",
+          "123456789012345678901234567890",
+          "-0",
+          "-0.0e5",
+          "1e999",
+          "-1e999",
+          "1e-999",
+          "-1e-999",
+          "4.9406564584124654e-324",
+          "1.8e308",
+          "2e400",
+          ".000000000000000000000000000000000000000000000000000000000000000000000000000000001e-300"}) {
         const float ours = real(text);
         const float theirs = std::strtof(text, nullptr);
         EXPECT_EQ(std::bit_cast<std::uint32_t>(ours), std::bit_cast<std::uint32_t>(theirs)) << text;
@@ -95,8 +112,8 @@ TEST(ObjRealNumbers, AcceptWhatTinyobjloaderAccepts) {
 
 TEST(ObjAtoi, AsGlibcComputesIt) {
     auto atoi_of = [](std::string_view s) { return obj_atoi(s.data(), s.data() + s.size()); };
-    for (const char* text : {"12", "-7", "+5", " \t\v\f 42x", "/3", "", "-", "2147483647", "-2147483648",
-                             "2147483648", "4294967298", "99999999999999999999", "-99999999999999999999"}) {
+    for (const char* text : {"12", "-7", "+5", " \t\v\f 42x", "/3", "", "-", "2147483647", "-2147483648", "2147483648",
+                             "4294967298", "99999999999999999999", "-99999999999999999999"}) {
         EXPECT_EQ(atoi_of(text), std::atoi(text)) << text;
     }
 }
@@ -104,8 +121,10 @@ TEST(ObjAtoi, AsGlibcComputesIt) {
 // Everything parse_obj returns, flattened for comparison.
 std::vector<std::string> flatten(const ObjGeometry& g) {
     std::vector<std::string> out;
-    for (const Vec3& p : g.positions) out.push_back("v " + std::to_string(p.x) + " " + std::to_string(p.y) + " " + std::to_string(p.z));
-    for (const Vec3& n : g.normals) out.push_back("vn " + std::to_string(n.x) + " " + std::to_string(n.y) + " " + std::to_string(n.z));
+    for (const Vec3& p : g.positions)
+        out.push_back("v " + std::to_string(p.x) + " " + std::to_string(p.y) + " " + std::to_string(p.z));
+    for (const Vec3& n : g.normals)
+        out.push_back("vn " + std::to_string(n.x) + " " + std::to_string(n.y) + " " + std::to_string(n.z));
     for (const ObjFaceBlock& block : g.faces) {
         std::uint32_t begin = 0;
         for (std::uint32_t end : block.ends) {
@@ -147,10 +166,10 @@ TEST(ObjParse, SameResultForEveryChunkSizeAndThreadCount) {
         }
     }
     const ObjGeometry g = parse_obj(text, "m.obj");
-    EXPECT_EQ(g.small_faces, 37u);                      // the "f i i-1" lines
-    EXPECT_EQ(g.bad_normal_refs, 1u);                   // 2//9
-    EXPECT_EQ(g.directives[1].text, "m4 x");             // the rest of the line, trimmed
-    EXPECT_EQ(g.faces.back().ends.size(), 37u + 2u);    // the NUL cuts "5 6" off: a quad
+    EXPECT_EQ(g.small_faces, 37u);                    // the "f i i-1" lines
+    EXPECT_EQ(g.bad_normal_refs, 1u);                 // 2//9
+    EXPECT_EQ(g.directives[1].text, "m4 x");          // the rest of the line, trimmed
+    EXPECT_EQ(g.faces.back().ends.size(), 37u + 2u);  // the NUL cuts "5 6" off: a quad
     EXPECT_EQ(g.positions[1], Vec3(1, 1.5f, -0.1f));
 }
 
@@ -186,8 +205,8 @@ TEST(ObjParse, ErrorsNameTheLineAcrossChunks) {
 }
 
 TEST(ObjParse, CoordinatesAsTinyobjloaderReadThem) {
-    const ObjGeometry g = parse_obj("v 1 2\nv nan 0 0\nv 1 1 1.#IND\nv 3.1+e2 1e 1e999\nv\t-.5\t+2 .e1 7 8\nvn nan 1 2\n",
-                                    "c.obj");
+    const ObjGeometry g =
+        parse_obj("v 1 2\nv nan 0 0\nv 1 1 1.#IND\nv 3.1+e2 1e 1e999\nv\t-.5\t+2 .e1 7 8\nvn nan 1 2\n", "c.obj");
     ASSERT_EQ(g.positions.size(), 5u);
     EXPECT_EQ(g.positions[0], Vec3(1, 2, 0));  // a missing coordinate is 0
     EXPECT_TRUE(std::isnan(g.positions[1].x));

@@ -30,8 +30,8 @@ public:
     // `file_size`; `already_read` holds the bytes from `body_offset` on that
     // were read with the header. `file` stays the caller's, positioned just
     // after them. `where` (the file's path) must outlive the stream.
-    PlyBinaryStream(std::FILE* file, std::string_view already_read, std::uint64_t body_offset,
-                    std::uint64_t file_size, bool swap_bytes, const std::string* where);
+    PlyBinaryStream(std::FILE* file, std::string_view already_read, std::uint64_t body_offset, std::uint64_t file_size,
+                    bool swap_bytes, const std::string* where);
 
     // Bytes of the file after the current position, by its size on disk.
     std::size_t remaining() const {

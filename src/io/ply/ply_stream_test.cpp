@@ -26,7 +26,8 @@ std::string grid_ply(int n, bool binary, const std::string& comments = "") {
     std::string out = std::string("ply\nformat ") + (binary ? "binary_little_endian" : "ascii") + " 1.0\n" + comments +
                       "element vertex " + std::to_string(side * side) +
                       "\nproperty float x\nproperty float y\nproperty float z\n"
-                      "element face " + std::to_string(2 * n * n) + "\nproperty list uchar int vertex_indices\nend_header\n";
+                      "element face " +
+                      std::to_string(2 * n * n) + "\nproperty list uchar int vertex_indices\nend_header\n";
     auto put = [&](auto value) {
         char bytes[sizeof value];
         std::memcpy(bytes, &value, sizeof value);
@@ -45,7 +46,8 @@ std::string grid_ply(int n, bool binary, const std::string& comments = "") {
     for (int y = 0; y < n; ++y) {
         for (int x = 0; x < n; ++x) {
             const std::int32_t a = y * side + x, b = a + 1, c = a + side, d = c + 1;
-            for (const std::array<std::int32_t, 3>& t : {std::array<std::int32_t, 3>{a, b, d}, std::array<std::int32_t, 3>{a, d, c}}) {
+            for (const std::array<std::int32_t, 3>& t :
+                 {std::array<std::int32_t, 3>{a, b, d}, std::array<std::int32_t, 3>{a, d, c}}) {
                 if (binary) {
                     put(std::uint8_t{3});
                     for (int k = 0; k < 3; ++k) put(t[k]);

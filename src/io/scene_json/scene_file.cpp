@@ -146,7 +146,8 @@ LoadedScene load_scene_text(const std::string& text, const fs::path& path, Diagn
     for (const PunctualLight& light : lights.punctual) builder.add_light(light);
     if (const Json* v = find_member(root, "environment")) {
         if (find_member(root, "background"))
-            json_fail(s, "/environment", "give either 'background' or 'environment', not both (the map replaces the background)");
+            json_fail(s, "/environment",
+                      "give either 'background' or 'environment', not both (the map replaces the background)");
         builder.set_environment(read_environment(s, *v, "/environment", path.parent_path()));
     }
 

@@ -223,12 +223,13 @@ TEST_F(SceneFile, DefaultsApply) {
 }
 
 TEST_F(SceneFile, SettingsAndSectionsAreRead) {
-    const LoadedScene loaded = load_scene_text(scene(
-        R"("render": {"width": 320, "height": 200, "spp": 16, "seed": 18446744073709551615},
+    const LoadedScene loaded =
+        load_scene_text(scene(
+                            R"("render": {"width": 320, "height": 200, "spp": 16, "seed": 18446744073709551615},
            "background": [0.1, 0.2, 0.3],
            "materials": {"gold": {"type": "phong", "kd": [0.4, 0.3, 0.1], "ks": [0.5, 0.4, 0.2], "shininess": 0, "ke": [0, 0, 7]}},
            "lights": [{"type": "point", "position": [1, 2, 3], "intensity": [10, 20, 30]}, {"position": [0, 9, 0], "intensity": [0, 0, 0]}])"),
-        scene_path, diag);
+                        scene_path, diag);
     const RenderSettings& r = loaded.settings;
     EXPECT_EQ(r.width, 320);
     EXPECT_EQ(r.height, 200);

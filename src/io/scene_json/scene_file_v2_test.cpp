@@ -93,7 +93,8 @@ TEST_F(SceneV2, RenderIntegratorAndMaxDepth) {
 
 TEST_F(SceneV2, RenderTextureFilter) {
     EXPECT_EQ(settings_of(scene("")).texture_filter, TextureFilter::Bilinear);
-    EXPECT_EQ(settings_of(scene(R"("render": {"texture_filter": "bilinear"})")).texture_filter, TextureFilter::Bilinear);
+    EXPECT_EQ(settings_of(scene(R"("render": {"texture_filter": "bilinear"})")).texture_filter,
+              TextureFilter::Bilinear);
     EXPECT_EQ(settings_of(scene(R"("render": {"texture_filter": "mipmap"})")).texture_filter, TextureFilter::Mipmap);
 }
 
@@ -143,7 +144,8 @@ TEST_F(SceneV2, PbrMaterialIsRead) {
     EXPECT_EQ(steel.ke, (Vec3{0.1f, 0, 0}));
     EXPECT_TRUE(diag.warnings.empty());
     // The ends of the ranges are allowed, and a pbr material does not ask for the path integrator.
-    const Scene ends = load(with_material(R"({"type": "pbr", "base_color": [0, 0, 1], "metallic": 1, "roughness": 0})"));
+    const Scene ends =
+        load(with_material(R"({"type": "pbr", "base_color": [0, 0, 1], "metallic": 1, "roughness": 0})"));
     EXPECT_EQ(ends.materials[0].roughness, 0.0f);
     EXPECT_FALSE(needs_path_integrator(ends));
 }
@@ -166,19 +168,23 @@ TEST_F(SceneV2, HostileValuesNameWhereAndWhat) {
         {with_material(R"({"type": "dielectric", "ior": 0.5})"), ": /materials/m/ior: ior must be greater than 1"},
         {with_material(R"({"type": "dielectric", "ior": "NaN"})"), ": /materials/m/ior: expected a number"},
         {with_material(R"({"type": "dielectric", "ior": 1e39})"), ": /materials/m/ior: number out of range"},
-        {with_material(R"({"type": "dielectric", "kt": [1.1, 1, 1]})"), ": /materials/m/kt: kt components must lie in [0, 1]"},
+        {with_material(R"({"type": "dielectric", "kt": [1.1, 1, 1]})"),
+         ": /materials/m/kt: kt components must lie in [0, 1]"},
         {with_material(R"({"type": "conductor", "ks": [1, 1, 1], "roughness": -0.1})"),
          ": /materials/m/roughness: roughness must lie in [0, 1]"},
         {with_material(R"({"type": "conductor", "ks": [1, 1, 1], "roughness": 1.5})"),
          ": /materials/m/roughness: roughness must lie in [0, 1]"},
         {with_material(R"({"type": "conductor", "ks": [1, 1, 1]})"),
          ": /materials/m/roughness: missing required key 'roughness'"},
-        {with_material(R"({"type": "mirror", "kr": [1.5, 0, 0]})"), ": /materials/m/kr: kr components must lie in [0, 1]"},
+        {with_material(R"({"type": "mirror", "kr": [1.5, 0, 0]})"),
+         ": /materials/m/kr: kr components must lie in [0, 1]"},
         {with_material(R"({"type": "mirror"})"), ": /materials/m/kr: missing required key 'kr'"},
         {with_material(R"({"type": "mirror", "kr": [1, 1, 1], "kd": [1, 1, 1]})"),
          ": /materials/m/kd: 'kd' applies only to diffuse and phong materials, not mirror"},
-        {with_material(R"({"type": "mirror", "kr": [1, 1, 1], "shine": 1})"), ": /materials/m/shine: unknown key 'shine'"},
-        {with_material(R"({"type": "pbr", "base_color": [1, 1, 1]})"), ": /materials/m/metallic: missing required key 'metallic'"},
+        {with_material(R"({"type": "mirror", "kr": [1, 1, 1], "shine": 1})"),
+         ": /materials/m/shine: unknown key 'shine'"},
+        {with_material(R"({"type": "pbr", "base_color": [1, 1, 1]})"),
+         ": /materials/m/metallic: missing required key 'metallic'"},
         {with_material(R"({"type": "pbr", "metallic": 0, "roughness": 0.5})"),
          ": /materials/m/base_color: missing required key 'base_color'"},
         {with_material(R"({"type": "pbr", "base_color": [1, 1, 1], "metallic": 0})"),
@@ -201,32 +207,40 @@ TEST_F(SceneV2, HostileValuesNameWhereAndWhat) {
          ": /materials/m/ior: number out of range"},
         {with_material(R"({"type": "pbr", "base_color": [1, 1, 1], "metallic": 0, "roughness": 0.5, "kd": [1, 1, 1]})"),
          ": /materials/m/kd: 'kd' applies only to diffuse and phong materials, not pbr"},
-        {with_material(R"({"type": "pbr", "base_color": [1, 1, 1], "metallic": 0, "roughness": 0.5, "emissive": [1, 1, 1]})"),
+        {with_material(
+             R"({"type": "pbr", "base_color": [1, 1, 1], "metallic": 0, "roughness": 0.5, "emissive": [1, 1, 1]})"),
          ": /materials/m/emissive: unknown key 'emissive'"},
         {with_material(R"({"type": "conductor", "ks": [1, 1, 1], "roughness": 0.5, "metallic": 1})"),
          ": /materials/m/metallic: 'metallic' applies only to pbr materials, not conductor"},
         {with_material(R"({"type": "dielectric", "roughness": 0.5})"),
          ": /materials/m/roughness: 'roughness' applies only to conductor and pbr materials, not dielectric"},
         {with_material(R"({"type": "metal"})"),
-         ": /materials/m/type: unknown material type 'metal' (expected 'diffuse', 'phong', 'mirror', 'dielectric', 'conductor' or 'pbr')"},
-        {with_light(R"({"type": "quad", "corner": [0, 0, 0], "edge1": [1, 0, 0], "edge2": [2, 0, 0], "radiance": [1, 1, 1]})"),
+         ": /materials/m/type: unknown material type 'metal' (expected 'diffuse', 'phong', 'mirror', 'dielectric', "
+         "'conductor' or 'pbr')"},
+        {with_light(
+             R"({"type": "quad", "corner": [0, 0, 0], "edge1": [1, 0, 0], "edge2": [2, 0, 0], "radiance": [1, 1, 1]})"),
          ": /lights/0: quad light edges 'edge1' and 'edge2' are parallel"},
-        {with_light(R"({"type": "quad", "corner": [0, 0, 0], "edge1": [0, 0, 0], "edge2": [0, 1, 0], "radiance": [1, 1, 1]})"),
+        {with_light(
+             R"({"type": "quad", "corner": [0, 0, 0], "edge1": [0, 0, 0], "edge2": [0, 1, 0], "radiance": [1, 1, 1]})"),
          ": /lights/0/edge1: quad light edge 'edge1' is zero"},
-        {with_light(R"({"type": "quad", "corner": [0, 0, 0], "edge1": [1, 0, 0], "edge2": [0, 1, 0], "radiance": [1, -1, 1]})"),
+        {with_light(
+             R"({"type": "quad", "corner": [0, 0, 0], "edge1": [1, 0, 0], "edge2": [0, 1, 0], "radiance": [1, -1, 1]})"),
          ": /lights/0/radiance: colour components must be non-negative"},
         {with_light(R"({"type": "quad", "corner": [0, 0, 0], "edge1": [1, 0, 0], "edge2": [0, 1, 0]})"),
          ": /lights/0/radiance: missing required key 'radiance'"},
-        {with_light(R"({"type": "quad", "corner": [0, 0, 0], "edge1": [1, 0, 0], "edge2": [0, 1, 0], "radiance": [1, 1, 1], "position": [0, 0, 0]})"),
+        {with_light(
+             R"({"type": "quad", "corner": [0, 0, 0], "edge1": [1, 0, 0], "edge2": [0, 1, 0], "radiance": [1, 1, 1], "position": [0, 0, 0]})"),
          ": /lights/0/position: unknown key 'position'"},
         {with_light(R"({"type": "area", "position": [0, 0, 0]})"), ": /lights/0/type: unknown light type 'area'"},
         {with_environment(R"({"file": "sky.exr"})", R"(, "background": [0, 0, 0])"),
          ": /environment: give either 'background' or 'environment', not both"},
-        {with_environment(R"({"file": "nothing.exr"})"), ": /environment/file: cannot open 'nothing.exr': no such file"},
+        {with_environment(R"({"file": "nothing.exr"})"),
+         ": /environment/file: cannot open 'nothing.exr': no such file"},
         {with_environment(R"({"file": "sky.exr", "scale": -1})"), ": /environment/scale: scale must be non-negative"},
         {with_environment(R"({"file": "sky.exr", "scale": "NaN"})"), ": /environment/scale: expected a number"},
         {with_environment(R"({"file": "sky.exr", "rotate_y": 1e39})"), ": /environment/rotate_y: number out of range"},
-        {with_environment(R"({"file": "sky.exr", "clamp_negative": 1})"), ": /environment/clamp_negative: expected true or false"},
+        {with_environment(R"({"file": "sky.exr", "clamp_negative": 1})"),
+         ": /environment/clamp_negative: expected true or false"},
         {with_environment(R"({"file": "sky.exr", "exposure": 1})"), ": /environment/exposure: unknown key 'exposure'"},
     };
     for (const auto& c : cases) {
@@ -345,8 +359,10 @@ TEST_F(SceneV2, MirroringTransformSwapsNormalAndUvCornersAlong) {
 TEST_F(SceneV2, WhatNeedsThePathIntegrator) {
     EXPECT_FALSE(needs_path_integrator(load(scene(""))));
     // Emission of version 1 does not.
-    EXPECT_FALSE(needs_path_integrator(load(with_material(R"({"type": "diffuse", "kd": [0, 0, 0], "ke": [5, 5, 5]})"))));
-    EXPECT_FALSE(needs_path_integrator(load(with_material(R"({"type": "conductor", "ks": [1, 1, 1], "roughness": 0.5})"))));
+    EXPECT_FALSE(
+        needs_path_integrator(load(with_material(R"({"type": "diffuse", "kd": [0, 0, 0], "ke": [5, 5, 5]})"))));
+    EXPECT_FALSE(
+        needs_path_integrator(load(with_material(R"({"type": "conductor", "ks": [1, 1, 1], "roughness": 0.5})"))));
     EXPECT_TRUE(needs_path_integrator(load(with_material(R"({"type": "mirror", "kr": [1, 1, 1]})"))));
     EXPECT_TRUE(needs_path_integrator(load(with_material(R"({"type": "dielectric"})"))));
     EXPECT_TRUE(needs_path_integrator(load(with_environment(R"({"file": "sky.exr"})"))));

@@ -62,8 +62,7 @@ void read_dielectric(const SceneJson& s, const Json& v, std::string_view pointer
     read_texturable(s, v, pointer, "kt", false, m, textures);
 }
 
-void read_conductor(const SceneJson& s, const Json& v, std::string_view pointer, Material& m,
-                    SceneTextures& textures) {
+void read_conductor(const SceneJson& s, const Json& v, std::string_view pointer, Material& m, SceneTextures& textures) {
     read_texturable(s, v, pointer, "ks", true, m, textures);
     read_texturable(s, v, pointer, "roughness", true, m, textures);
 }

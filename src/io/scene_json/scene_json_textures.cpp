@@ -18,8 +18,8 @@ namespace {
 constexpr const char* kChannels = "rgba";
 
 // The texture `file` names, decoded into the table (or found there).
-TextureRef load_texture(const SceneJson& s, const Json& file_value, std::string_view pointer,
-                        TextureEncoding encoding, SceneTextures& textures) {
+TextureRef load_texture(const SceneJson& s, const Json& file_value, std::string_view pointer, TextureEncoding encoding,
+                        SceneTextures& textures) {
     const std::string& file = read_string(s, file_value, pointer);
     if (file.empty()) json_fail(s, pointer, "expected an image file name, not an empty string");
     if (file.find('\0') != std::string::npos) json_fail(s, pointer, "the file name contains a NUL character");
@@ -34,7 +34,8 @@ TextureRef load_texture(const SceneJson& s, const Json& file_value, std::string_
         const Texture& t = (*textures.table)[i];
         if (t.source == path.string() && t.encoding == encoding) ref.texture = static_cast<std::uint32_t>(i);
     }
-    if (!ref.is_set()) ref.texture = add_texture(*textures.table, read_texture_file(path, encoding));  // its errors name the image
+    if (!ref.is_set())
+        ref.texture = add_texture(*textures.table, read_texture_file(path, encoding));  // its errors name the image
     return ref;
 }
 
@@ -52,11 +53,12 @@ float read_unit_float(const SceneJson& s, const Json& v, std::string_view pointe
     return x;
 }
 
-void read_rgb_slot(const SceneJson& s, const Json& v, std::string_view pointer, const RgbTextureSlot& slot,
-                   Material& m, SceneTextures& textures) {
+void read_rgb_slot(const SceneJson& s, const Json& v, std::string_view pointer, const RgbTextureSlot& slot, Material& m,
+                   SceneTextures& textures) {
     if (!v.is_object()) {
         if (!v.is_array())
-            json_fail(s, pointer, "expected an array of 3 numbers or a texture {\"texture\": file, \"scale\": [r, g, b]}");
+            json_fail(s, pointer,
+                      "expected an array of 3 numbers or a texture {\"texture\": file, \"scale\": [r, g, b]}");
         m.*slot.value = read_rgb_in(s, v, pointer, slot.key, slot.reflectance);
         return;
     }
@@ -83,7 +85,8 @@ void read_scalar_slot(const SceneJson& s, const Json& v, std::string_view pointe
         const std::string p = json_child(pointer, "channel");
         const std::string& name = read_string(s, *channel, p);
         const char* at = name.size() == 1 ? std::strchr(kChannels, name[0]) : nullptr;
-        if (!at || *at == '\0') json_fail(s, p, "unknown channel '" + name + "' (expected \"r\", \"g\", \"b\" or \"a\")");
+        if (!at || *at == '\0')
+            json_fail(s, p, "unknown channel '" + name + "' (expected \"r\", \"g\", \"b\" or \"a\")");
         ref.channel = static_cast<std::uint8_t>(at - kChannels);
     }
     m.*slot.value = 1.0f;

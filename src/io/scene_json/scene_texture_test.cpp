@@ -28,7 +28,8 @@ protected:
                   "mtllib quad.mtl\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\n"
                   "usemtl painted\nf 1/1 2/2 3/3 4/4\n");
     }
-    Scene load(const std::string& materials, const std::string& objects = R"([{"file": "quad.obj", "material": "m"}])") {
+    Scene load(const std::string& materials,
+               const std::string& objects = R"([{"file": "quad.obj", "material": "m"}])") {
         return load_scene_text(kHead + R"("materials": )" + materials + R"(, "objects": )" + objects + "}",
                                tmp.path / "scene.json", diag)
             .scene;
@@ -118,11 +119,13 @@ TEST_F(SceneTextures, BadTexturesAreErrorsAtTheirKey) {
     EXPECT_NE(error_of(R"({"m": {"type": "diffuse", "kd": {"scale": [1, 1, 1]}}})")
                   .find("/materials/m/kd/texture: missing required key 'texture'"),
               std::string::npos);
-    EXPECT_NE(error_of(R"({"m": {"type": "diffuse", "kd": "rb.png"}})").find("/materials/m/kd: expected an array of 3 numbers or a texture"),
+    EXPECT_NE(error_of(R"({"m": {"type": "diffuse", "kd": "rb.png"}})")
+                  .find("/materials/m/kd: expected an array of 3 numbers or a texture"),
               std::string::npos);
-    EXPECT_NE(error_of(R"({"m": {"type": "conductor", "ks": [1, 1, 1], "roughness": {"texture": "rb.png", "channel": "x"}}})")
-                  .find("/materials/m/roughness/channel: unknown channel 'x'"),
-              std::string::npos);
+    EXPECT_NE(
+        error_of(R"({"m": {"type": "conductor", "ks": [1, 1, 1], "roughness": {"texture": "rb.png", "channel": "x"}}})")
+            .find("/materials/m/roughness/channel: unknown channel 'x'"),
+        std::string::npos);
     EXPECT_NE(error_of(R"({"m": {"type": "diffuse", "kd": [1, 1, 1], "alpha": {"texture": "rb.png", "cutoff": 2}}})")
                   .find("/materials/m/alpha/cutoff: cutoff must lie in [0, 1]"),
               std::string::npos);
@@ -170,7 +173,9 @@ TEST_F(SceneTextures, MtlMapsBecomeTexturesAndJoinTheSceneTable) {
 }
 
 TEST_F(SceneTextures, MissingMtlTexturesWarnAndKeepTheConstant) {
-    tmp.write("quad.mtl", "newmtl painted\nKd 0.2 0.3 0.4\nmap_Kd missing.png\nnorm missing.png\nnewmtl other\nmap_Kd missing.png\n");
+    tmp.write(
+        "quad.mtl",
+        "newmtl painted\nKd 0.2 0.3 0.4\nmap_Kd missing.png\nnorm missing.png\nnewmtl other\nmap_Kd missing.png\n");
     Diagnostics mesh_diag;
     const LoadedMesh loaded = load_obj(tmp.path / "quad.obj", mesh_diag);
     ASSERT_FALSE(loaded.materials.empty());
@@ -178,7 +183,8 @@ TEST_F(SceneTextures, MissingMtlTexturesWarnAndKeepTheConstant) {
     EXPECT_FALSE(loaded.materials[0].textured);
     EXPECT_TRUE(loaded.textures.empty());
     std::size_t warned = 0;
-    for (const std::string& w : mesh_diag.warnings) warned += w.find("texture 'missing.png': no such file") != std::string::npos;
+    for (const std::string& w : mesh_diag.warnings)
+        warned += w.find("texture 'missing.png': no such file") != std::string::npos;
     EXPECT_EQ(warned, 1u) << "one warning per missing file";
 }
 
