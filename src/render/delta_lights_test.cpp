@@ -10,11 +10,13 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <vector>
 
 #include "io/scene_json/scene_file.h"
 #include "render/plane_view_test_util.h"
 #include "render/render.h"
 #include "render/test_meshes.h"
+#include "scene/scene_builder.h"
 
 namespace sombra {
 namespace {
@@ -33,21 +35,26 @@ RenderOutput render(const Scene& scene, const Camera& camera, RenderSettings set
     return render_image(job, progress);
 }
 
-Scene diffuse_plane(Vec3 kd) {
-    Scene scene;
-    scene.materials.push_back(Material{"plane", MaterialType::Diffuse, kd, {}, 1, {}});
+// A diffuse plane y = 0 under `lights`, with `more` triangles (their
+// material ids index `more_materials`), assembled by the SceneBuilder.
+Scene plane_scene(Vec3 kd, const std::vector<PunctualLight>& lights, const TriangleMesh& more = {},
+                  const std::vector<Material>& more_materials = {}) {
+    TriangleMesh plane;
     // Small enough that a hit point's rounding (~6e-8 of the corners'
     // size) stays far below what moves a spot's falloff.
     const float e = 10;
-    add_quad(scene.geometry, {-e, 0, -e}, {e, 0, -e}, {e, 0, e}, {-e, 0, e}, 0);
-    return scene;
+    add_quad(plane, {-e, 0, -e}, {e, 0, -e}, {e, 0, e}, {-e, 0, e}, 0);
+    SceneBuilder b;
+    testing::add_world_mesh(b, plane, {Material{"plane", MaterialType::Diffuse, kd, {}, 1, {}}});
+    if (more.triangle_count() > 0) testing::add_world_mesh(b, more, more_materials);
+    for (const PunctualLight& light : lights) b.add_light(light);
+    return b.finish();
 }
 
 TEST(DeltaLights, PlaneUnderASpotLightMatchesTheClosedFormInsideOnAndOutsideTheCone) {
     // L = I·s²/r² · kd/π · cos θ_x, s from the angle to the spot's axis.
     const Vec3 position{0.3f, 2.0f, -0.2f}, intensity{10, 20, 5}, kd{0.8f, 0.5f, 0.25f};
-    Scene scene = diffuse_plane(kd);
-    scene.lights.push_back(make_spot_light(position, {0.2f, -1, 0.1f}, intensity, 30, 12));
+    const Scene scene = plane_scene(kd, {make_spot_light(position, {0.2f, -1, 0.1f}, intensity, 30, 12)});
     const PunctualLight& spot = scene.lights[0];
     const int w = 96, h = 72;
     const Camera camera = camera_looking_down(3.0f, 0.6f);
@@ -83,10 +90,11 @@ TEST(DeltaLights, PlaneUnderADirectionalLightIsUniformExceptInTheOccludersShadow
     // at height 1 is the square moved along d to y = 0.
     const Vec3 irradiance{2, 1, 0.5f}, kd{0.8f, 0.5f, 0.25f};
     const Vec3 d{0.3f, -1, 0.2f};
-    Scene scene = diffuse_plane(kd);
-    scene.lights.push_back(make_directional_light(d, irradiance));
     const float x0 = -0.25f, x1 = 0.35f, z0 = -0.3f, z1 = 0.2f;
-    add_quad(scene.geometry, {x0, 1, z0}, {x1, 1, z0}, {x1, 1, z1}, {x0, 1, z1}, 0);
+    TriangleMesh occluder;
+    add_quad(occluder, {x0, 1, z0}, {x1, 1, z0}, {x1, 1, z1}, {x0, 1, z1}, 0);
+    const Scene scene = plane_scene(kd, {make_directional_light(d, irradiance)}, occluder,
+                                    {Material{"occluder", MaterialType::Diffuse, kd, {}, 1, {}}});
     const int w = 96, h = 96;
     const Camera camera = camera_looking_down(0.9f, 1.2f);  // below the occluder
     const Film film = render(scene, camera, RenderSettings{w, h, 1, 0}).film;
@@ -116,9 +124,9 @@ TEST(DeltaLights, PlaneUnderADirectionalLightIsUniformExceptInTheOccludersShadow
 }
 
 TEST(DeltaLights, LightsBehindTheSurfaceOrFacingAwayGiveNothingWithoutAShadowRay) {
-    Scene scene = diffuse_plane(Vec3{0.5f});
-    scene.lights.push_back(make_directional_light({0, 1, 0}, Vec3{3}));              // shines upward: from below
-    scene.lights.push_back(make_spot_light({0, 1, 0}, {0, 1, 0}, Vec3{3}, 80, 10));  // points away from the plane
+    const Scene scene =
+        plane_scene(Vec3{0.5f}, {make_directional_light({0, 1, 0}, Vec3{3}),                // shines upward: from below
+                                 make_spot_light({0, 1, 0}, {0, 1, 0}, Vec3{3}, 80, 10)});  // points away
     const Accel accel = make_accel(scene, AccelKind::Bvh);
     RenderSettings settings{4, 4, 1, 0};
     const RenderJob job = make_render_job(scene, accel, settings, 1);
@@ -129,13 +137,13 @@ TEST(DeltaLights, LightsBehindTheSurfaceOrFacingAwayGiveNothingWithoutAShadowRay
 }
 
 TEST(DeltaLights, PathAtDepthOneGivesTheDirectImage) {
-    Scene scene = diffuse_plane(Vec3{0.7f, 0.6f, 0.5f});
-    Material phong{"box", MaterialType::Phong, Vec3{0.3f, 0.4f, 0.5f}, Vec3{0.4f}, 30, {}};
-    scene.materials.push_back(phong);
-    add_quad(scene.geometry, {-0.4f, 0.5f, -0.4f}, {0.4f, 0.5f, -0.4f}, {0.4f, 0.6f, 0.4f}, {-0.4f, 0.6f, 0.4f}, 1);
-    scene.lights.push_back(make_spot_light({0.5f, 2, 0.3f}, {-0.2f, -1, -0.1f}, Vec3{6, 5, 4}, 40, 20));
-    scene.lights.push_back(make_directional_light({-0.4f, -1, 0.3f}, Vec3{1.5f, 1.2f, 1}));
-    scene.lights.push_back(make_point_light({-1, 1.5f, 1}, Vec3{2}));
+    TriangleMesh box;
+    add_quad(box, {-0.4f, 0.5f, -0.4f}, {0.4f, 0.5f, -0.4f}, {0.4f, 0.6f, 0.4f}, {-0.4f, 0.6f, 0.4f}, 0);
+    Scene scene = plane_scene(Vec3{0.7f, 0.6f, 0.5f},
+                              {make_spot_light({0.5f, 2, 0.3f}, {-0.2f, -1, -0.1f}, Vec3{6, 5, 4}, 40, 20),
+                               make_directional_light({-0.4f, -1, 0.3f}, Vec3{1.5f, 1.2f, 1}),
+                               make_point_light({-1, 1.5f, 1}, Vec3{2})},
+                              box, {Material{"box", MaterialType::Phong, Vec3{0.3f, 0.4f, 0.5f}, Vec3{0.4f}, 30, {}}});
     scene.camera.look_at = CameraLookAt{{0, 2.5f, 2.5f}, {0, 0, 0}, {0, 1, 0}, 50};
     RenderSettings settings{64, 48, 2, 7};
     const Accel accel = make_accel(scene, AccelKind::Bvh);
