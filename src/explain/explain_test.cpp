@@ -15,6 +15,7 @@
 #include "explain/describe.h"
 #include "io/scene_json/scene_file.h"
 #include "render/test_meshes.h"
+#include "scene/scene_builder.h"
 
 namespace sombra {
 namespace {
@@ -174,16 +175,24 @@ TEST(ExplainRecord, ListsTheCutOutsARayWentThrough) {
 // point lights: one straight above (blocked), one below the ground (behind),
 // seen by a 1×1 camera from the side, looking past the blocker at the ground in its shadow.
 Scene blocked_scene() {
-    Scene scene;
-    scene.materials = {Material{"ground", MaterialType::Diffuse, Vec3{0.5f}},
-                       Material{"blocker", MaterialType::Diffuse, Vec3{0.2f}}};
-    testing::add_quad(scene.geometry, {-2, 0, -2}, {-2, 0, 2}, {2, 0, 2}, {2, 0, -2}, 0);
-    testing::add_quad(scene.geometry, {-0.5f, 1, -0.5f}, {-0.5f, 1, 0.5f}, {0.5f, 1, 0.5f}, {0.5f, 1, -0.5f}, 1);
-    scene.objects = {SceneObject{"/objects/0", "ground.obj", 0, 2}, SceneObject{"/objects/1", "blocker.obj", 2, 2}};
-    scene.lights = {make_point_light({0, 3, 0}, Vec3{10.0f}), make_point_light({0, -1, 0}, Vec3{10.0f}),
-                    make_point_light({1.5f, 2, 0}, Vec3{8.0f})};
-    scene.camera.look_at = CameraLookAt{{3, 2, 0.1f}, {0.1f, 0, 0.1f}, {0, 1, 0}, 10};
-    return scene;
+    SceneBuilder b;
+    TriangleMesh ground, blocker;
+    testing::add_quad(ground, {-2, 0, -2}, {-2, 0, 2}, {2, 0, 2}, {2, 0, -2}, 0);
+    testing::add_quad(blocker, {-0.5f, 1, -0.5f}, {-0.5f, 1, 0.5f}, {0.5f, 1, 0.5f}, {0.5f, 1, -0.5f}, 0);
+    const std::vector<Material> grey{Material{"ground", MaterialType::Diffuse, Vec3{0.5f}}};
+    const std::vector<Material> dark{Material{"blocker", MaterialType::Diffuse, Vec3{0.2f}}};
+    EXPECT_EQ(b.add_mesh(ground, grey, {}, MeshPlacement{"/objects/0", "ground.obj", std::nullopt, std::nullopt}),
+              MeshProblem::None);
+    EXPECT_EQ(b.add_mesh(blocker, dark, {}, MeshPlacement{"/objects/1", "blocker.obj", std::nullopt, std::nullopt}),
+              MeshProblem::None);
+    for (const PunctualLight& light :
+         {make_point_light({0, 3, 0}, Vec3{10.0f}), make_point_light({0, -1, 0}, Vec3{10.0f}),
+          make_point_light({1.5f, 2, 0}, Vec3{8.0f})})
+        b.add_light(light);
+    CameraSpec camera;
+    camera.look_at = CameraLookAt{{3, 2, 0.1f}, {0.1f, 0, 0.1f}, {0, 1, 0}, 10};
+    b.set_camera(camera);
+    return b.finish();
 }
 
 // The blocked scene's one pixel, traced with the recorder.

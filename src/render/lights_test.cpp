@@ -13,6 +13,7 @@
 #include "render/chi2_test_util.h"
 #include "render/sampler.h"
 #include "render/test_meshes.h"
+#include "scene/scene_builder.h"
 
 namespace sombra {
 namespace {
@@ -20,7 +21,6 @@ namespace {
 using testing::add_triangle;
 
 Scene two_emitters_and_a_floor() {
-    Scene scene;
     Material floor;
     floor.kd = Vec3{0.5f};
     Material bright, dim;
@@ -28,12 +28,13 @@ Scene two_emitters_and_a_floor() {
     bright.ke = Vec3{10.0f};
     dim.ke = Vec3{1.0f, 2.0f, 3.0f};
     dim.emits_front_only = true;
-    scene.materials = {floor, bright, dim};
-    add_triangle(scene.geometry, {-10, 0, -10}, {-10, 0, 10}, {10, 0, 10}, 0);
-    add_triangle(scene.geometry, {-1, 2, -1}, {1, 2, -1}, {0, 2.5f, 1}, 1);  // near: sampled by solid angle
-    add_triangle(scene.geometry, {5, 40, 5}, {5.5f, 40, 5}, {5, 40, 5.5f},
-                 2);  // far and small: by area; emits toward −y
-    return scene;
+    TriangleMesh mesh;
+    add_triangle(mesh, {-10, 0, -10}, {-10, 0, 10}, {10, 0, 10}, 0);
+    add_triangle(mesh, {-1, 2, -1}, {1, 2, -1}, {0, 2.5f, 1}, 1);     // near: sampled by solid angle
+    add_triangle(mesh, {5, 40, 5}, {5.5f, 40, 5}, {5, 40, 5.5f}, 2);  // far and small: by area; emits toward −y
+    SceneBuilder b;
+    testing::add_world_mesh(b, mesh, {floor, bright, dim});
+    return b.finish();
 }
 
 TEST(Lights, EmittersArePickedInProportionToPower) {
@@ -138,9 +139,11 @@ TEST(Lights, OneSidedEmittersAreDarkFromBehind) {
 }
 
 TEST(Lights, NoSampledLightsWithoutEmittersOrEnvironment) {
-    Scene scene;
-    scene.materials.push_back(Material{});
-    add_triangle(scene.geometry, {0, 0, 0}, {1, 0, 0}, {0, 1, 0}, 0);
+    TriangleMesh mesh;
+    add_triangle(mesh, {0, 0, 0}, {1, 0, 0}, {0, 1, 0}, 0);
+    SceneBuilder b;
+    testing::add_world_mesh(b, mesh, {Material{}});
+    const Scene scene = b.finish();
     const LightSet lights = make_light_set(scene, make_constant_environment(Vec3{0.0f}), true);
     EXPECT_FALSE(lights.has_sampled_lights());
     LightSample ls;
