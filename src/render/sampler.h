@@ -22,6 +22,16 @@ inline float hash_to_unit(std::uint32_t index, std::uint64_t key) {
     return static_cast<float>(h >> 40) * 0x1p-24f;  // 24 bits: exactly representable, < 1
 }
 
+// A 32-bit integer hash with good avalanche (Wellons' "lowbias32").
+constexpr std::uint32_t hash32(std::uint32_t x) {
+    x ^= x >> 16;
+    x *= 0x7feb352du;
+    x ^= x >> 15;
+    x *= 0x846ca68bu;
+    x ^= x >> 16;
+    return x;
+}
+
 // 4-D Sobol points (Joe & Kuo 2008). Dimension 0 is the van der Corput
 // sequence; dimensions 1–3 come from the primitive polynomials x + 1,
 // x² + x + 1 and x³ + x + 1 with Joe–Kuo's initial numbers m = {1}, {1, 3},
@@ -75,11 +85,30 @@ constexpr Directions make_directions() {
 
 inline constexpr Directions kDirections = make_directions();
 
-// Point `index` of the sequence in `dimension` (0 … 3), as a 0.32 fraction.
+// The same matrices by nibble: kNibbles.t[d][n][x] is the xor of
+// v[d][4n + b] over the set bits b of x (0 … 15), so that a point costs 8
+// table lookups (2 KiB in all) instead of 32 conditional xors.
+struct Nibbles {
+    std::uint32_t t[kDimensions][kBits / 4][16];
+};
+
+constexpr Nibbles make_nibbles() {
+    Nibbles out{};
+    for (int d = 0; d < kDimensions; ++d)
+        for (int n = 0; n < kBits / 4; ++n)
+            for (std::uint32_t x = 0; x < 16; ++x)
+                for (int b = 0; b < 4; ++b)
+                    if ((x >> b) & 1u) out.t[d][n][x] ^= kDirections.v[d][4 * n + b];
+    return out;
+}
+
+inline constexpr Nibbles kNibbles = make_nibbles();
+
+// Point `index` of the sequence in `dimension` (0 … 3), as a 0.32 fraction:
+// the xor of v[dimension][b] over the set bits b of `index`.
 constexpr std::uint32_t sample(std::uint32_t index, int dimension) {
     std::uint32_t x = 0;
-    for (int bit = 0; index != 0; index >>= 1, ++bit)
-        if (index & 1u) x ^= kDirections.v[dimension][bit];
+    for (int n = 0; n < kBits / 4; ++n) x ^= kNibbles.t[dimension][n][(index >> (4 * n)) & 15u];
     return x;
 }
 
@@ -91,42 +120,50 @@ constexpr std::uint32_t reverse_bits(std::uint32_t x) {
     return (x >> 16) | (x << 16);
 }
 
-// A nested uniform (Owen) scramble of a 0.32 fraction chosen by `seed`, hash
-// based (Burley 2020, "Practical Hash-based Owen Scrambling", JCGT 9(4)):
-// with the bits reversed, each step (adding the seed, xoring in a multiple
-// by an even constant) flips a bit only as a function of the bits below it,
-// i.e. of the more significant digits of the fraction, which is what an
-// Owen scramble does; the constants are the paper's Laine–Karras variant.
-// A bijection on 32-bit values that maps every aligned block of 2^k onto an
-// aligned block of 2^k, so it keeps a net a net.
-constexpr std::uint32_t owen_scramble(std::uint32_t x, std::uint32_t seed) {
-    x = reverse_bits(x);
+// A hash-based nested uniform (Owen) scramble, on the bits reversed (Burley
+// 2020, "Practical Hash-based Owen Scrambling", JCGT 9(4)): each step,
+// adding the seed or xoring in a multiple by an even constant, flips a bit
+// only as a function of the bits below it, i.e. (reversed) of the more
+// significant digits of the fraction, which is what an Owen scramble does.
+// The constants are the paper's Laine–Karras variant.
+constexpr std::uint32_t laine_karras(std::uint32_t x, std::uint32_t seed) {
     x += seed;
     x ^= x * 0x6c50b47cu;
     x ^= x * 0xb82f1e52u;
     x ^= x * 0xc7afe638u;
     x ^= x * 0x8d22f6e6u;
-    return reverse_bits(x);
+    return x;
+}
+
+// The Owen scramble of a 0.32 fraction chosen by `seed`: a bijection on
+// 32-bit values that maps every aligned block of 2^k onto an aligned block
+// of 2^k, so it keeps a net a net.
+constexpr std::uint32_t owen_scramble(std::uint32_t x, std::uint32_t seed) {
+    return reverse_bits(laine_karras(reverse_bits(x), seed));
 }
 
 // A 0.32 fraction as a float in [0, 1): its top 24 bits, exactly.
 constexpr float to_unit(std::uint32_t x) { return static_cast<float>(x >> 8) * 0x1p-24f; }
 
-// One randomised 4-D Sobol sequence, chosen by `seed`: the sample index is
-// Owen-scrambled first (its low bits permuted as a function of its high
-// bits: Burley's "shuffled" index), so that samples 0 … 2^k − 1 take one
-// aligned block of 2^k Sobol points, a (0, k, 2)-net in dimensions (0, 1),
-// whatever the block; then each dimension's value is Owen-scrambled with a
-// seed of its own.
+// One randomised 4-D Sobol sequence: the sample index is Owen-scrambled
+// first (its low bits permuted as a function of its high bits: Burley's
+// "shuffled" index), so that samples 0 … 2^k − 1 take one aligned block of
+// 2^k Sobol points, a (0, k, 2)-net in dimensions (0, 1), whatever the
+// block; then each dimension's value is Owen-scrambled with a seed of its
+// own.
 struct Group {
-    std::uint64_t seed = 0;
+    std::uint32_t index_seed = 0;
+    std::uint32_t value_seed = 0;  // hashed with the dimension into each dimension's seed
 
-    std::uint32_t shuffled(std::uint32_t index) const { return owen_scramble(index, static_cast<std::uint32_t>(seed)); }
-    float value(std::uint32_t index, int dimension) const {
-        const auto dimension_seed = static_cast<std::uint32_t>(
-            mix64(seed ^ (static_cast<std::uint64_t>(dimension + 1) * 0xd1b54a32d192ed03ull)));
-        return to_unit(owen_scramble(sample(shuffled(index), dimension), dimension_seed));
+    std::uint32_t shuffled(std::uint32_t index) const { return owen_scramble(index, index_seed); }
+    // Dimension `dimension` of the point whose shuffled index is `s`.
+    float value_at(std::uint32_t s, int dimension) const {
+        const std::uint32_t seed = hash32(value_seed + static_cast<std::uint32_t>(dimension) * 0x9e3779b9u);
+        // Dimension 0 is the index's bit reversal: its scramble starts reversed.
+        return to_unit(dimension == 0 ? reverse_bits(laine_karras(s, seed))
+                                      : owen_scramble(sample(s, dimension), seed));
     }
+    float value(std::uint32_t index, int dimension) const { return value_at(shuffled(index), dimension); }
 };
 
 }  // namespace sobol
@@ -134,7 +171,8 @@ struct Group {
 // The sequence of group `group` (0, 1, …) of the pixel keyed by
 // `pixel_key`: each group's seed independent of every other's.
 inline sobol::Group sample_group(std::uint64_t pixel_key, std::uint64_t group) {
-    return {mix64(pixel_key ^ mix64(group + 0x736f626f6cull))};
+    const std::uint64_t h = mix64(pixel_key ^ ((group + 1) * 0xd1b54a32d192ed03ull));
+    return {static_cast<std::uint32_t>(h), static_cast<std::uint32_t>(h >> 32)};
 }
 
 struct PixelSample {
@@ -149,7 +187,8 @@ struct PixelSample {
 inline PixelSample pixel_sample(std::uint32_t index, std::uint32_t count, std::uint64_t pixel_key) {
     if (count <= 1) return {0.5f, 0.5f};
     const sobol::Group g = sample_group(pixel_key, 0);
-    return {g.value(index, 0), g.value(index, 1)};
+    const std::uint32_t s = g.shuffled(index);
+    return {g.value_at(s, 0), g.value_at(s, 1)};
 }
 
 // The random numbers of one sample (pixel, sample index) beyond its position
@@ -189,7 +228,8 @@ struct SampleStream {
         d = (d + sobol::kDimensions - 1) / sobol::kDimensions * sobol::kDimensions;  // the next group's (0, 1)
         dimension = d + 2 - kPixelDimensions;
         const sobol::Group g = sample_group(pixel_key, d / sobol::kDimensions);
-        return {g.value(index, 0), g.value(index, 1)};
+        const std::uint32_t s = g.shuffled(index);
+        return {g.value_at(s, 0), g.value_at(s, 1)};
     }
 
     // The thin lens's point (spec §17): a 2-D dimension of its own, keyed
@@ -199,8 +239,10 @@ struct SampleStream {
     Pair lens_2d() const {
         const std::uint64_t key = mix64(pixel_key ^ 0x6c656e73ull * 0x9e3779b97f4a7c15ull);
         if (count <= 1) return hashed_pair(key);
-        const sobol::Group g{mix64(key)};
-        return {g.value(index, 0), g.value(index, 1)};
+        const std::uint64_t h = mix64(key);
+        const sobol::Group g{static_cast<std::uint32_t>(h), static_cast<std::uint32_t>(h >> 32)};
+        const std::uint32_t s = g.shuffled(index);
+        return {g.value_at(s, 0), g.value_at(s, 1)};
     }
 
 private:

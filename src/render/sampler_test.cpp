@@ -68,6 +68,19 @@ TEST(Sobol, KnownFirstPoints) {
     for (int d = 0; d < 4; ++d) EXPECT_EQ(sobol::sample(0, d), 0u);
 }
 
+TEST(Sobol, NibbleTablesComputeTheMatrixProduct) {
+    for (std::uint32_t k = 0; k < 2000; ++k) {
+        const std::uint32_t index = k < 1000 ? k : hash32(k);
+        for (int d = 0; d < 4; ++d) {
+            std::uint32_t x = 0;
+            for (int b = 0; b < 32; ++b)
+                if ((index >> b) & 1u) x ^= sobol::kDirections.v[d][b];
+            ASSERT_EQ(sobol::sample(index, d), x) << index << " " << d;
+        }
+        ASSERT_EQ(sobol::sample(index, 0), sobol::reverse_bits(index));
+    }
+}
+
 TEST(Sobol, OwenScrambleKeepsAlignedBlocks) {
     // A bijection on 32 bits that maps the aligned block of 2^k holding x
     // onto one aligned block of 2^k: the high 32 − k bits of the result
