@@ -4,6 +4,7 @@
 
 #include <array>
 #include <bit>
+#include <map>
 #include <set>
 #include <utility>
 #include <vector>
@@ -121,6 +122,30 @@ TEST(Sampler, FirstPowerOfTwoSamplesOfAPixelAreA0k2Net) {
             const int k = std::countr_zero(n + 1);
             if (((n + 1) & n) == 0) {
                 EXPECT_TRUE(is_0k2_net(points, k)) << "pixel " << p << ", first 2^" << k;
+            }
+        }
+    }
+}
+
+TEST(Sampler, EveryPrefixIsStratified) {
+    // Good for every n, not only powers of two: with 2^a ≤ n < 2^(a+1), the
+    // first n samples lie in the aligned block of 2^(a+1) (a (0, a+1, 2)-net)
+    // and hold its first 2^a (a (0, a, 2)-net), so every elementary interval
+    // of area 2^−a holds one or two of them, for every split.
+    for (int p = 0; p < 8; ++p) {
+        const std::uint64_t key = pixel_key(77, p, 1, 8);
+        std::vector<std::pair<float, float>> points;
+        for (std::uint32_t n = 1; n <= 300; ++n) {
+            const PixelSample s = pixel_sample(n - 1, 300, key);
+            points.push_back({s.x, s.y});
+            const int a = std::bit_width(n) - 1;
+            for (int split = 0; split <= a; ++split) {
+                std::map<std::pair<std::uint32_t, std::uint32_t>, int> cells;
+                for (const auto& [x, y] : points)
+                    ++cells[{static_cast<std::uint32_t>(x * static_cast<float>(1u << split)),
+                             static_cast<std::uint32_t>(y * static_cast<float>(1u << (a - split)))}];
+                ASSERT_EQ(cells.size(), std::size_t{1} << a) << "pixel " << p << ", n " << n << ", split " << split;
+                for (const auto& [cell, count] : cells) ASSERT_LE(count, 2) << "pixel " << p << ", n " << n;
             }
         }
     }
