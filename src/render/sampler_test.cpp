@@ -69,17 +69,29 @@ TEST(Sobol, KnownFirstPoints) {
     for (int d = 0; d < 4; ++d) EXPECT_EQ(sobol::sample(0, d), 0u);
 }
 
-TEST(Sobol, NibbleTablesComputeTheMatrixProduct) {
+TEST(Sobol, ReversedTablesComputeTheMatrixProduct) {
     for (std::uint32_t k = 0; k < 2000; ++k) {
-        const std::uint32_t index = k < 1000 ? k : hash32(k);
-        for (int d = 0; d < 4; ++d) {
-            std::uint32_t x = 0;
-            for (int b = 0; b < 32; ++b)
-                if ((index >> b) & 1u) x ^= sobol::kDirections.v[d][b];
-            ASSERT_EQ(sobol::sample(index, d), x) << index << " " << d;
-        }
-        ASSERT_EQ(sobol::sample(index, 0), sobol::reverse_bits(index));
+        const std::uint32_t r = k < 1000 ? k : hash32(k);
+        for (int d = 0; d < 4; ++d)
+            ASSERT_EQ(sobol::sample_reversed(r, d), sobol::reverse_bits(sobol::sample(sobol::reverse_bits(r), d)))
+                << r << " " << d;
+        ASSERT_EQ(sobol::sample(r, 0), sobol::reverse_bits(r));
+        ASSERT_EQ(sobol::reverse_bits(sobol::reverse_bits(r)), r);
     }
+    EXPECT_EQ(sobol::reverse_bits(1u), 0x80000000u);
+    EXPECT_EQ(sobol::reverse_bits(0x12345678u), 0x1e6a2c48u);
+}
+
+TEST(Sobol, GroupValuesAreScrambledSobolPoints) {
+    // value(index, d) = owen_scramble(sample(owen_scramble(index, index seed), d), dimension seed).
+    const sobol::Group g{0x1234567u, 0x89abcdefu};
+    for (std::uint32_t index = 0; index < 300; ++index)
+        for (int d = 0; d < 4; ++d) {
+            const std::uint32_t seed = hash32(g.value_seed + static_cast<std::uint32_t>(d) * 0x9e3779b9u);
+            const std::uint32_t expected =
+                sobol::owen_scramble(sobol::sample(sobol::owen_scramble(index, g.index_seed), d), seed);
+            ASSERT_EQ(g.value(index, d), sobol::to_unit(expected)) << index << " " << d;
+        }
 }
 
 TEST(Sobol, OwenScrambleKeepsAlignedBlocks) {
