@@ -76,9 +76,10 @@ RenderJob make_render_job(const Scene& scene, const Accel& accel, const RenderSe
     job.settings = settings;
     job.threads = threads;
     const bool path = settings.integrator == IntegratorKind::Path;
-    Environment environment = scene.environment ? make_map_environment(scene.environment->image, scene.environment->scale,
-                                                                       scene.environment->rotate_y_degrees)
-                                                : make_constant_environment(scene.background);
+    Environment environment = scene.environment
+                                  ? make_map_environment(scene.environment->image, scene.environment->scale,
+                                                         scene.environment->rotate_y_degrees)
+                                  : make_constant_environment(scene.background);
     job.lights = make_light_set(scene, std::move(environment), path, light_selection);
     return job;
 }
@@ -87,7 +88,8 @@ IntegratorContext make_integrator_context(const RenderJob& job) {
     IntegratorContext ctx{job.scene, job.accel, &job.lights, job.settings.max_depth};
     if (job.settings.texture_filter == TextureFilter::Mipmap) {
         ctx.ray_cones = true;
-        ctx.camera_pixel_area = camera_pixel_area(job.camera.left, job.camera.up, job.settings.width, job.settings.height);
+        ctx.camera_pixel_area =
+            camera_pixel_area(job.camera.left, job.camera.up, job.settings.width, job.settings.height);
     }
     return ctx;
 }
@@ -139,7 +141,8 @@ RenderOutput render_image(const RenderJob& job, RenderProgress& progress) {
                 }
                 // Reported per tile row, so that the progress bar moves
                 // smoothly even when a tile takes seconds.
-                progress.samples_done.fetch_add(static_cast<std::uint64_t>(tile.cols().size()) * spp, std::memory_order_relaxed);
+                progress.samples_done.fetch_add(static_cast<std::uint64_t>(tile.cols().size()) * spp,
+                                                std::memory_order_relaxed);
                 progress.rays_traced.fetch_add(counters.rays() - rays_before, std::memory_order_relaxed);
             }
         });
