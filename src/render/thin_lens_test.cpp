@@ -53,7 +53,8 @@ TEST(ThinLens, EveryLensSampleMeetsThePinholeRayOnTheFocusPlane) {
             double widest = 0;
             for (int i = 0; i < 16; ++i)
                 for (int j = 0; j < 16; ++j) {
-                    const Ray ray = camera_ray(c, s, t, (i + 0.5f) / 16, (j + 0.5f) / 16);
+                    const Ray ray =
+                        camera_ray(c, s, t, (static_cast<float>(i) + 0.5f) / 16, (static_cast<float>(j) + 0.5f) / 16);
                     // The lens point lies on the disc of radius r about o, across the forward axis.
                     const Vec3d offset = to_double(ray.origin) - to_double(c.origin);
                     EXPECT_LE(length(offset), 0.3 * (1 + 1e-6));
