@@ -9,6 +9,7 @@
 
 #include "core/vec3.h"
 #include "core/vec3d.h"
+#include "scene/transform.h"
 
 namespace sombra {
 
@@ -69,6 +70,30 @@ inline PunctualLight make_directional_light(Vec3 direction, Vec3 irradiance) {
     light.direction = unit_direction(direction);
     light.intensity = irradiance;
     return light;
+}
+
+// What placing a light by a transform can break.
+enum class LightPlacement {
+    Ok,
+    NonFinitePosition,   // a point or spot light's position overflows
+    NonFiniteDirection,  // a spot's or directional light's direction overflows or vanishes
+};
+
+// Carries `light` by `transform` (a glTF node's, a scene object's): the
+// position of a point or spot light moves, the direction of a spot or
+// directional light turns with the linear part and is renormalised. On a
+// problem the light is left unusable and the caller reports it.
+inline LightPlacement transform_light(PunctualLight& light, const Transform& transform) {
+    if (light.type != LightType::Directional) {
+        light.position = transform_point(transform, light.position);
+        if (!is_finite(light.position)) return LightPlacement::NonFinitePosition;
+    }
+    if (light.type != LightType::Point) {
+        const Vec3 direction = transform_vector(transform, light.direction);
+        if (!is_finite(direction) || !(length(to_double(direction)) > 0)) return LightPlacement::NonFiniteDirection;
+        light.direction = unit_direction(direction);
+    }
+    return LightPlacement::Ok;
 }
 
 // A spot light's falloff at a direction `cos_axis` = cos θ from its axis,

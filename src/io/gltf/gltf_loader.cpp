@@ -303,12 +303,12 @@ LoadedMesh load_gltf(const std::filesystem::path& path, Diagnostics& diag) {
             if (!light) throw Error(file, node_name(in.node) + ": " + gltf::kLights + " names no light");
             std::string type;
             if (std::optional<PunctualLight> l = gltf::punctual_light(model, *light, file, type, diag)) {
-                l->position = transform_point(in.world, l->position);
-                if (l->type != LightType::Point) {
-                    const Vec3 direction = transform_vector(in.world, l->direction);
-                    if (!is_finite(direction) || !(length(to_double(direction)) > 0))
+                switch (transform_light(*l, in.world)) {
+                    case LightPlacement::Ok: break;
+                    case LightPlacement::NonFinitePosition:
+                        throw Error(file, node_name(in.node) + ": its light's position is not finite");
+                    case LightPlacement::NonFiniteDirection:
                         throw Error(file, node_name(in.node) + ": its light's direction is not finite");
-                    l->direction = unit_direction(direction);
                 }
                 lights.push_back(*l);
             } else

@@ -83,20 +83,15 @@ void add_object(SceneBuilder& builder, const LoadedMesh& loaded, const ObjectSpe
     }
 }
 
-// A light a glTF file placed, carried by its object's transform: the
-// position moves, the direction turns with the transform's linear part.
-PunctualLight transform_light(PunctualLight light, const Transform& transform, const SceneJson& s,
-                              const std::string& object_pointer) {
-    const std::string where = json_child(object_pointer, "transform");
-    if (light.type != LightType::Directional) {
-        light.position = transform_point(transform, light.position);
-        if (!is_finite(light.position)) json_fail(s, where, "a transformed light position is not finite");
-    }
-    if (light.type != LightType::Point) {
-        const Vec3 direction = transform_vector(transform, light.direction);
-        if (!is_finite(direction) || !(length(to_double(direction)) > 0))
-            json_fail(s, where, "a transformed light direction is not finite");
-        light.direction = unit_direction(direction);
+// A light a glTF file placed, carried by its object's transform.
+PunctualLight placed_light(PunctualLight light, const Transform& transform, const SceneJson& s,
+                           const std::string& object_pointer) {
+    switch (transform_light(light, transform)) {
+        case LightPlacement::Ok: break;
+        case LightPlacement::NonFinitePosition:
+            json_fail(s, json_child(object_pointer, "transform"), "a transformed light position is not finite");
+        case LightPlacement::NonFiniteDirection:
+            json_fail(s, json_child(object_pointer, "transform"), "a transformed light direction is not finite");
     }
     return light;
 }
@@ -206,7 +201,7 @@ LoadedScene load_scene_text(const std::string& text, const fs::path& path, Diagn
     for (std::size_t i = 0; i < specs.size(); ++i) {
         // Lights a glTF file places move with its object (§13, §16).
         for (const PunctualLight& light : meshes[mesh_of[i]].lights)
-            builder.add_light(transform_light(light, specs[i].transform, s, specs[i].pointer));
+            builder.add_light(placed_light(light, specs[i].transform, s, specs[i].pointer));
         add_object(builder, meshes[mesh_of[i]], specs[i], s);
         // Free each file's mesh after its last object: peak memory stays near two copies.
         if (last_use[mesh_of[i]] == i) meshes[mesh_of[i]] = LoadedMesh{};
