@@ -92,25 +92,21 @@ std::uint32_t SceneBuilder::scene_material(std::uint32_t id, MaterialJoin& join)
 
 void SceneBuilder::reserve(const MeshSizes& s) {
     TriangleMesh& w = scene_.geometry;
+    const std::size_t triangles = w.triangles.size() + s.triangles;
+    // A per-corner attribute's values, and its corner indices (one entry a
+    // triangle), when some mesh to come has it.
+    auto attribute = [triangles](bool any, auto& values, std::size_t more, std::vector<Index3>& indices) {
+        if (!any) return;
+        values.reserve(values.size() + more);
+        indices.reserve(triangles);
+    };
     w.positions.reserve(w.positions.size() + s.positions);
-    w.triangles.reserve(w.triangles.size() + s.triangles);
+    w.triangles.reserve(triangles);
     w.material_ids.reserve(w.material_ids.size() + s.triangles);
-    if (s.any_normals) {
-        w.normals.reserve(w.normals.size() + s.normals);
-        w.normal_indices.reserve(w.triangles.size() + s.triangles);
-    }
-    if (s.any_uvs) {
-        w.uvs.reserve(w.uvs.size() + s.uvs);
-        w.uv_indices.reserve(w.triangles.size() + s.triangles);
-    }
-    if (s.any_tangents) {
-        w.tangents.reserve(w.tangents.size() + s.tangents);
-        w.tangent_indices.reserve(w.triangles.size() + s.triangles);
-    }
-    if (s.any_colors) {
-        w.colors.reserve(w.colors.size() + s.colors);
-        w.color_indices.reserve(w.triangles.size() + s.triangles);
-    }
+    attribute(s.any_normals, w.normals, s.normals, w.normal_indices);
+    attribute(s.any_uvs, w.uvs, s.uvs, w.uv_indices);
+    attribute(s.any_tangents, w.tangents, s.tangents, w.tangent_indices);
+    attribute(s.any_colors, w.colors, s.colors, w.color_indices);
 }
 
 MeshProblem SceneBuilder::add_mesh(const TriangleMesh& in, std::span<const Material> materials,
