@@ -77,7 +77,9 @@ TEST(DeltaLights, PlaneUnderASpotLightMatchesTheClosedFormInsideOnAndOutsideTheC
                 // Float rounding of cos θ moves s by ~1e-6 in the falloff band.
                 ASSERT_NEAR(got[c], s * s * full, 1e-4 * s * s * full + 1e-5 * full)
                     << "pixel " << i << "," << j << " channel " << c << " s " << s;
-                if (s == 0) ASSERT_EQ(got[c], 0.0f) << "outside the cone: exactly nothing";
+                if (s == 0) {
+                    ASSERT_EQ(got[c], 0.0f) << "outside the cone: exactly nothing";
+                }
             }
         }
     EXPECT_GT(inside, 200);
@@ -112,9 +114,13 @@ TEST(DeltaLights, PlaneUnderADirectionalLightIsUniformExceptInTheOccludersShadow
             const bool out = sx < x0 - margin || sx > x1 + margin || sz < z0 - margin || sz > z1 + margin;
             const Vec3 got = film.at(i, j);
             for (int c = 0; c < 3; ++c) {
-                if (in) ASSERT_EQ(got[c], 0.0f) << "pixel " << i << "," << j;
+                if (in) {
+                    ASSERT_EQ(got[c], 0.0f) << "pixel " << i << "," << j;
+                }
                 const double expected = irradiance[c] * kd[c] / kPi * cos_theta;
-                if (out) ASSERT_NEAR(got[c], expected, 1e-5 * expected) << "pixel " << i << "," << j;
+                if (out) {
+                    ASSERT_NEAR(got[c], expected, 1e-5 * expected) << "pixel " << i << "," << j;
+                }
             }
             shadowed += in;
             lit += out;

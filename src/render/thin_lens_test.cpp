@@ -119,7 +119,9 @@ TEST(ThinLens, AnOffFocusPointSpreadsOverTheCircleOfConfusion) {
     const Film pinhole = render_image(pinhole_job, progress).film;
     for (int j = 0; j < h; ++j)
         for (int i = 0; i < w; ++i)
-            if (std::hypot(i + 0.5 - w / 2.0, j + 0.5 - h / 2.0) > 4) EXPECT_EQ(pinhole.at(i, j).x, 0.0f);
+            if (std::hypot(i + 0.5 - w / 2.0, j + 0.5 - h / 2.0) > 4) {
+                EXPECT_EQ(pinhole.at(i, j).x, 0.0f);
+            }
 }
 
 TEST(ThinLens, SameImageForAnyThreadCountAndSeedDependent) {

@@ -22,7 +22,9 @@ Vec3 read_direction(const SceneJson& s, const Json& light, std::string_view poin
 float read_angle(const SceneJson& s, const Json& v, std::string_view pointer, float lo, float hi, const char* range) {
     const float degrees = read_float(s, v, pointer);
     if (!(degrees >= lo && degrees <= hi))
-        json_fail(s, pointer, std::string("angle ") + format_number(degrees) + " is outside " + range);
+        // append, not operator+: GCC 12 warns falsely on a literal + std::string (-Wrestrict, bug 105329).
+        json_fail(s, pointer,
+                  std::string("angle ").append(format_number(degrees)).append(" is outside ").append(range));
     return degrees;
 }
 
