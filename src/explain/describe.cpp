@@ -71,10 +71,27 @@ std::string readable(float v) {
     return buf;
 }
 
-std::string readable(Vec3 v) { return "(" + readable(v.x) + ", " + readable(v.y) + ", " + readable(v.z) + ")"; }
+std::string readable(Vec3 v) {
+    // append, not "(" + std::string: GCC 12's false -Wrestrict (bug 105329).
+    return std::string("(")
+        .append(readable(v.x))
+        .append(", ")
+        .append(readable(v.y))
+        .append(", ")
+        .append(readable(v.z))
+        .append(")");
+}
 
 std::string exact(float v) { return format_number(v); }
 
-std::string exact(Vec3 v) { return "(" + exact(v.x) + ", " + exact(v.y) + ", " + exact(v.z) + ")"; }
+std::string exact(Vec3 v) {
+    return std::string("(")
+        .append(exact(v.x))
+        .append(", ")
+        .append(exact(v.y))
+        .append(", ")
+        .append(exact(v.z))
+        .append(")");
+}
 
 }  // namespace sombra

@@ -130,7 +130,10 @@ std::vector<std::string> flatten(const ObjGeometry& g) {
         for (std::uint32_t end : block.ends) {
             std::string face = "f";
             for (std::uint32_t k = begin; k < end; ++k)
-                face += " " + std::to_string(block.positions[k]) + "/" + std::to_string(block.normals[k]);
+                face.append(" ")
+                    .append(std::to_string(block.positions[k]))
+                    .append("/")
+                    .append(std::to_string(block.normals[k]));
             out.push_back(face);
             begin = end;
         }

@@ -109,7 +109,8 @@ void read_texturable(const SceneJson& s, const Json& material, std::string_view 
         if (key == slot.key) return read_rgb_slot(s, *v, p, slot, m, textures);
     for (const ScalarTextureSlot& slot : kScalarTextureSlots)
         if (key == slot.key) return read_scalar_slot(s, *v, p, slot, m, textures);
-    json_fail(s, p, "'" + std::string(key) + "' cannot be textured");  // a key missing from the slot tables
+    // A key missing from the slot tables (append: GCC 12's false -Wrestrict on literal + std::string).
+    json_fail(s, p, std::string("'").append(key).append("' cannot be textured"));
 }
 
 void read_material_maps(const SceneJson& s, const Json& material, std::string_view pointer, Material& m,
