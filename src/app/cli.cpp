@@ -1,6 +1,8 @@
 #include "app/cli.h"
 
 #include <CLI/CLI.hpp>
+#include <cctype>
+#include <filesystem>
 #include <iostream>
 
 #include "accel/accel.h"
@@ -12,6 +14,8 @@ namespace {
 
 // More workers than this is a typo, not a machine.
 constexpr int kMaxThreads = 4096;
+// Ten million seconds (116 days): more is a typo, and would overflow the clock's deadline.
+constexpr double kMaxTimeBudget = 1e7;
 
 std::string accel_list() {
     std::string names;
@@ -67,6 +71,47 @@ void add_render_options(CLI::App& command, CliOptions& o) {
     command.add_flag("-q,--quiet", o.quiet, "No progress bar, no summary");
 }
 
+// A positive, finite number (CLI11's PositiveNumber lets "inf" through).
+CLI::Validator positive_finite(double most) {
+    return CLI::Validator(
+        [most](std::string& text) {
+            double value = 0;
+            if (!CLI::detail::lexical_cast(text, value) || !(value > 0.0) || !(value <= most))
+                return "must be a number above 0 and at most " + std::to_string(static_cast<long long>(most)) +
+                       ", not '" + text + "'";
+            return std::string{};
+        },
+        "POSITIVE");
+}
+
+// The render outputs of spec §18: time budget, adaptive sampling, AOVs.
+void add_output_options(CLI::App& render, CliOptions& o) {
+    render
+        .add_option("--time", o.time_budget,
+                    "Render passes until the next would end past SECONDS after the start (at least one pass)")
+        ->check(positive_finite(kMaxTimeBudget));
+    render
+        .add_option("--noise-threshold", o.noise_threshold,
+                    "Adaptive sampling: a pixel stops once the standard error of its mean luminance is at most "
+                    "T times that mean")
+        ->check(positive_finite(1e6));
+    render.add_option("--min-spp", o.min_spp, "Adaptive sampling: samples every pixel takes before it may stop")
+        ->check(CLI::Range(1, kMaxSpp))
+        ->capture_default_str();
+    render.add_option_function<std::string>(
+        "--aov",
+        [&o](const std::string& list) {
+            std::string bad;
+            const std::optional<AovSet> set = parse_aov_list(list, bad);
+            if (!set)
+                throw CLI::ValidationError("--aov", "unknown AOV '" + bad +
+                                                        "' (expected a comma-separated list of albedo, normal, "
+                                                        "depth, position, spp)");
+            o.aovs = *set;
+        },
+        "Float layers added to an .exr output: any of albedo, normal, depth, position, spp, comma-separated");
+}
+
 }  // namespace
 
 CliParse parse_command_line(int argc, const char* const* argv) {
@@ -84,6 +129,7 @@ CliParse parse_command_line(int argc, const char* const* argv) {
         ->capture_default_str();
     add_render_options(*render, o);
     render->add_option("--stats-json", o.stats_json, "Write the run's statistics as JSON to FILE");
+    add_output_options(*render, o);
 
     CLI::App* explain = app.add_subcommand(
         "explain", "Tell the story of one pixel: every term of the rendering equation behind its value");
@@ -113,6 +159,15 @@ CliParse parse_command_line(int argc, const char* const* argv) {
         return {std::nullopt, 2};
     }
     o.command = app.got_subcommand(explain) ? Command::Explain : Command::Render;
+    if (o.aovs.any()) {
+        std::string ext = std::filesystem::path(o.output).extension().string();
+        for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+        if (ext != ".exr") {
+            std::cerr << "sombra: error: command line: --aov needs an .exr output, not '" << one_line(o.output)
+                      << "' (see 'sombra render --help')\n";
+            return {std::nullopt, 2};
+        }
+    }
     return {o, 0};
 }
 

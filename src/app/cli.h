@@ -5,6 +5,8 @@
 #include <optional>
 #include <string>
 
+#include "render/aov_set.h"
+
 namespace sombra {
 
 // Which subcommand runs.
@@ -27,6 +29,11 @@ struct CliOptions {
     std::string light_tree = "auto";            // "auto", "on" or "off": how path chooses among emitters
     std::optional<std::string> texture_filter;  // "bilinear" or "mipmap", overrides the scene
     std::string stats_json;                     // empty = none
+    // Spec §18: a time budget in seconds, adaptive sampling and the AOVs.
+    std::optional<double> time_budget;
+    std::optional<double> noise_threshold;
+    int min_spp = 16;
+    AovSet aovs;
     bool quiet = false;
 
     // sombra explain SCENE X Y [--sample K] [--json] [--svg FILE]

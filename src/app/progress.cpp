@@ -1,12 +1,17 @@
 #include "app/progress.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 
 namespace sombra {
 
-ProgressBar::ProgressBar(const RenderProgress& progress, std::uint64_t total_samples, bool enabled)
-    : progress_(progress), total_samples_(total_samples), start_(std::chrono::steady_clock::now()) {
+ProgressBar::ProgressBar(const RenderProgress& progress, std::uint64_t total_samples, bool enabled,
+                         std::optional<std::chrono::steady_clock::time_point> deadline)
+    : progress_(progress),
+      total_samples_(total_samples),
+      start_(std::chrono::steady_clock::now()),
+      deadline_(deadline) {
     if (enabled && total_samples_ > 0) thread_ = std::thread([this] { run(); });
 }
 
@@ -34,7 +39,11 @@ void ProgressBar::run() {
 void ProgressBar::draw(double elapsed) const {
     constexpr int kWidth = 30;
     const auto samples = progress_.samples_done.load(std::memory_order_relaxed);
-    const double done = static_cast<double>(samples) / static_cast<double>(total_samples_);
+    double done = static_cast<double>(samples) / static_cast<double>(total_samples_);
+    if (deadline_) {
+        const std::chrono::duration<double> budget = *deadline_ - start_;
+        if (budget.count() > 0) done = std::max(done, std::min(1.0, elapsed / budget.count()));
+    }
     const double mrays =
         elapsed > 0 ? static_cast<double>(progress_.rays_traced.load(std::memory_order_relaxed)) / elapsed * 1e-6 : 0;
     char bar[kWidth + 1];
@@ -47,7 +56,9 @@ void ProgressBar::draw(double elapsed) const {
         std::snprintf(eta, sizeof eta, "%ld:%02ld", left / 60, left % 60);
     }
     char count[64];
-    if (total_samples_ >= 10'000'000)
+    if (deadline_)  // the samples the budget allows are not known ahead
+        std::snprintf(count, sizeof count, "%.1f M samples", static_cast<double>(samples) * 1e-6);
+    else if (total_samples_ >= 10'000'000)
         std::snprintf(count, sizeof count, "%.1f/%.1f M samples", static_cast<double>(samples) * 1e-6,
                       static_cast<double>(total_samples_) * 1e-6);
     else

@@ -7,6 +7,7 @@
 #include <condition_variable>
 #include <cstdint>
 #include <mutex>
+#include <optional>
 #include <thread>
 
 #include "render/render.h"
@@ -16,8 +17,10 @@ namespace sombra {
 class ProgressBar {
 public:
     // Starts drawing on stderr when `enabled` (a terminal and not --quiet);
-    // otherwise does nothing at all.
-    ProgressBar(const RenderProgress& progress, std::uint64_t total_samples, bool enabled);
+    // otherwise does nothing at all. Under a time budget the bar also fills
+    // with the time passed toward `deadline`, whichever is further.
+    ProgressBar(const RenderProgress& progress, std::uint64_t total_samples, bool enabled,
+                std::optional<std::chrono::steady_clock::time_point> deadline = std::nullopt);
     // Stops the watcher and clears the line.
     ~ProgressBar();
     ProgressBar(const ProgressBar&) = delete;
@@ -30,6 +33,7 @@ private:
     const RenderProgress& progress_;
     std::uint64_t total_samples_;  // width · height · spp
     std::chrono::steady_clock::time_point start_;
+    std::optional<std::chrono::steady_clock::time_point> deadline_;
     std::mutex mutex_;
     std::condition_variable wake_;
     bool stop_ = false;

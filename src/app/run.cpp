@@ -6,6 +6,8 @@
 #include <chrono>
 #include <cstdio>
 #include <iostream>
+#include <string>
+#include <vector>
 
 #include "accel/accel.h"
 #include "app/interrupt.h"
@@ -25,6 +27,21 @@ using Clock = std::chrono::steady_clock;
 
 double seconds_since(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
 
+// The AOV images as the EXR channels spec §18 names.
+std::vector<ImageChannel> aov_layers(const AovImages& aovs) {
+    std::vector<ImageChannel> layers;
+    auto add3 = [&layers](const std::vector<float>& image, const char* layer, const char* axes) {
+        if (image.empty()) return;
+        for (int c = 0; c < 3; ++c) layers.push_back({std::string(layer) + "." + axes[c], image.data() + c, 3});
+    };
+    add3(aovs.albedo, "albedo", "RGB");
+    add3(aovs.normal, "normal", "XYZ");
+    if (!aovs.depth.empty()) layers.push_back({"depth.Z", aovs.depth.data(), 1});
+    add3(aovs.position, "position", "XYZ");
+    if (!aovs.spp.empty()) layers.push_back({"spp.Y", aovs.spp.data(), 1});
+    return layers;
+}
+
 }  // namespace
 
 int run_render(const CliOptions& o) {
@@ -43,7 +60,9 @@ int run_render(const CliOptions& o) {
         LoadedScene input = load_input(o.input, diag);
         Scene& scene = input.scene;
         stats.load_seconds = seconds_since(load_start);
-        const RenderSettings settings = resolve_settings(input.settings, o);
+        RenderSettings settings = resolve_settings(input.settings, o);
+        // Under a time budget the scene's spp does not limit the passes; --spp does (spec §18).
+        if (o.time_budget && !o.spp) settings.spp = kMaxSpp;
         print_warnings(diag, scene, settings, o);
         const AccelKind kind = *parse_accel_kind(o.accel);  // the command line checked the name
 
@@ -55,7 +74,14 @@ int run_render(const CliOptions& o) {
         const Accel accel = make_accel(scene, kind);
         stats.build_seconds = seconds_since(build_start);
 
-        const RenderJob job = make_render_job(scene, accel, settings, o.threads, light_selection(o));
+        RenderJob job = make_render_job(scene, accel, settings, o.threads, light_selection(o));
+        // The budget counts from the command's start: it is the wait the user asked for.
+        if (o.time_budget)
+            job.limits.deadline =
+                start + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(*o.time_budget));
+        if (o.noise_threshold) job.limits.noise_threshold = *o.noise_threshold;
+        job.limits.min_spp = o.min_spp;
+        job.aovs = o.aovs;
 
         interrupt.set_phase(InterruptWatcher::Phase::Rendering);
         const auto render_start = Clock::now();
@@ -65,7 +91,7 @@ int run_render(const CliOptions& o) {
             ProgressBar bar(progress,
                             static_cast<std::uint64_t>(settings.width) * static_cast<std::uint64_t>(settings.height) *
                                 static_cast<std::uint64_t>(settings.spp),
-                            show);
+                            show, job.limits.deadline);
             rendered = render_image(job, progress);
         }
         stats.render_seconds = seconds_since(render_start);
@@ -77,13 +103,19 @@ int run_render(const CliOptions& o) {
         interrupt.set_phase(InterruptWatcher::Phase::Writing);
 
         const auto write_start = Clock::now();
-        write_image(output, ImageView{rendered.film.width, rendered.film.height, rendered.film.rgb.data()}, o.exposure);
+        write_image(output, ImageView{rendered.film.width, rendered.film.height, rendered.film.rgb.data()}, o.exposure,
+                    aov_layers(rendered.aovs));
         stats.write_seconds = seconds_since(write_start);
 
         stats.triangles = scene.geometry.triangle_count();
         stats.width = settings.width;
         stats.height = settings.height;
-        stats.spp = settings.spp;
+        stats.spp = o.time_budget && !o.spp ? static_cast<int>(rendered.max_pixel_spp) : settings.spp;
+        stats.spp_uniform = rendered.min_pixel_spp == rendered.max_pixel_spp;
+        stats.spp_reached = static_cast<double>(rendered.samples) /
+                            (static_cast<double>(settings.width) * static_cast<double>(settings.height));
+        if (stats.spp_uniform) stats.spp_reached = rendered.max_pixel_spp;
+        stats.passes = rendered.passes;
         stats.threads = o.threads > 0 ? o.threads : tbb::info::default_concurrency();
         stats.accel = std::string(accel_name(kind));
         stats.accel_bytes = accel_memory_bytes(accel);

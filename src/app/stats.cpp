@@ -17,6 +17,9 @@ void write_stats_json(const std::filesystem::path& path, const RunStats& s) {
         {"width", s.width},
         {"height", s.height},
         {"spp", s.spp},
+        {"spp_reached", s.spp_uniform ? nlohmann::ordered_json(static_cast<std::uint64_t>(s.spp_reached))
+                                      : nlohmann::ordered_json(s.spp_reached)},
+        {"passes", s.passes},
         {"threads", s.threads},
         {"accel", s.accel},
         {"integrator", s.integrator},
@@ -54,15 +57,24 @@ std::string seconds(double s) {
 
 }  // namespace
 
+// "16", or "12.4 (adaptive, at most 64)" when pixels took different counts.
+std::string samples_text(const RunStats& s) {
+    if (s.spp_uniform) return std::to_string(static_cast<std::uint64_t>(s.spp_reached));
+    char buf[64];
+    std::snprintf(buf, sizeof buf, "%.1f (adaptive, at most %d)", s.spp_reached, s.spp);
+    return buf;
+}
+
 std::string summary_line(const RunStats& s, const std::string& output) {
     const double rays = static_cast<double>(s.camera_rays + s.shadow_rays + s.bounce_rays);
     const double mrays = s.render_seconds > 0 ? rays / s.render_seconds * 1e-6 : 0.0;
     char rate[48];
     std::snprintf(rate, sizeof rate, "%.1f Mrays/s", mrays);
     return "sombra: " + thousands(s.triangles) + " triangles, " + std::to_string(s.width) + "x" +
-           std::to_string(s.height) + " at " + std::to_string(s.spp) + " spp, " + s.integrator + " | load " +
-           seconds(s.load_seconds) + ", build " + seconds(s.build_seconds) + ", render " + seconds(s.render_seconds) +
-           " (" + rate + ", " + std::to_string(s.threads) +
+           std::to_string(s.height) + " at " + samples_text(s) + " spp" +
+           (s.passes > 1 ? " in " + std::to_string(s.passes) + " passes" : std::string()) + ", " + s.integrator +
+           " | load " + seconds(s.load_seconds) + ", build " + seconds(s.build_seconds) + ", render " +
+           seconds(s.render_seconds) + " (" + rate + ", " + std::to_string(s.threads) +
            (s.threads == 1 ? " thread), write " : " threads), write ") + seconds(s.write_seconds) + " | wrote " +
            output;
 }

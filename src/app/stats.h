@@ -10,7 +10,13 @@ namespace sombra {
 
 struct RunStats {
     std::uint64_t triangles = 0;
-    int width = 0, height = 0, spp = 0;
+    int width = 0, height = 0;
+    int spp = 0;  // asked for; under --time without --spp, the most a pixel took
+    // Spec §18: the mean samples a pixel took (integral when all took the
+    // same), and the passes rendered.
+    double spp_reached = 0;
+    bool spp_uniform = true;
+    int passes = 0;
     int threads = 0;  // worker threads actually used
     std::string accel;
     std::string integrator;  // "direct" or "path"

@@ -52,7 +52,7 @@ private:
 
 // 32-bit float channels rather than half: the file holds exactly the radiance
 // the renderer computed (half would round to 11 bits and overflow above 65504).
-void write_exr(const std::filesystem::path& file, ImageView image) {
+void write_exr(const std::filesystem::path& file, ImageView image, std::span<const ImageChannel> layers) {
     const auto width = static_cast<std::size_t>(image.width);
     const auto height = static_cast<std::size_t>(image.height);
 
@@ -70,6 +70,13 @@ void write_exr(const std::filesystem::path& file, ImageView image) {
         header.channels().insert(names[c], Imf::Channel(Imf::FLOAT));
         frame.insert(names[c], Imf::Slice(Imf::FLOAT, reinterpret_cast<char*>(pixels.data() + c), pixel_stride,
                                           pixel_stride * width));
+    }
+    for (const ImageChannel& layer : layers) {
+        const std::size_t stride = static_cast<std::size_t>(layer.stride) * sizeof(float);
+        header.channels().insert(layer.name, Imf::Channel(Imf::FLOAT));
+        // OpenEXR's slices take a writable pointer but only read when writing.
+        frame.insert(layer.name, Imf::Slice(Imf::FLOAT, const_cast<char*>(reinterpret_cast<const char*>(layer.values)),
+                                            stride, stride * width));
     }
 
     OutputFile out = open_for_writing(file);

@@ -6,6 +6,8 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <span>
+#include <string>
 #include <vector>
 
 namespace sombra {
@@ -15,6 +17,16 @@ struct ImageView {
     int width = 0;
     int height = 0;
     const float* rgb = nullptr;
+};
+
+// One more 32-bit float channel for an OpenEXR file, e.g. "albedo.R" or
+// "depth.Z" (spec §18's AOV layers): `stride` floats apart in row-major
+// order, top row first, so that the 3-float AOV images give their channels
+// without a copy. Written as they are, +∞ included.
+struct ImageChannel {
+    std::string name;
+    const float* values = nullptr;
+    int stride = 1;
 };
 
 enum class ImageFormat { Png, Pfm, Exr };
@@ -31,8 +43,11 @@ void check_output_path(const std::filesystem::path& path);
 // Writes the image in the format of the path's extension. `exposure` scales
 // radiance by 2^exposure for PNG only (PFM and EXR keep linear radiance).
 // Pixels with a non-finite channel are written as black in every format.
-// Throws Error(path, ...) on failure, leaving any earlier file at `path` untouched.
-void write_image(const std::filesystem::path& path, ImageView image, float exposure);
+// `layers` (EXR only; Error(path, ...) with another format) go into the file
+// beside R, G, B. Throws Error(path, ...) on failure, leaving any earlier
+// file at `path` untouched.
+void write_image(const std::filesystem::path& path, ImageView image, float exposure,
+                 std::span<const ImageChannel> layers = {});
 
 // The bytes of the PNG file write_image would write for `image` (for
 // embedding, e.g. in `sombra explain`'s SVG). Throws Error("png", ...) on failure.

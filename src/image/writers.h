@@ -28,8 +28,8 @@ void write_png(const std::filesystem::path& file, ImageView image, float exposur
 // rows bottom to top (the PFM convention). Linear radiance.
 void write_pfm(const std::filesystem::path& file, ImageView image);
 
-// OpenEXR with 32-bit float R, G, B channels, ZIP compressed. Linear radiance.
-void write_exr(const std::filesystem::path& file, ImageView image);
+// OpenEXR with 32-bit float R, G, B channels and `layers`, ZIP compressed. Linear radiance.
+void write_exr(const std::filesystem::path& file, ImageView image, std::span<const ImageChannel> layers);
 
 // True when all three channels of pixel `index` are finite.
 inline bool pixel_is_finite(const float* rgb, std::size_t index) {

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <limits>
 
+#include "render/first_hit.h"
 #include "render/sample_recorder.h"
 #include "render/shading_view.h"
 
@@ -78,5 +79,8 @@ template void add_delta_lights<NoRecorder>(const LightSet&, const Accel&, const 
 template void add_delta_lights<SampleRecorder>(const LightSet&, const Accel&, const SurfaceInteraction&,
                                                const Material&, const BsdfPoint&, Vec3, Vec3, Vec3&, RayCounters&,
                                                SampleRecorder&);
+template void add_delta_lights<FirstHitRecorder>(const LightSet&, const Accel&, const SurfaceInteraction&,
+                                                 const Material&, const BsdfPoint&, Vec3, Vec3, Vec3&, RayCounters&,
+                                                 FirstHitRecorder&);
 
 }  // namespace sombra

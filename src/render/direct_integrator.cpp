@@ -6,6 +6,7 @@
 
 #include "render/bsdf.h"
 #include "render/delta_lights.h"
+#include "render/first_hit.h"
 #include "render/interaction.h"
 #include "render/ray_cone.h"
 #include "render/sample_recorder.h"
@@ -67,6 +68,11 @@ Vec3 trace_direct(const IntegratorContext& ctx, const Ray& ray, RayCounters& cou
 
 Vec3 trace_direct(const IntegratorContext& ctx, const Ray& ray, RayCounters& counters, SampleRecord& record) {
     SampleRecorder recorder(*ctx.scene, *ctx.lights, *ctx.accel, record);
+    return trace_direct_recorded(ctx, ray, counters, recorder);
+}
+
+Vec3 trace_direct(const IntegratorContext& ctx, const Ray& ray, RayCounters& counters, FirstHit& first) {
+    FirstHitRecorder recorder(first);
     return trace_direct_recorded(ctx, ray, counters, recorder);
 }
 

@@ -18,6 +18,8 @@
 
 namespace sombra {
 
+struct FirstHit;  // render/first_hit.h
+
 // How the path integrator reaches emitters and the environment. Renders
 // always use Mis; the single strategies exist so that tests can check that
 // all three estimate the same value (each is unbiased on its own).
@@ -50,6 +52,9 @@ Vec3 trace_direct(const IntegratorContext& ctx, const Ray& ray, RayCounters& cou
 // The same, compiled from the same code, writing every term into `record`
 // (`sombra explain`); returns exactly what the function above returns.
 Vec3 trace_direct(const IntegratorContext& ctx, const Ray& ray, RayCounters& counters, SampleRecord& record);
+// The same, also writing the ray's first hit into `first` (the AOVs, spec
+// §18); returns exactly what the first function returns.
+Vec3 trace_direct(const IntegratorContext& ctx, const Ray& ray, RayCounters& counters, FirstHit& first);
 
 // The path integrator's estimate of the same radiance (spec §10), drawing
 // its random numbers from `samples`. Never NaN or Inf (as trace_direct).
@@ -57,5 +62,8 @@ Vec3 trace_path(const IntegratorContext& ctx, const Ray& ray, SampleStream& samp
 // The same, writing every vertex into `record`; returns exactly what the function above returns.
 Vec3 trace_path(const IntegratorContext& ctx, const Ray& ray, SampleStream& samples, RayCounters& counters,
                 SampleRecord& record);
+// The same, also writing the camera ray's first hit into `first`.
+Vec3 trace_path(const IntegratorContext& ctx, const Ray& ray, SampleStream& samples, RayCounters& counters,
+                FirstHit& first);
 
 }  // namespace sombra

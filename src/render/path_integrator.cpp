@@ -9,6 +9,7 @@
 
 #include "render/bsdf.h"
 #include "render/delta_lights.h"
+#include "render/first_hit.h"
 #include "render/integrator.h"
 #include "render/interaction.h"
 #include "render/ray_cone.h"
@@ -199,6 +200,12 @@ Vec3 trace_path(const IntegratorContext& ctx, const Ray& ray, SampleStream& samp
                 SampleRecord& record) {
     SampleRecorder recorder(*ctx.scene, *ctx.lights, *ctx.accel, record);
     record.path = true;
+    return trace_path_recorded(ctx, ray, samples, counters, recorder);
+}
+
+Vec3 trace_path(const IntegratorContext& ctx, const Ray& ray, SampleStream& samples, RayCounters& counters,
+                FirstHit& first) {
+    FirstHitRecorder recorder(first);
     return trace_path_recorded(ctx, ray, samples, counters, recorder);
 }
 

@@ -7,8 +7,10 @@
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
+#include <algorithm>
 #include <optional>
 
+#include "render/first_hit.h"
 #include "render/ray_cone.h"
 #include "render/sampler.h"
 
@@ -55,14 +57,54 @@ Vec3 trace_sample(const RenderJob& job, const IntegratorContext& ctx, std::uint6
     return trace_direct(ctx, ray, counters, record...);
 }
 
-Vec3 render_pixel(const RenderJob& job, const IntegratorContext& ctx, int i, int j, RayCounters& counters) {
+// Adds samples count … end − 1 of pixel (i, j) to the accumulation, then
+// decides whether the pixel goes on (spec §18's adaptive rule).
+void sample_pixel(const RenderJob& job, const IntegratorContext& ctx, Accumulation& acc, int i, int j,
+                  std::uint32_t end, RayCounters& counters) {
     const RenderSettings& s = job.settings;
-    const auto spp = static_cast<std::uint32_t>(s.spp);
+    const std::size_t pixel =
+        static_cast<std::size_t>(j) * static_cast<std::size_t>(s.width) + static_cast<std::size_t>(i);
     const std::uint64_t key = pixel_key(s.seed, i, j, s.width);
-    Vec3 sum{0.0f};
-    for (std::uint32_t k = 0; k < spp; ++k)
-        sum += trace_sample(job, ctx, key, camera_sample(job, key, i, j, k).ray, k, counters);
-    return sum / static_cast<float>(spp);
+    const bool first_hits = job.aovs.needs_first_hit();
+    for (std::uint32_t k = acc.count(pixel); k < end; ++k) {
+        const Ray ray = camera_sample(job, key, i, j, k).ray;
+        if (first_hits) {
+            FirstHit first;
+            const Vec3 radiance = trace_sample(job, ctx, key, ray, k, counters, first);
+            acc.add(pixel, radiance, &first);
+        } else {
+            acc.add(pixel, trace_sample(job, ctx, key, ray, k, counters), nullptr);
+        }
+    }
+    if (acc.count(pixel) >= static_cast<std::uint32_t>(s.spp)) acc.finish(pixel);
+}
+
+// Spec §18's adaptive rule after a pass, for every pixel still sampling:
+// decided from the pass's finished sums only (a separate loop), so that the
+// decisions do not depend on the order pixels were rendered in.
+void stop_converged_pixels(const RenderJob& job, Accumulation& acc) {
+    const RenderSettings& s = job.settings;
+    const double threshold = job.limits.noise_threshold;
+    const auto min_spp = static_cast<std::uint32_t>(std::max(job.limits.min_spp, 2));
+    std::vector<std::uint8_t> stop(acc.pixels(), 0);
+    tbb::parallel_for(0, s.height, [&](int j) {
+        for (int i = 0; i < s.width; ++i) {
+            const std::size_t pixel =
+                static_cast<std::size_t>(j) * static_cast<std::size_t>(s.width) + static_cast<std::size_t>(i);
+            if (acc.done(pixel) || acc.count(pixel) < min_spp) continue;
+            stop[pixel] = acc.luminance_standard_error(i, j) <=
+                          threshold * std::max(acc.luminance_mean(pixel), Accumulation::kLuminanceFloor);
+        }
+    });
+    for (std::size_t p = 0; p < stop.size(); ++p)
+        if (stop[p]) acc.finish(p);
+}
+
+// How many samples each pass adds (see kTimedPassSamples).
+std::uint32_t pass_samples(const RenderJob& job) {
+    if (job.limits.noise_threshold > 0) return kAdaptivePassSamples;
+    if (job.limits.deadline) return kTimedPassSamples;
+    return static_cast<std::uint32_t>(job.settings.spp);
 }
 
 }  // namespace
@@ -113,11 +155,13 @@ Vec3 trace_pixel_sample(const RenderJob& job, int i, int j, int k, RayCounters& 
 }
 
 RenderOutput render_image(const RenderJob& job, RenderProgress& progress) {
-    RenderOutput out;
-    out.film = Film(job.settings.width, job.settings.height);
+    using Clock = std::chrono::steady_clock;
+    const RenderSettings& rs = job.settings;
+    Accumulation acc(rs.width, rs.height, job.limits.noise_threshold > 0, job.aovs);
     tbb::combinable<RayCounters> per_thread;
     const IntegratorContext ctx = make_integrator_context(job);
-    const auto spp = static_cast<std::uint64_t>(job.settings.spp);
+    const auto spp = static_cast<std::uint32_t>(rs.spp);
+    const std::uint32_t step = pass_samples(job);
 
     const int threads = job.threads > 0 ? job.threads : tbb::task_arena::automatic;
     // oneTBB caps its workers at the hardware's thread count (and says so on
@@ -127,27 +171,58 @@ RenderOutput render_image(const RenderJob& job, RenderProgress& progress) {
     if (threads > tbb::info::default_concurrency())
         allow_more.emplace(tbb::global_control::max_allowed_parallelism, static_cast<std::size_t>(threads));
     tbb::task_arena arena(threads);
+    RenderOutput out;
     arena.execute([&] {
-        const tbb::blocked_range2d<int> image(0, job.settings.height, kTileSize, 0, job.settings.width, kTileSize);
-        tbb::parallel_for(image, [&](const tbb::blocked_range2d<int>& tile) {
-            if (progress.cancel.load(std::memory_order_relaxed)) return;
-            RayCounters& counters = per_thread.local();
-            for (int j = tile.rows().begin(); j < tile.rows().end(); ++j) {
-                const std::uint64_t rays_before = counters.rays();
-                for (int i = tile.cols().begin(); i < tile.cols().end(); ++i) {
-                    // Checked per pixel too: at thousands of samples a tile can take seconds.
-                    if (progress.cancel.load(std::memory_order_relaxed)) return;
-                    out.film.set(i, j, render_pixel(job, ctx, i, j, counters));
+        const tbb::blocked_range2d<int> image(0, rs.height, kTileSize, 0, rs.width, kTileSize);
+        for (std::uint32_t pass_end = std::min(step, spp);; pass_end = std::min(pass_end + step, spp)) {
+            const auto pass_start = Clock::now();
+            std::atomic<bool> any_left{false};
+            tbb::parallel_for(image, [&](const tbb::blocked_range2d<int>& tile) {
+                if (progress.cancel.load(std::memory_order_relaxed)) return;
+                RayCounters& counters = per_thread.local();
+                bool left = false;
+                for (int j = tile.rows().begin(); j < tile.rows().end(); ++j) {
+                    const std::uint64_t rays_before = counters.rays();
+                    std::uint64_t samples = 0;
+                    for (int i = tile.cols().begin(); i < tile.cols().end(); ++i) {
+                        // Checked per pixel too: at thousands of samples a tile can take seconds.
+                        if (progress.cancel.load(std::memory_order_relaxed)) return;
+                        const std::size_t pixel = static_cast<std::size_t>(j) * static_cast<std::size_t>(rs.width) +
+                                                  static_cast<std::size_t>(i);
+                        if (acc.done(pixel)) continue;
+                        const std::uint32_t before = acc.count(pixel);
+                        sample_pixel(job, ctx, acc, i, j, pass_end, counters);
+                        samples += acc.count(pixel) - before;
+                        left = left || !acc.done(pixel);
+                    }
+                    // Reported per tile row, so that the progress bar moves
+                    // smoothly even when a tile takes seconds.
+                    progress.samples_done.fetch_add(samples, std::memory_order_relaxed);
+                    progress.rays_traced.fetch_add(counters.rays() - rays_before, std::memory_order_relaxed);
                 }
-                // Reported per tile row, so that the progress bar moves
-                // smoothly even when a tile takes seconds.
-                progress.samples_done.fetch_add(static_cast<std::uint64_t>(tile.cols().size()) * spp,
-                                                std::memory_order_relaxed);
-                progress.rays_traced.fetch_add(counters.rays() - rays_before, std::memory_order_relaxed);
-            }
-        });
+                if (left) any_left.store(true, std::memory_order_relaxed);
+            });
+            ++out.passes;
+            if (progress.cancel.load() || !any_left.load()) break;
+            if (job.limits.noise_threshold > 0) stop_converged_pixels(job, acc);
+            // The next pass takes about as long as this one (no longer: it
+            // samples the same pixels or fewer).
+            const auto now = Clock::now();
+            if (job.limits.deadline && now + (now - pass_start) > *job.limits.deadline) break;
+        }
     });
 
+    out.film = acc.image();
+    out.aovs = acc.aov_images();
+    if (acc.pixels() > 0) {
+        out.min_pixel_spp = acc.count(0);
+        out.max_pixel_spp = acc.count(0);
+    }
+    for (std::size_t p = 0; p < acc.pixels(); ++p) {
+        out.samples += acc.count(p);
+        out.min_pixel_spp = std::min(out.min_pixel_spp, acc.count(p));
+        out.max_pixel_spp = std::max(out.max_pixel_spp, acc.count(p));
+    }
     per_thread.combine_each([&](const RayCounters& c) { out.counters += c; });
     out.cancelled = progress.cancel.load();
     return out;

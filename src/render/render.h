@@ -3,9 +3,12 @@
 #pragma once
 
 #include <atomic>
+#include <chrono>
 #include <cstdint>
+#include <optional>
 
 #include "accel/accel.h"
+#include "render/accumulation.h"
 #include "render/camera.h"
 #include "render/film.h"
 #include "render/integrator.h"
@@ -23,13 +26,34 @@ struct RenderProgress {
     std::atomic<bool> cancel{false};
 };
 
+// When a pixel stops taking samples (spec §18). With neither a deadline nor
+// a threshold every pixel takes settings.spp samples, in one pass.
+struct SamplingLimits {
+    // --time: no pass starts that would, at the last pass's pace, end after this.
+    std::optional<std::chrono::steady_clock::time_point> deadline;
+    // --noise-threshold T > 0: a pixel stops once the estimated standard
+    // error of its mean luminance (Accumulation::luminance_standard_error:
+    // pooled over its 3 × 3 neighbourhood) is at most T · max(mean, 10⁻³); 0 = off.
+    double noise_threshold = 0;
+    int min_spp = 16;  // no pixel stops by the threshold before this many samples
+};
+
+// The samples each pass adds to every pixel still sampling: two under a
+// time budget (the finest step §18 allows), four with adaptive sampling
+// (its rule is checked less often, which lets fewer pixels stop on a lucky
+// low-variance streak), and all of settings.spp at once otherwise.
+inline constexpr int kTimedPassSamples = 2;
+inline constexpr int kAdaptivePassSamples = 4;
+
 struct RenderJob {
     const Scene* scene = nullptr;  // geometry must be the mesh `accel` was built over
     const Accel* accel = nullptr;
     Camera camera;
     LightSet lights;          // the scene's lights as the integrator samples them
-    RenderSettings settings;  // image size, spp, seed, integrator and depth actually used
-    int threads = 0;          // worker threads; 0 = all hardware threads
+    RenderSettings settings;  // image size, spp (the most any pixel takes), seed, integrator and depth
+    SamplingLimits limits;
+    AovSet aovs;      // the AOVs to gather beside the image
+    int threads = 0;  // worker threads; 0 = all hardware threads
 };
 
 // The job for rendering `scene` with `accel` at `settings`, with the scene's
@@ -49,13 +73,20 @@ Vec3 trace_pixel_sample(const RenderJob& job, int i, int j, int k, RayCounters& 
 
 struct RenderOutput {
     Film film;
+    AovImages aovs;                   // those job.aovs asked for
+    std::uint64_t samples = 0;        // taken over all pixels
+    std::uint32_t min_pixel_spp = 0;  // the fewest and most samples a pixel took
+    std::uint32_t max_pixel_spp = 0;
+    int passes = 0;
     RayCounters counters;
     bool cancelled = false;  // true when progress.cancel stopped the loop: the film is incomplete
 };
 
-// Renders the image. Each pixel is the equal-weight average (box filter) of
-// its spp samples; the result depends only on the scene, settings and seed,
-// not on the thread count or scheduling.
+// Renders the image in passes (spec §18). Each pixel is the equal-weight
+// average (box filter) of its samples, taken in index order 0, 1, 2, …, so
+// a pixel that took n samples equals the same pixel rendered at spp n. The
+// result depends only on the scene, settings, seed and limits (and, under
+// a deadline, on how many passes fit), not on the thread count or scheduling.
 RenderOutput render_image(const RenderJob& job, RenderProgress& progress);
 
 }  // namespace sombra

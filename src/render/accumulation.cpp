@@ -1,0 +1,115 @@
+#include "render/accumulation.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace sombra {
+
+namespace {
+
+void add3(std::vector<float>& sums, std::size_t pixel, Vec3 v) {
+    float* p = &sums[3 * pixel];
+    p[0] += v.x;
+    p[1] += v.y;
+    p[2] += v.z;
+}
+
+// Each pixel's 3-float sum divided by its sample count.
+std::vector<float> mean3(const std::vector<float>& sums, const std::vector<std::uint32_t>& count) {
+    std::vector<float> out(sums.size(), 0.0f);
+    for (std::size_t p = 0; p < count.size(); ++p) {
+        if (count[p] == 0) continue;
+        const Vec3 mean = Vec3{sums[3 * p], sums[3 * p + 1], sums[3 * p + 2]} / static_cast<float>(count[p]);
+        out[3 * p] = mean.x;
+        out[3 * p + 1] = mean.y;
+        out[3 * p + 2] = mean.z;
+    }
+    return out;
+}
+
+}  // namespace
+
+Accumulation::Accumulation(int width, int height, bool moments, AovSet aovs)
+    : width_(width), height_(height), aovs_(aovs) {
+    const std::size_t n = static_cast<std::size_t>(width) * static_cast<std::size_t>(height);
+    rgb_sum_.assign(3 * n, 0.0f);
+    count_.assign(n, 0);
+    done_.assign(n, 0);
+    if (moments) {
+        luminance_sum_.assign(n, 0.0);
+        luminance_squares_.assign(n, 0.0);
+    }
+    if (aovs.albedo) albedo_sum_.assign(3 * n, 0.0f);
+    if (aovs.normal) normal_sum_.assign(3 * n, 0.0f);
+    if (aovs.position) position_sum_.assign(3 * n, 0.0f);
+    if (aovs.depth) {
+        depth_sum_.assign(n, 0.0f);
+        hits_.assign(n, 0);
+    }
+}
+
+void Accumulation::add(std::size_t pixel, Vec3 radiance, const FirstHit* first) {
+    add3(rgb_sum_, pixel, radiance);
+    ++count_[pixel];
+    if (!luminance_sum_.empty()) {
+        // Rec. 709 relative luminance (core/vec3.h), what §18's rule measures noise in.
+        const double y = luminance(radiance);
+        luminance_sum_[pixel] += y;
+        luminance_squares_[pixel] += y * y;
+    }
+    if (first == nullptr || !first->hit) return;  // a miss adds 0 to every AOV
+    if (!albedo_sum_.empty()) add3(albedo_sum_, pixel, first->albedo);
+    if (!normal_sum_.empty()) add3(normal_sum_, pixel, first->normal);
+    if (!position_sum_.empty()) add3(position_sum_, pixel, first->position);
+    if (!depth_sum_.empty()) {
+        depth_sum_[pixel] += first->depth;
+        ++hits_[pixel];
+    }
+}
+
+double Accumulation::luminance_mean(std::size_t pixel) const {
+    return luminance_sum_[pixel] / static_cast<double>(count_[pixel]);
+}
+
+double Accumulation::luminance_standard_error(int i, int j) const {
+    double relative_squares = 0, degrees_of_freedom = 0;
+    for (int y = std::max(j - 1, 0); y <= std::min(j + 1, height_ - 1); ++y) {
+        for (int x = std::max(i - 1, 0); x <= std::min(i + 1, width_ - 1); ++x) {
+            const std::size_t q = index(x, y);
+            const auto n = static_cast<double>(count_[q]);
+            if (n < 2) continue;
+            const double mean = luminance_sum_[q] / n;
+            const double floor = std::max(mean, kLuminanceFloor);
+            // max(): the rounding of a constant pixel's sums can go below 0.
+            relative_squares += std::max(0.0, luminance_squares_[q] - n * mean * mean) / (floor * floor);
+            degrees_of_freedom += n - 1.0;
+        }
+    }
+    const std::size_t p = index(i, j);
+    const double relative_variance = relative_squares / degrees_of_freedom;
+    return std::max(luminance_mean(p), kLuminanceFloor) * std::sqrt(relative_variance / static_cast<double>(count_[p]));
+}
+
+Film Accumulation::image() const {
+    Film film(width_, height_);
+    film.rgb = mean3(rgb_sum_, count_);
+    return film;
+}
+
+AovImages Accumulation::aov_images() const {
+    AovImages out;
+    if (aovs_.albedo) out.albedo = mean3(albedo_sum_, count_);
+    if (aovs_.normal) out.normal = mean3(normal_sum_, count_);
+    if (aovs_.position) out.position = mean3(position_sum_, count_);
+    if (aovs_.depth) {
+        out.depth.resize(count_.size());
+        for (std::size_t p = 0; p < count_.size(); ++p)
+            out.depth[p] = hits_[p] > 0 ? depth_sum_[p] / static_cast<float>(hits_[p])
+                                        : std::numeric_limits<float>::infinity();
+    }
+    if (aovs_.spp) out.spp.assign(count_.begin(), count_.end());
+    return out;
+}
+
+}  // namespace sombra
