@@ -141,6 +141,10 @@ int main(int argc, char** argv) {
     path_error->add_option("--budget", error_options.budget_seconds, "Seconds for the equal-time render")
         ->check(CLI::Range(0.001, 3600.0))
         ->capture_default_str();
+    path_error
+        ->add_option("--noise-threshold", error_options.noise_thresholds,
+                     "Adaptive renders at these thresholds (up to the largest --spp)")
+        ->delimiter(',');
     path_error->add_option("--cache-dir", cache_dir, "Where the reference image is cached")->capture_default_str();
 
     CLI11_PARSE(app, argc, argv);

@@ -43,13 +43,15 @@ struct PathErrorOptions {
     int max_depth = 8;
     int reference_spp = 4096;
     std::vector<int> fixed_spp{16, 64, 256};
-    double budget_seconds = 1.0;                      // the equal-time render's budget
+    double budget_seconds = 1.0;           // the equal-time render's budget
+    std::vector<double> noise_thresholds;  // adaptive renders (--noise-threshold), up to the largest fixed spp
     std::filesystem::path cache_dir = "build/bench";  // where the reference is kept
 };
 
 // Renders (or reads from cache_dir) a reference of `scene_file` at
 // reference_spp with seed 1 and the BVH, then renders with seed 0 at each of
-// fixed_spp and at the spp that fits budget_seconds, and writes one Markdown
+// fixed_spp, in passes until budget_seconds, and adaptively at each of
+// noise_thresholds, and writes one Markdown
 // table of RMSE and relative MSE against the reference (see path_bench.cpp
 // for the exact definitions) to `out`.
 void run_path_error_bench(const std::string& scene_file, const PathErrorOptions& options, std::ostream& out);

@@ -63,7 +63,7 @@ rays_cmd="$bench rays --reps 9 --rays 400000 $shared/scenes/cornell.json $shared
 # The same rays against Embree in its robust mode, which like sombra's BVH
 # lets no ray through an edge.
 rays_robust_cmd="$rays_cmd --embree-robust"
-path_error_cmd="$bench path-error --width 128 --height 128 --max-depth 8 --reference-spp 4096 --spp 16,64,256 --budget 1 --cache-dir $out $shared/scenes/cornell.json"
+path_error_cmd="$bench path-error --width 128 --height 128 --max-depth 8 --reference-spp 4096 --spp 16,64,256 --budget 1 --noise-threshold 0.1,0.05 --cache-dir $out $shared/scenes/cornell.json"
 sombra="$build/src/app/sombra"
 alloc_cmd="LD_PRELOAD=$out/malloc_count.so $sombra render $shared/scenes/cornell.json --integrator path --max-depth 8 --width 64 --height 64 --spp N -q"
 

@@ -52,8 +52,9 @@ TEST_F(RenderOutputs, SppLimitsATimeBudget) {
 
 TEST_F(RenderOutputs, AdaptiveStatisticsAndSppLayer) {
     write_text(dir_ / "s.json", scene(R"({"width": 32, "height": 24, "spp": 64, "integrator": "path"})"));
-    const RunResult r = run("render s.json -o out.exr --noise-threshold 0.05 --min-spp 8 --aov spp --quiet "
-                            "--stats-json stats.json");
+    const RunResult r =
+        run("render s.json -o out.exr --noise-threshold 0.05 --min-spp 8 --aov spp --quiet "
+            "--stats-json stats.json");
     ASSERT_EQ(r.status, 0) << r.err;
     const auto stats = nlohmann::json::parse(read_text(dir_ / "stats.json"));
     EXPECT_EQ(stats["spp"], 64);
@@ -89,8 +90,8 @@ TEST_F(RenderOutputs, AovLayersAreNamedAsTheContractSays) {
         names.insert(c.name());
         EXPECT_EQ(c.channel().type, Imf::FLOAT) << c.name();
     }
-    const std::set<std::string> expected{"R",        "G",        "B",          "albedo.R",   "albedo.G",
-                                         "albedo.B", "normal.X", "normal.Y",   "normal.Z",   "depth.Z",
+    const std::set<std::string> expected{"R",        "G",          "B",          "albedo.R",  "albedo.G",
+                                         "albedo.B", "normal.X",   "normal.Y",   "normal.Z",  "depth.Z",
                                          "spp.Y",    "position.X", "position.Y", "position.Z"};
     EXPECT_EQ(names, expected);
 

@@ -105,8 +105,8 @@ AovImages Accumulation::aov_images() const {
     if (aovs_.depth) {
         out.depth.resize(count_.size());
         for (std::size_t p = 0; p < count_.size(); ++p)
-            out.depth[p] = hits_[p] > 0 ? depth_sum_[p] / static_cast<float>(hits_[p])
-                                        : std::numeric_limits<float>::infinity();
+            out.depth[p] =
+                hits_[p] > 0 ? depth_sum_[p] / static_cast<float>(hits_[p]) : std::numeric_limits<float>::infinity();
     }
     if (aovs_.spp) out.spp.assign(count_.begin(), count_.end());
     return out;

@@ -74,7 +74,7 @@ private:
     std::vector<float> rgb_sum_;  // 3 a pixel
     std::vector<std::uint32_t> count_;
     std::vector<std::uint8_t> done_;
-    std::vector<double> luminance_sum_, luminance_squares_;  // only with moments
+    std::vector<double> luminance_sum_, luminance_squares_;      // only with moments
     std::vector<float> albedo_sum_, normal_sum_, position_sum_;  // 3 a pixel, when asked
     std::vector<float> depth_sum_;
     std::vector<std::uint32_t> hits_;  // samples whose camera ray hit a surface, with depth

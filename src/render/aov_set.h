@@ -27,11 +27,16 @@ inline std::optional<AovSet> parse_aov_list(std::string_view list, std::string& 
     for (;;) {
         const std::size_t comma = list.find(',');
         const std::string_view name = list.substr(0, comma);
-        if (name == "albedo") set.albedo = true;
-        else if (name == "normal") set.normal = true;
-        else if (name == "depth") set.depth = true;
-        else if (name == "position") set.position = true;
-        else if (name == "spp") set.spp = true;
+        if (name == "albedo")
+            set.albedo = true;
+        else if (name == "normal")
+            set.normal = true;
+        else if (name == "depth")
+            set.depth = true;
+        else if (name == "position")
+            set.position = true;
+        else if (name == "spp")
+            set.spp = true;
         else {
             bad = std::string(name);
             return std::nullopt;

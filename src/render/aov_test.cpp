@@ -97,12 +97,14 @@ TEST(Aov, KnownAlbedoNormalDepthPositionAndSpp) {
                     EXPECT_NEAR(pos.z, -kDistance, 1e-5f);
                     float farthest = 0;
                     for (int corner = 0; corner < 4; ++corner)
-                        farthest = std::max(farthest, length(plane_point(r.job.camera, static_cast<float>(i + corner % 2),
-                                                                         static_cast<float>(j + corner / 2))));
+                        farthest =
+                            std::max(farthest, length(plane_point(r.job.camera, static_cast<float>(i + corner % 2),
+                                                                  static_cast<float>(j + corner / 2))));
                     EXPECT_GE(a.depth[p], kDistance * (1.0f - 1e-6f));
                     EXPECT_LE(a.depth[p], farthest * (1.0f + 1e-6f));
                     if (spp == 1) {  // one ray through the pixel centre: exact
-                        const Vec3 centre = plane_point(r.job.camera, static_cast<float>(i) + 0.5f, static_cast<float>(j) + 0.5f);
+                        const Vec3 centre =
+                            plane_point(r.job.camera, static_cast<float>(i) + 0.5f, static_cast<float>(j) + 0.5f);
                         EXPECT_NEAR(a.depth[p], length(centre), 1e-5f * kDistance);
                         EXPECT_NEAR(pos.x, centre.x, 1e-5f);
                         EXPECT_NEAR(pos.y, centre.y, 1e-5f);

@@ -188,7 +188,8 @@ TEST(RenderPasses, AdaptiveBiasIsBelowItsNoise) {
     std::vector<std::vector<double>> uniform_means(std::size(regions)), adaptive_means(std::size(regions));
     double adaptive_samples = 0;
     for (int seed = 0; seed < kSeeds; ++seed) {
-        const RenderSettings settings{kSize, kSize, 128, static_cast<std::uint64_t>(100 + seed), IntegratorKind::Path, 8};
+        const RenderSettings settings{kSize, kSize, 128, static_cast<std::uint64_t>(100 + seed), IntegratorKind::Path,
+                                      8};
         const RenderOutput u = render(scene, accel, settings, {});
         const RenderOutput a = render(scene, accel, settings, adaptive);
         adaptive_samples += static_cast<double>(a.samples);
