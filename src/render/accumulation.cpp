@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <utility>
 
 namespace sombra {
 
@@ -15,17 +16,21 @@ void add3(std::vector<float>& sums, std::size_t pixel, Vec3 v) {
     p[2] += v.z;
 }
 
-// Each pixel's 3-float sum divided by its sample count.
-std::vector<float> mean3(const std::vector<float>& sums, const std::vector<std::uint32_t>& count) {
-    std::vector<float> out(sums.size(), 0.0f);
+// Each pixel's 3-float sum divided by its sample count (a pixel with none,
+// after a cancelled render, stays 0).
+void divide_by_count(std::vector<float>& sums, const std::vector<std::uint32_t>& count) {
     for (std::size_t p = 0; p < count.size(); ++p) {
         if (count[p] == 0) continue;
         const Vec3 mean = Vec3{sums[3 * p], sums[3 * p + 1], sums[3 * p + 2]} / static_cast<float>(count[p]);
-        out[3 * p] = mean.x;
-        out[3 * p + 1] = mean.y;
-        out[3 * p + 2] = mean.z;
+        sums[3 * p] = mean.x;
+        sums[3 * p + 1] = mean.y;
+        sums[3 * p + 2] = mean.z;
     }
-    return out;
+}
+
+std::vector<float> mean3(std::vector<float> sums, const std::vector<std::uint32_t>& count) {
+    divide_by_count(sums, count);
+    return sums;
 }
 
 }  // namespace
@@ -91,9 +96,12 @@ double Accumulation::luminance_standard_error(int i, int j) const {
     return std::max(luminance_mean(p), kLuminanceFloor) * std::sqrt(relative_variance / static_cast<double>(count_[p]));
 }
 
-Film Accumulation::image() const {
-    Film film(width_, height_);
-    film.rgb = mean3(rgb_sum_, count_);
+Film Accumulation::take_image() {
+    divide_by_count(rgb_sum_, count_);
+    Film film;
+    film.width = width_;
+    film.height = height_;
+    film.rgb = std::move(rgb_sum_);
     return film;
 }
 

@@ -56,10 +56,12 @@ public:
     // (docs/performance.md, "Adaptive sampling").
     double luminance_standard_error(int i, int j) const;
 
-    // The image: each pixel's radiance sum divided by its sample count.
-    Film image() const;
     // The AOVs asked for, as described at AovImages.
     AovImages aov_images() const;
+    // The image: each pixel's radiance sum divided by its sample count, in
+    // place (a film-sized buffer less at the peak), so the radiance sums are
+    // gone after it.
+    Film take_image();
 
     // §18's floor on the mean luminance the threshold scales with.
     static constexpr double kLuminanceFloor = 1e-3;

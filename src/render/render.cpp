@@ -57,8 +57,8 @@ Vec3 trace_sample(const RenderJob& job, const IntegratorContext& ctx, std::uint6
     return trace_direct(ctx, ray, counters, record...);
 }
 
-// Adds samples count … end − 1 of pixel (i, j) to the accumulation, then
-// decides whether the pixel goes on (spec §18's adaptive rule).
+// Adds samples count … end − 1 of pixel (i, j) to the accumulation; a pixel
+// that has reached the spp is done.
 void sample_pixel(const RenderJob& job, const IntegratorContext& ctx, Accumulation& acc, int i, int j,
                   std::uint32_t end, RayCounters& counters) {
     const RenderSettings& s = job.settings;
@@ -212,8 +212,8 @@ RenderOutput render_image(const RenderJob& job, RenderProgress& progress) {
         }
     });
 
-    out.film = acc.image();
     out.aovs = acc.aov_images();
+    out.film = acc.take_image();
     if (acc.pixels() > 0) {
         out.min_pixel_spp = acc.count(0);
         out.max_pixel_spp = acc.count(0);

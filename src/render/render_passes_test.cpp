@@ -144,8 +144,9 @@ TEST(RenderPasses, EachPixelStopsAtTheFirstPassItsRuleAllows) {
                 EXPECT_TRUE(rule_allows(job, spp, i, j, n, adaptive.noise_threshold));
                 ++stopped_early;
             }
-            if (n > adaptive.min_spp)
+            if (n > adaptive.min_spp) {
                 EXPECT_FALSE(rule_allows(job, spp, i, j, n - kAdaptivePassSamples, adaptive.noise_threshold));
+            }
         }
     }
     EXPECT_GT(stopped_early, 5) << "too few pixels stopped early for the test to mean anything";
