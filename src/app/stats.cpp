@@ -57,11 +57,11 @@ std::string seconds(double s) {
 
 }  // namespace
 
-// "16", or "12.4 (adaptive, at most 64)" when pixels took different counts.
+// "16 spp", or "12.4 spp (adaptive, at most 64)" when pixels took different counts.
 std::string samples_text(const RunStats& s) {
-    if (s.spp_uniform) return std::to_string(static_cast<std::uint64_t>(s.spp_reached));
+    if (s.spp_uniform) return std::to_string(static_cast<std::uint64_t>(s.spp_reached)) + " spp";
     char buf[64];
-    std::snprintf(buf, sizeof buf, "%.1f (adaptive, at most %d)", s.spp_reached, s.spp);
+    std::snprintf(buf, sizeof buf, "%.1f spp (adaptive, at most %d)", s.spp_reached, s.spp);
     return buf;
 }
 
@@ -71,7 +71,7 @@ std::string summary_line(const RunStats& s, const std::string& output) {
     char rate[48];
     std::snprintf(rate, sizeof rate, "%.1f Mrays/s", mrays);
     return "sombra: " + thousands(s.triangles) + " triangles, " + std::to_string(s.width) + "x" +
-           std::to_string(s.height) + " at " + samples_text(s) + " spp" +
+           std::to_string(s.height) + " at " + samples_text(s) +
            (s.passes > 1 ? " in " + std::to_string(s.passes) + " passes" : std::string()) + ", " + s.integrator +
            " | load " + seconds(s.load_seconds) + ", build " + seconds(s.build_seconds) + ", render " +
            seconds(s.render_seconds) + " (" + rate + ", " + std::to_string(s.threads) +
