@@ -110,7 +110,7 @@ TEST_F(RenderOutputs, AovLayersAreNamedAsTheContractSays) {
     file.readPixels(window.min.y, window.max.y);
     auto value = [&](const std::string& name, int i, int j) {
         const auto at = static_cast<std::size_t>(std::find(order.begin(), order.end(), name) - order.begin());
-        return layers[at][static_cast<std::size_t>(j * w + i)];
+        return layers[at][static_cast<std::size_t>(j) * static_cast<std::size_t>(w) + static_cast<std::size_t>(i)];
     };
     ASSERT_EQ(w, 32);
     const int ci = 16, cj = 12;  // its ray passes within a pixel of the axis

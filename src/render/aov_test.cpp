@@ -52,7 +52,7 @@ Rendered render_with_aovs(const Scene& scene, const Accel& accel, IntegratorKind
 const AovSet kAll{true, true, true, true, true};
 
 Vec3 at3(const std::vector<float>& image, int i, int j) {
-    const std::size_t p = static_cast<std::size_t>(j * kWidth + i);
+    const std::size_t p = static_cast<std::size_t>(j) * static_cast<std::size_t>(kWidth) + static_cast<std::size_t>(i);
     return {image[3 * p], image[3 * p + 1], image[3 * p + 2]};
 }
 
@@ -73,7 +73,8 @@ TEST(Aov, KnownAlbedoNormalDepthPositionAndSpp) {
         for (int j = 0; j < kHeight; ++j) {
             for (int i = 0; i < kWidth; ++i) {
                 SCOPED_TRACE(::testing::Message() << "spp " << spp << ", pixel (" << i << ", " << j << ")");
-                const std::size_t p = static_cast<std::size_t>(j * kWidth + i);
+                const std::size_t p =
+                    static_cast<std::size_t>(j) * static_cast<std::size_t>(kWidth) + static_cast<std::size_t>(i);
                 EXPECT_EQ(a.spp[p], static_cast<float>(spp));
                 if (i <= 6) {  // every sample hits the plane
                     const Vec3 albedo = at3(a.albedo, i, j);
@@ -99,7 +100,7 @@ TEST(Aov, KnownAlbedoNormalDepthPositionAndSpp) {
                     for (int corner = 0; corner < 4; ++corner)
                         farthest =
                             std::max(farthest, length(plane_point(r.job.camera, static_cast<float>(i + corner % 2),
-                                                                  static_cast<float>(j + corner / 2))));
+                                                                  static_cast<float>(j + (corner >= 2 ? 1 : 0)))));
                     EXPECT_GE(a.depth[p], kDistance * (1.0f - 1e-6f));
                     EXPECT_LE(a.depth[p], farthest * (1.0f + 1e-6f));
                     if (spp == 1) {  // one ray through the pixel centre: exact

@@ -99,7 +99,9 @@ bool rule_allows(const RenderJob& job, const std::vector<float>& final_spp, int 
     double relative_squares = 0, dof = 0, own_mean = 0;
     for (int y = std::max(j - 1, 0); y <= std::min(j + 1, s.height - 1); ++y) {
         for (int x = std::max(i - 1, 0); x <= std::min(i + 1, s.width - 1); ++x) {
-            const int m = std::min(n, static_cast<int>(final_spp[static_cast<std::size_t>(y * s.width + x)]));
+            const int m =
+                std::min(n, static_cast<int>(final_spp[static_cast<std::size_t>(y) * static_cast<std::size_t>(s.width) +
+                                                       static_cast<std::size_t>(x)]));
             double sum = 0, squares = 0;
             for (int k = 0; k < m; ++k) {
                 RayCounters counters;
@@ -135,7 +137,8 @@ TEST(RenderPasses, EachPixelStopsAtTheFirstPassItsRuleAllows) {
     int stopped_early = 0;
     for (int j = 0; j < settings.height; j += 3) {
         for (int i = 0; i < settings.width; i += 3) {
-            const auto n = static_cast<int>(spp[static_cast<std::size_t>(j * settings.width + i)]);
+            const auto n = static_cast<int>(spp[static_cast<std::size_t>(j) * static_cast<std::size_t>(settings.width) +
+                                                static_cast<std::size_t>(i)]);
             SCOPED_TRACE(::testing::Message() << "pixel (" << i << ", " << j << ") took " << n);
             ASSERT_GE(n, adaptive.min_spp);
             ASSERT_LE(n, settings.spp);
