@@ -40,9 +40,12 @@ Vec3 trace_direct_recorded(const IntegratorContext& ctx, const Ray& ray, RayCoun
         radiance = emitted_radiance(material, si);
         recorder.emission(radiance, 1.0f, 0.0f, 0.0f, radiance);
         // Delta BSDFs (mirror, glass) reflect nothing from a point light.
+        // The direct integrator only evaluates the BSDF: no frame for a
+        // diffuse or Phong surface, which would not read it.
         if (!is_delta_bsdf(material)) {
-            add_delta_lights(*ctx.lights, *ctx.accel, si, material, make_bsdf_point(si.n_g, si.n_s, si.outside), wo,
-                             Vec3{1.0f}, radiance, counters, recorder);
+            add_delta_lights(*ctx.lights, *ctx.accel, si, material,
+                             make_eval_bsdf_point(material, si.n_g, si.n_s, si.outside), wo, Vec3{1.0f}, radiance,
+                             counters, recorder);
         } else {
             recorder.delta_material();
         }
