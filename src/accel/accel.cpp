@@ -88,12 +88,14 @@ Accel make_accel(const Scene& scene, AccelKind kind) {
     return make_accel(scene.geometry, kind, make_cutouts(scene.geometry, scene.materials, scene.textures));
 }
 
-bool intersect(const Accel& accel, const Ray& ray, Hit& hit) {
-    if (accel.mesh == nullptr) return false;
-    // intersect_bvh and occluded_bvh check the ray themselves (is_traceable).
-    if (accel.kind == AccelKind::Bvh)
-        return accel.cutouts.active() ? intersect_bvh(accel.bvh, accel.cutouts, ray, hit)
-                                      : intersect_bvh(accel.bvh, ray, hit);
+namespace {
+
+// The backends other than the BVH. Kept out of line: inlined into
+// intersect() and occluded(), the brute-force loop made GCC save six
+// registers on entry to every call, the BVH's included (about 16
+// instructions a shadow ray; docs/performance.md, "Direct render phase
+// against caae602").
+[[gnu::noinline]] bool intersect_other(const Accel& accel, const Ray& ray, Hit& hit) {
     if (!is_traceable(ray)) return false;
 #ifdef SOMBRA_HAVE_EMBREE
     if (accel.kind == AccelKind::Embree) return accel.embree != nullptr && intersect_embree(*accel.embree, ray, hit);
@@ -101,15 +103,30 @@ bool intersect(const Accel& accel, const Ray& ray, Hit& hit) {
     return intersect_brute(*accel.mesh, accel.cutouts, ray, hit);
 }
 
-bool occluded(const Accel& accel, const Ray& ray) {
-    if (accel.mesh == nullptr) return false;
-    if (accel.kind == AccelKind::Bvh)
-        return accel.cutouts.active() ? occluded_bvh(accel.bvh, accel.cutouts, ray) : occluded_bvh(accel.bvh, ray);
+[[gnu::noinline]] bool occluded_other(const Accel& accel, const Ray& ray) {
     if (!is_traceable(ray)) return false;
 #ifdef SOMBRA_HAVE_EMBREE
     if (accel.kind == AccelKind::Embree) return accel.embree != nullptr && occluded_embree(*accel.embree, ray);
 #endif
     return occluded_brute(*accel.mesh, accel.cutouts, ray);
+}
+
+}  // namespace
+
+bool intersect(const Accel& accel, const Ray& ray, Hit& hit) {
+    if (accel.mesh == nullptr) return false;
+    // intersect_bvh and occluded_bvh check the ray themselves (is_traceable).
+    if (accel.kind == AccelKind::Bvh)
+        return accel.cutouts.active() ? intersect_bvh(accel.bvh, accel.cutouts, ray, hit)
+                                      : intersect_bvh(accel.bvh, ray, hit);
+    return intersect_other(accel, ray, hit);
+}
+
+bool occluded(const Accel& accel, const Ray& ray) {
+    if (accel.mesh == nullptr) return false;
+    if (accel.kind == AccelKind::Bvh)
+        return accel.cutouts.active() ? occluded_bvh(accel.bvh, accel.cutouts, ray) : occluded_bvh(accel.bvh, ray);
+    return occluded_other(accel, ray);
 }
 
 std::size_t accel_memory_bytes(const Accel& accel) {

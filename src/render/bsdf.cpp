@@ -132,8 +132,7 @@ float fresnel_dielectric(float cos_i, float eta_i, float eta_t) {
     return std::min(1.0f, 0.5f * (rs * rs + rp * rp));
 }
 
-Vec3 eval_bsdf(const Material& m, const BsdfPoint& p, Vec3 wo, Vec3 wi) {
-    if (dot(p.n_g, wi) <= 0.0f) return Vec3{0.0f};  // no BSDF here transmits except delta glass
+Vec3 eval_bsdf_other(const Material& m, const BsdfPoint& p, Vec3 wo, Vec3 wi) {
     switch (m.type) {
         case MaterialType::Diffuse:
         case MaterialType::Phong: return eval_brdf(m, p.n_s, wi, wo);

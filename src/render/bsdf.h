@@ -43,6 +43,7 @@
 
 #include "core/frame.h"
 #include "core/vec3.h"
+#include "render/brdf.h"
 #include "scene/material.h"
 
 namespace sombra {
@@ -59,6 +60,23 @@ struct BsdfPoint {
 // A BsdfPoint with its frame built around n_s. n_g, n_s unit, n_g·n_s ≥ 0.
 BsdfPoint make_bsdf_point(Vec3 n_g, Vec3 n_s, bool outside);
 
+// True when eval_bsdf, eval_bsdf_terms or pdf_bsdf of m read the shading
+// frame (Conductor, Pbr). Diffuse and Phong work with n_s alone, and the
+// delta materials evaluate to 0; sample_bsdf reads the frame for every
+// material but those.
+inline bool eval_reads_frame(const Material& m) {
+    return m.type == MaterialType::Conductor || m.type == MaterialType::Pbr;
+}
+
+// A BsdfPoint for evaluating m only (eval_bsdf, eval_bsdf_terms, pdf_bsdf;
+// never sample_bsdf): make_bsdf_point's where eval_reads_frame(m), else
+// with the frame left zero, so that a diffuse or Phong hit of the direct
+// integrator, which only evaluates, builds no frame it would not read.
+inline BsdfPoint make_eval_bsdf_point(const Material& m, Vec3 n_g, Vec3 n_s, bool outside) {
+    if (eval_reads_frame(m)) return make_bsdf_point(n_g, n_s, outside);
+    return BsdfPoint{n_g, n_s, Frame{}, outside};
+}
+
 struct BsdfSample {
     Vec3 wi;        // sampled unit direction, world space, pointing away from the surface
     Vec3 weight;    // f(wo, wi)·|n_s·wi| / pdf; for a delta lobe the lobe's factor / its selection probability
@@ -67,9 +85,20 @@ struct BsdfSample {
     bool transmission = false;
 };
 
+// eval_bsdf of the materials other than Diffuse and Phong, for wi on wo's
+// side of n_g (eval_bsdf has checked it).
+Vec3 eval_bsdf_other(const Material& m, const BsdfPoint& p, Vec3 wo, Vec3 wi);
+
 // f(wo, wi) in 1/sr of the non-delta lobes (0 for Mirror, Dielectric and
 // smooth Conductor; a smooth Pbr's diffuse part); 0 where the no-light-leak rule says so.
-Vec3 eval_bsdf(const Material& m, const BsdfPoint& p, Vec3 wo, Vec3 wi);
+// Diffuse and Phong, whose f is eval_brdf's, are evaluated inline: the light
+// loops call this once per light, and an out-of-line call there costs as
+// much as the Lambert term itself (spills of the loop's registers around it).
+inline Vec3 eval_bsdf(const Material& m, const BsdfPoint& p, Vec3 wo, Vec3 wi) {
+    if (dot(p.n_g, wi) <= 0.0f) return Vec3{0.0f};  // no BSDF here transmits except delta glass
+    if (m.type == MaterialType::Diffuse || m.type == MaterialType::Phong) return eval_brdf(m, p.n_s, wi, wo);
+    return eval_bsdf_other(m, p, wo, wi);
+}
 
 // f(wo, wi) split as spec §4 and §14 name its parts, for `sombra explain`:
 // the diffuse term (kd/π) and the lobe (Phong's specular lobe, or the

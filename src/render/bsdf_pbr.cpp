@@ -19,15 +19,13 @@
 
 #include <algorithm>
 #include <cmath>
-#include <numbers>
 
+#include "render/brdf.h"
 #include "render/bsdf_lobes.h"
 #include "render/microfacet.h"
 
 namespace sombra {
 namespace {
-
-constexpr float kInvPi = std::numbers::inv_pi_v<float>;
 
 float mean(Vec3 v) { return (v.x + v.y + v.z) * (1.0f / 3.0f); }
 

@@ -11,6 +11,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <optional>
+#include <vector>
 
 #include "render/brdf.h"
 #include "render/chi2_test_util.h"
@@ -202,6 +203,35 @@ TEST(Bsdf, EvalMatchesTheVersionOneBrdfBitForBit) {
         for (std::uint32_t i = 0; i < 2000; ++i) {
             const Vec3 wo = random_wo(i, 41), wi = random_wo(i, 42);
             for (const BsdfPoint& p : {kFlat, kTilted}) EXPECT_EQ(eval_bsdf(m, p, wo, wi), eval_brdf(m, p.n_s, wi, wo));
+        }
+    }
+}
+
+// The direct integrator evaluates through make_eval_bsdf_point, which builds
+// no frame for the materials whose evaluation does not read it: for every
+// material the values must be the full point's, bit for bit.
+TEST(Bsdf, EvalPointWithoutFrameEvaluatesAsTheFullPoint) {
+    std::vector<Material> materials = non_delta_materials();
+    Material pbr{"b", MaterialType::Pbr, {}, {}, 1, {}};
+    pbr.base_color = {0.8f, 0.5f, 0.2f};
+    pbr.roughness = 0.4f;
+    pbr.metallic = 0.3f;
+    materials.push_back(pbr);
+    materials.push_back(Material{"m", MaterialType::Mirror, {}, {}, 1, {}});
+    materials.push_back(Material{"g", MaterialType::Dielectric, {}, {}, 1, {}});
+    for (const Material& m : materials) {
+        EXPECT_EQ(eval_reads_frame(m), m.type == MaterialType::Conductor || m.type == MaterialType::Pbr);
+        for (const Vec3 n_s : {Vec3{0, 0, 1}, polar(25, 1.0)}) {
+            const BsdfPoint full = make_bsdf_point({0, 0, 1}, n_s, true);
+            const BsdfPoint eval = make_eval_bsdf_point(m, {0, 0, 1}, n_s, true);
+            for (std::uint32_t i = 0; i < 500; ++i) {
+                const Vec3 wo = random_wo(i, 51), wi = uniform_sphere(rnd(2 * i, 52), rnd(2 * i + 1, 52));
+                EXPECT_EQ(eval_bsdf(m, eval, wo, wi), eval_bsdf(m, full, wo, wi));
+                EXPECT_EQ(pdf_bsdf(m, eval, wo, wi), pdf_bsdf(m, full, wo, wi));
+                const BsdfTerms a = eval_bsdf_terms(m, eval, wo, wi), b = eval_bsdf_terms(m, full, wo, wi);
+                EXPECT_EQ(a.diffuse, b.diffuse);
+                EXPECT_EQ(a.lobe, b.lobe);
+            }
         }
     }
 }

@@ -16,6 +16,32 @@ namespace sombra {
 
 namespace {
 
+// The radiance leaving the camera ray's hit `si` towards the camera, with
+// `material` the material there (resolved for the hit where it has to be):
+// what the surface emits, and what the delta lights send it.
+template <class Recorder>
+Vec3 shade_direct(const IntegratorContext& ctx, const Ray& ray, const Hit& hit, const SurfaceInteraction& si,
+                  const Material& material, RayCounters& counters, Recorder& recorder) {
+    const Vec3 wo = -normalize(ray.dir);
+    recorder.surface(ray, hit, si, material, Vec3{1.0f});
+
+    // Emission is seen only directly (spec §4, §9).
+    Vec3 radiance = emitted_radiance(material, si);
+    recorder.emission(radiance, 1.0f, 0.0f, 0.0f, radiance);
+    // Delta BSDFs (mirror, glass) reflect nothing from a point light.
+    // The direct integrator only evaluates the BSDF: no frame for a
+    // diffuse or Phong surface, which would not read it.
+    if (!is_delta_bsdf(material)) {
+        add_delta_lights(*ctx.lights, *ctx.accel, si, material,
+                         make_eval_bsdf_point(material, si.n_g, si.n_s, si.outside), wo, Vec3{1.0f}, radiance, counters,
+                         recorder);
+    } else {
+        recorder.delta_material();
+    }
+    recorder.end("the direct integrator stops at the first surface");
+    return radiance;
+}
+
 template <class Recorder>
 Vec3 trace_direct_recorded(const IntegratorContext& ctx, const Ray& ray, RayCounters& counters, Recorder& recorder) {
     const Scene& scene = *ctx.scene;
@@ -29,25 +55,20 @@ Vec3 trace_direct_recorded(const IntegratorContext& ctx, const Ray& ray, RayCoun
         recorder.end("the camera ray left the scene");
     } else {
         SurfaceInteraction si = make_surface_interaction(scene.geometry, ray, hit);
-        Material textured;
-        const RayCone cone = ctx.ray_cones ? camera_ray_cone(ctx.camera_pixel_area, ray.dir) : RayCone{};
-        const float footprint =
-            cone.active() ? surface_footprint(cone, hit.t * length(ray.dir), ray.dir, si.n_g) : 0.0f;
-        const Material& material = resolve_material(scene, si, textured, footprint);
-        const Vec3 wo = -normalize(ray.dir);
-        recorder.surface(ray, hit, si, material, Vec3{1.0f});
-
-        // Emission is seen only directly (spec §4, §9).
-        radiance = emitted_radiance(material, si);
-        recorder.emission(radiance, 1.0f, 0.0f, 0.0f, radiance);
-        // Delta BSDFs (mirror, glass) reflect nothing from a point light.
-        if (!is_delta_bsdf(material)) {
-            add_delta_lights(*ctx.lights, *ctx.accel, si, material, make_bsdf_point(si.n_g, si.n_s, si.outside), wo,
-                             Vec3{1.0f}, radiance, counters, recorder);
+        if (needs_resolved_material(scene, si)) {
+            // Textures are read at the hit, filtered over the ray cone's
+            // footprint when mip-mapping (render/ray_cone.h).
+            const RayCone cone = ctx.ray_cones ? camera_ray_cone(ctx.camera_pixel_area, ray.dir) : RayCone{};
+            const float footprint =
+                cone.active() ? surface_footprint(cone, hit.t * length(ray.dir), ray.dir, si.n_g) : 0.0f;
+            Material textured;
+            const Material& material = resolve_material(scene, si, textured, footprint);
+            radiance = shade_direct(ctx, ray, hit, si, material, counters, recorder);
         } else {
-            recorder.delta_material();
+            // The scene's material itself: an untextured hit constructs no
+            // Material of its own (one per camera ray, ~500 bytes each).
+            radiance = shade_direct(ctx, ray, hit, si, scene.materials[si.material], counters, recorder);
         }
-        recorder.end("the direct integrator stops at the first surface");
     }
 
     const bool finite = is_finite(radiance);

@@ -111,6 +111,7 @@ TEST_F(GltfShading, VertexColoursMultiplyBaseColourFactorAndTexture) {
     const Vec3 texel{srgb_decode(200, 255), srgb_decode(100, 255), srgb_decode(255, 255)};
     for (const Vec2 p : kPoints) {
         SurfaceInteraction si = hit_from_above(scene, accel, p.x, p.y);
+        EXPECT_TRUE(needs_resolved_material(scene, si));
         Material scratch;
         const Material& m = resolve_material(scene, si, scratch);
         expect_near(m.base_color, Vec3{0.5f, 0.8f, 1.0f} * affine_colour(p) * texel, 1e-6f,
@@ -130,6 +131,7 @@ TEST_F(GltfShading, VertexColoursAloneMakeAHitResolveAndOnlyForPbr) {
     ASSERT_FALSE(scene.materials[0].textured);
     for (const Vec2 p : kPoints) {
         SurfaceInteraction si = hit_from_above(scene, accel, p.x, p.y);
+        EXPECT_TRUE(needs_resolved_material(scene, si));
         Material scratch;
         const Material& m = resolve_material(scene, si, scratch);
         EXPECT_EQ(&m, &scratch);
@@ -140,6 +142,9 @@ TEST_F(GltfShading, VertexColoursAloneMakeAHitResolveAndOnlyForPbr) {
     Scene plain = load(shading_quad(material, no_attributes));
     const Accel plain_accel = make_accel(plain.geometry, AccelKind::Bvh);
     SurfaceInteraction si = hit_from_above(plain, plain_accel, 0.2f, 0.3f);
+    // needs_resolved_material says so beforehand, so that the direct
+    // integrator can skip making a scratch Material.
+    EXPECT_FALSE(needs_resolved_material(plain, si));
     Material scratch;
     EXPECT_EQ(&resolve_material(plain, si, scratch), &plain.materials[si.material]);
 
@@ -147,6 +152,7 @@ TEST_F(GltfShading, VertexColoursAloneMakeAHitResolveAndOnlyForPbr) {
     Scene overridden = load(shading_quad(material, coloured), R"(, "material": "grey")");
     const Accel overridden_accel = make_accel(overridden.geometry, AccelKind::Bvh);
     SurfaceInteraction grey = hit_from_above(overridden, overridden_accel, 0.2f, 0.3f);
+    EXPECT_FALSE(needs_resolved_material(overridden, grey));
     EXPECT_EQ(&resolve_material(overridden, grey, scratch), &overridden.materials[grey.material]);
 }
 

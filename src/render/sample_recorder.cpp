@@ -101,7 +101,7 @@ void SampleRecorder::delta_light(std::uint32_t light, LightOutcome outcome, cons
     r.cos_g = dot(view.si.n_g, wi);
     r.cos_s = std::fabs(dot(view.si.n_s, wi));
     if (outcome != LightOutcome::OnSurface) {
-        // The same arithmetic as add_delta_lights (render/delta_lights.cpp).
+        // The same arithmetic as add_delta_lights (render/delta_lights.h).
         const PunctualLight& l = lights_.delta[light];
         if (l.type == LightType::Spot) r.spot_factor = spot_falloff(l, -dot(l.direction, wi));
         r.incident = l.type == LightType::Directional ? l.intensity

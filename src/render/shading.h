@@ -30,6 +30,16 @@ namespace sombra {
 const Material& resolve_material(const Scene& scene, SurfaceInteraction& si, Material& scratch,
                                  float surface_footprint = 0.0f);
 
+// True when resolve_material would fill `scratch` for `si`: a textured
+// material, or a pbr one on a triangle with vertex colours. False: it would
+// return scene.materials[si.material] itself, so a caller may use that
+// without constructing a scratch Material (about 500 bytes to initialise;
+// the direct integrator would do it once per camera ray).
+inline bool needs_resolved_material(const Scene& scene, const SurfaceInteraction& si) {
+    const Material& m = scene.materials[si.material];
+    return m.textured || (m.type == MaterialType::Pbr && has_vertex_colors(scene.geometry, si.triangle));
+}
+
 // The radiance `material` emits at point y of `triangle` (towards a side
 // where it emits): ke, times ke's texture at y's uv when it has one. For
 // light sampling, where y is a sampled point rather than a hit.

@@ -141,12 +141,18 @@ inline bool interpolate_uv(const TriangleMesh& mesh, std::uint32_t triangle, flo
     return true;
 }
 
+// True when all three corners of `triangle` have a vertex colour (glTF COLOR_0).
+inline bool has_vertex_colors(const TriangleMesh& mesh, std::uint32_t triangle) {
+    if (!mesh.has_colors()) return false;
+    const Index3& ci = mesh.color_indices[triangle];
+    return ci[0] != kNoColor && ci[1] != kNoColor && ci[2] != kNoColor;
+}
+
 // The vertex colour at barycentric weights (b1, b2) of `triangle`, or false,
 // leaving `color` untouched, when some corner has none.
 inline bool interpolate_color(const TriangleMesh& mesh, std::uint32_t triangle, float b1, float b2, Rgba& color) {
-    if (!mesh.has_colors()) return false;
+    if (!has_vertex_colors(mesh, triangle)) return false;
     const Index3& ci = mesh.color_indices[triangle];
-    if (ci[0] == kNoColor || ci[1] == kNoColor || ci[2] == kNoColor) return false;
     const Rgba &c0 = mesh.colors[ci[0]], &c1 = mesh.colors[ci[1]], &c2 = mesh.colors[ci[2]];
     const float b0 = 1.0f - b1 - b2;
     for (std::size_t k = 0; k < 4; ++k) color[k] = b0 * c0[k] + b1 * c1[k] + b2 * c2[k];
