@@ -15,7 +15,7 @@ efficiency, lower is better; equal across uniform spp for an unbiased
 estimator, so comparing it is comparing at equal time.
 
   tools/adaptive_error.py --reference CACHE.bin --scene S.json \\
-      --binary build/release/src/app/sombra --seeds 1-4 \\
+      --binary new=build/release/src/app/sombra --binary old=/tmp/old/sombra --seeds 1-4 \\
       --config "uniform 64=--spp 64" --config "T 0.05=--spp 256 --noise-threshold 0.05"
 """
 import argparse, json, math, os, shlex, subprocess, sys, tempfile
@@ -34,31 +34,34 @@ def main():
     p = argparse.ArgumentParser()
     p.add_argument("--reference", required=True)
     p.add_argument("--scene", required=True)
-    p.add_argument("--binary", required=True)
+    p.add_argument("--binary", action="append", required=True,
+                   help="PATH, or NAME=PATH given more than once: every configuration runs with each")
     p.add_argument("--config", action="append", required=True, help="LABEL=OPTIONS")
     p.add_argument("--seeds", default="1-4")
     p.add_argument("--threads", default="0")
     a = p.parse_args()
     w, h, ref = read_reference(a.reference)
     lo, hi = map(int, a.seeds.split("-"))
-    configs = [c.split("=", 1) for c in a.config]
-    results = {label: {"spp": [], "seconds": [], "rel": []} for label, _ in configs}
+    binaries = [b.split("=", 1) if "=" in b else ["", b] for b in a.binary]
+    configs = [((name + " " if name else "") + label, binary, options)
+               for label, options in (c.split("=", 1) for c in a.config) for name, binary in binaries]
+    results = {label: {"spp": [], "seconds": [], "rel": []} for label, _, _ in configs}
     with tempfile.TemporaryDirectory() as tmp:
         out, stats = os.path.join(tmp, "x.pfm"), os.path.join(tmp, "s.json")
         for seed in range(lo, hi + 1):
-            for label, options in configs:
-                subprocess.run([a.binary, "render", a.scene, "--width", str(w), "--height", str(h), "--seed", str(seed),
+            for label, binary, options in configs:
+                subprocess.run([binary, "render", a.scene, "--width", str(w), "--height", str(h), "--seed", str(seed),
                                 "--integrator", "path", "--max-depth", "8", "--threads", a.threads, "-q", "-o", out,
                                 "--stats-json", stats] + shlex.split(options), check=True)
                 s = json.load(open(stats))
                 r = results[label]
-                r["spp"].append(s["spp_reached"])
+                r["spp"].append(s.get("spp_reached", s["spp"]))  # binaries before §18 have no spp_reached
                 r["seconds"].append(s["render_seconds"])
                 r["rel"].append(errors(read_pfm(out), ref)[1])
     print(f"{os.path.basename(a.scene)}, {w}x{h}, seeds {lo}-{hi}")
     print("| configuration | spp reached | render s | relMSE | relMSE × s |")
     print("| --- | ---: | ---: | ---: | ---: |")
-    for label, _ in configs:
+    for label, _, _ in configs:
         r = results[label]
         spp, seconds = mean_se(r["spp"])[0], mean_se(r["seconds"])[0]
         rel, rel_se = mean_se(r["rel"])
