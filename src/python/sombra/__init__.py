@@ -1,0 +1,274 @@
+"""sombra: a ray tracer that is right to the last pixel, from Python (spec §19).
+
+    import sombra
+    scene = sombra.load("scenes/cornell-box-path.json")
+    image = sombra.render(scene, spp=64)       # numpy float32 (height, width, 3), linear RGB
+    sombra.write_image("out.png", image)
+
+The keyword options are the command line's (``sombra render --help``), with
+``-`` written ``_``: the same names, the same checks, the same numbers (a
+render equals ``sombra render ... -o x.pfm`` float for float). A wrong input
+raises :class:`Error` with the command line's one-line message (without its
+``sombra: error:`` prefix); an argument of the wrong type raises TypeError.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import sys
+import warnings
+from typing import Any, Callable, Mapping, Sequence, Union
+
+import numpy as np
+
+from . import _sombra
+
+__all__ = ["Error", "Scene", "load", "render", "explain", "write_image", "to_png"]
+
+#: A wrong input (scene, option value, array): a ValueError whose text is the
+#: command line's one line, "WHERE: WHAT" (WHERE a file:line:col, a JSON path
+#: or an option).
+Error = _sombra.Error
+
+PathLike = Union[str, "os.PathLike[str]"]
+Progress = Union[bool, Callable[[int, int], Any], None]
+
+# keyword → (command-line option, the Python types it takes). bool is refused
+# where a number is asked for, though Python counts it an int.
+_INT = (int,)
+_NUMBER = (int, float)
+_STR = (str,)
+_SCENE_OPTIONS = {
+    "width": ("--width", _INT),
+    "height": ("--height", _INT),
+    "spp": ("--spp", _INT),
+    "seed": ("--seed", _INT),
+    "integrator": ("--integrator", _STR),
+    "max_depth": ("--max-depth", _INT),
+    "texture_filter": ("--texture-filter", _STR),
+}
+_RUN_OPTIONS = {
+    **_SCENE_OPTIONS,
+    "threads": ("--threads", _INT),
+    "accel": ("--accel", _STR),
+    "light_tree": ("--light-tree", _STR),
+}
+_RENDER_OPTIONS = {
+    **_RUN_OPTIONS,
+    "time": ("--time", _NUMBER),
+    "noise_threshold": ("--noise-threshold", _NUMBER),
+    "min_spp": ("--min-spp", _INT),
+}
+
+
+def _words(function: str, options: Mapping[str, Any], table: Mapping[str, tuple]) -> list[str]:
+    """The keyword options as command-line words ("--spp=64"), types checked."""
+    words = []
+    for key, value in options.items():
+        if key not in table:
+            raise TypeError(f"{function}() got an unexpected keyword argument '{key}'")
+        if value is None:
+            continue  # None means "as the scene says", like leaving the option out
+        flag, types = table[key]
+        if isinstance(value, bool) or not isinstance(value, types):
+            names = " or ".join(t.__name__ for t in types)
+            raise TypeError(f"{function}(): {key} must be {names}, not {type(value).__name__}")
+        words.append(f"{flag}={value!r}" if isinstance(value, float) else f"{flag}={value}")
+    return words
+
+
+def _warn(scene_impl: Any) -> None:
+    for text in scene_impl.warnings:
+        warnings.warn(f"sombra: {text}", RuntimeWarning, stacklevel=3)
+
+
+def _path(path: PathLike, what: str) -> str:
+    if not isinstance(path, (str, os.PathLike)):
+        raise TypeError(f"{what}: expected a path (str or os.PathLike), not {type(path).__name__}")
+    text = os.fspath(path)
+    if not isinstance(text, str):
+        raise TypeError(f"{what}: expected a str path, not {type(text).__name__}")
+    return text
+
+
+class Scene:
+    """A scene ready to render: its geometry, materials, lights, camera and
+    render settings (the scene file's "render" section with any overrides).
+
+    Made by :func:`load` (a scene file or a model) or :meth:`Scene.from_dict`
+    (the scene-file schema as a dict).
+    """
+
+    def __init__(self) -> None:
+        raise TypeError("sombra.Scene() from code is not there yet: use sombra.load(path) or "
+                        "sombra.Scene.from_dict(d)")
+
+    @classmethod
+    def _wrap(cls, impl: Any) -> "Scene":
+        scene = cls.__new__(cls)
+        scene._impl = impl
+        _warn(impl)
+        return scene
+
+    @classmethod
+    def from_dict(cls, d: Mapping[str, Any], base_dir: PathLike = ".", **overrides: Any) -> "Scene":
+        """The scene a scene file holding ``d`` would be (spec §2): the same
+        keys, the same checks, errors naming the JSON path
+        (``<dict>: /materials/white/kd: ...``). Relative paths in it (mesh
+        files, textures) are relative to ``base_dir``. ``overrides`` as for
+        :func:`load`."""
+        if not isinstance(d, Mapping):
+            raise TypeError(f"Scene.from_dict: expected a dict, not {type(d).__name__}")
+        text = json.dumps(d)
+        name = os.path.join(_path(base_dir, "Scene.from_dict: base_dir"), "<dict>")
+        return cls._wrap(_sombra.load_text(text, name, _words("from_dict", overrides, _SCENE_OPTIONS)))
+
+    @property
+    def render_settings(self) -> dict:
+        """The settings a render starts from: width, height, spp, seed,
+        integrator, max_depth, texture_filter."""
+        return self._impl.render_settings
+
+    @property
+    def triangle_count(self) -> int:
+        """Triangles in the scene, every object's together."""
+        return self._impl.triangle_count
+
+    @property
+    def source(self) -> str:
+        """The file the scene came from (``<dict>`` for a dict), as messages name it."""
+        return self._impl.source
+
+    def __repr__(self) -> str:
+        s = self.render_settings
+        return (f"<sombra.Scene {self.source!r}: {self.triangle_count} triangles, "
+                f"{s['width']}x{s['height']}, {s['spp']} spp, {s['integrator']}>")
+
+
+def load(path: PathLike, **overrides: Any) -> Scene:
+    """Reads a scene file (.json) or a model for a quick look (.obj, .ply,
+    .gltf, .glb; spec §7).
+
+    overrides: width, height, spp, seed, integrator ("direct" or "path"),
+    max_depth, texture_filter ("bilinear" or "mipmap"): they replace the
+    scene's "render" values, checked as the command line checks them.
+    The reader's warnings are issued as RuntimeWarning.
+    Raises Error for a file that is missing or wrong.
+    """
+    return Scene._wrap(_sombra.load(_path(path, "load"), _words("load", overrides, _SCENE_OPTIONS)))
+
+
+def _scene_impl(scene: Any, function: str) -> Any:
+    if not isinstance(scene, Scene):
+        raise TypeError(f"{function}(): expected a sombra.Scene, not {type(scene).__name__}")
+    return scene._impl
+
+
+class _Bar:
+    """progress=True: a text bar on stderr, redrawn in place (a terminal,
+    or a notebook's output)."""
+
+    def __init__(self) -> None:
+        self.shown = -1
+
+    def __call__(self, done: int, total: int) -> None:
+        percent = min(100, done * 100 // total) if total else 100
+        if percent == self.shown:
+            return
+        self.shown = percent
+        filled = percent * 30 // 100
+        sys.stderr.write(f"\rsombra: [{'#' * filled}{'.' * (30 - filled)}] {percent:3d}%")
+        sys.stderr.flush()
+
+    def close(self) -> None:
+        if self.shown >= 0:
+            sys.stderr.write("\n")
+            sys.stderr.flush()
+
+
+def render(scene: Scene, *, aov: Union[Sequence[str], str, None] = None, progress: Progress = None,
+           **options: Any) -> Union[np.ndarray, dict]:
+    """Renders the scene; returns the image as a float32 numpy array of
+    shape (height, width, 3), linear RGB, top row first: the values
+    ``sombra render SCENE -o x.pfm`` writes, float for float.
+
+    options (the command line's, spec §1, §10, §18; None = as the scene says):
+      width, height, spp, seed   image size, samples per pixel, random seed
+      threads                    worker threads; 0 = all hardware threads
+      integrator                 "direct" or "path"
+      max_depth                  most scattering events on a path (path), 0 to 1024
+      light_tree                 "auto", "on" or "off"
+      texture_filter             "bilinear" or "mipmap"
+      accel                      "bvh", "brute", or "embree" where built
+      time                       seconds: render sample passes until the next would
+                                 end past the budget (counted from this call)
+      noise_threshold, min_spp   adaptive sampling
+    aov: any of "albedo", "normal", "depth", "position", "spp": then the result
+      is a dict of arrays, "color" the image, "albedo"/"normal"/"position"
+      (height, width, 3), "depth"/"spp" (height, width).
+    progress: True for a text bar on stderr, or a callable receiving
+      (samples done, samples in all) about every 50 ms.
+
+    The GIL is released while rendering; Ctrl-C raises KeyboardInterrupt
+    within a second.
+    """
+    impl = _scene_impl(scene, "render")
+    words = _words("render", options, _RENDER_OPTIONS)
+    if aov is not None:
+        names = [aov] if isinstance(aov, str) else aov
+        if not isinstance(names, (list, tuple)) or not all(isinstance(n, str) for n in names):
+            raise TypeError("render(): aov must be a list of str (albedo, normal, depth, position, spp)")
+        if names:
+            words += ["--aov=" + ",".join(names), "--output=python.exr"]
+    bar = None
+    if progress is True:
+        bar = progress = _Bar()
+    elif progress is False:
+        progress = None
+    elif progress is not None and not callable(progress):
+        raise TypeError("render(): progress must be True, False, None or a callable(done, total)")
+    try:
+        out = _sombra.render(impl, words, progress)
+    finally:
+        if bar is not None:
+            bar.close()
+    if aov is None or not names:
+        return out["color"]
+    return {key: value for key, value in out.items() if isinstance(value, np.ndarray)}
+
+
+def explain(scene: Scene, x: int, y: int, sample: int = 0, **options: Any) -> dict:
+    """The story of pixel (x, y) (column, row) for its sample ``sample``
+    (spec §14): the object ``sombra explain SCENE X Y --json`` prints, with
+    "pixel", "sample", "value" (equal, to the last bit, to what the render
+    computes for that sample), "camera_ray", "hit", "lights" and "vertices".
+
+    options: width, height, spp, seed, threads, integrator, max_depth,
+    light_tree, texture_filter, accel, as for :func:`render`.
+    """
+    impl = _scene_impl(scene, "explain")
+    for name, value in (("x", x), ("y", y), ("sample", sample)):
+        if isinstance(value, bool) or not isinstance(value, int):
+            raise TypeError(f"explain(): {name} must be int, not {type(value).__name__}")
+    words = _words("explain", options, _RUN_OPTIONS) + [f"--sample={sample}", "--", str(x), str(y)]
+    return json.loads(_sombra.explain(impl, words))
+
+
+def write_image(path: PathLike, array: np.ndarray, exposure: float = 0) -> None:
+    """Writes a (height, width, 3) float image, linear RGB, as the path's
+    extension says: .png (8-bit sRGB, radiance × 2^exposure), .pfm or .exr
+    (linear floats). The file is written whole or not at all.
+    Raises Error for a wrong shape, a NaN, or a file that cannot be written.
+    """
+    if isinstance(exposure, bool) or not isinstance(exposure, (int, float)):
+        raise TypeError(f"write_image(): exposure must be a number, not {type(exposure).__name__}")
+    _sombra.write_image(_path(path, "write_image"), array, float(exposure))
+
+
+def to_png(array: np.ndarray, exposure: float = 0) -> bytes:
+    """The PNG file write_image would write, as bytes (for notebooks:
+    ``IPython.display.Image(sombra.to_png(img))``)."""
+    if isinstance(exposure, bool) or not isinstance(exposure, (int, float)):
+        raise TypeError(f"to_png(): exposure must be a number, not {type(exposure).__name__}")
+    return _sombra.to_png(array, float(exposure))
