@@ -23,6 +23,7 @@ PYBIND11_MODULE(_sombra, m) {
             error(sombra::one_line(e.where() + ": " + e.message()).c_str());
         }
     });
+    sombra::python::bind_parts(m);
     sombra::python::bind_scene(m);
     sombra::python::bind_render(m);
     sombra::python::bind_arrays(m);

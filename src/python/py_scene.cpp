@@ -50,13 +50,18 @@ std::shared_ptr<PyScene> load(const std::string& path, const std::vector<std::st
 }
 
 // `name` names the text in messages; its folder anchors relative mesh paths.
+// `meshes`: those the text's objects name as {"mesh": i} (a scene from code).
 std::shared_ptr<PyScene> load_text(const std::string& text, const std::string& name,
-                                   const std::vector<std::string>& words) {
-    return read_scene(name, words, [&](Diagnostics& diag) { return load_scene_text(text, name, diag); });
+                                   const std::vector<std::string>& words,
+                                   const std::vector<std::shared_ptr<LoadedMesh>>& meshes) {
+    std::vector<const LoadedMesh*> given;
+    for (const auto& m : meshes) given.push_back(m.get());
+    return read_scene(name, words, [&](Diagnostics& diag) { return load_scene_text(text, name, diag, given); });
 }
 
-py::dict settings_dict(const PyScene& s) {
-    const RenderSettings& r = s.loaded.settings;
+}  // namespace
+
+py::dict settings_dict(const RenderSettings& r) {
     py::dict d;
     d["width"] = r.width;
     d["height"] = r.height;
@@ -68,17 +73,16 @@ py::dict settings_dict(const PyScene& s) {
     return d;
 }
 
-}  // namespace
-
 void bind_scene(py::module_& m) {
     py::class_<PyScene, std::shared_ptr<PyScene>>(m, "Scene")
-        .def_property_readonly("render_settings", &settings_dict)
+        .def_property_readonly("render_settings", [](const PyScene& s) { return settings_dict(s.loaded.settings); })
         .def_readonly("source", &PyScene::source)
         .def_readonly("warnings", &PyScene::warnings)
         .def_property_readonly("triangle_count",
                                [](const PyScene& s) { return s.loaded.scene.geometry.triangle_count(); });
     m.def("load", &load, py::arg("path"), py::arg("words"));
-    m.def("load_text", &load_text, py::arg("text"), py::arg("name"), py::arg("words"));
+    m.def("load_text", &load_text, py::arg("text"), py::arg("name"), py::arg("words"),
+          py::arg("meshes") = std::vector<std::shared_ptr<LoadedMesh>>{});
 }
 
 }  // namespace sombra::python

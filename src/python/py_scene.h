@@ -6,6 +6,8 @@
 #include <string>
 #include <vector>
 
+#include <pybind11/pybind11.h>
+
 #include "io/loaded_scene.h"
 
 namespace sombra::python {
@@ -19,5 +21,8 @@ struct PyScene {
     std::shared_mutex access;
     bool mip_pyramids_built = false;
 };
+
+// The settings as the dict `Scene.render_settings` shows.
+pybind11::dict settings_dict(const RenderSettings& settings);
 
 }  // namespace sombra::python

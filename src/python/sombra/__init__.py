@@ -15,14 +15,14 @@ raises :class:`Error` with the command line's one-line message (without its
 from __future__ import annotations
 
 import json
-import os
 import sys
-import warnings
-from typing import Any, Callable, Mapping, Sequence, Union
+from typing import Any, Sequence, Union
 
 import numpy as np
 
 from . import _sombra
+from ._options import _RENDER_OPTIONS, _RUN_OPTIONS, _SCENE_OPTIONS, PathLike, Progress, _path, _words
+from ._scene import Scene
 
 __all__ = ["Error", "Scene", "load", "render", "explain", "write_image", "to_png"]
 
@@ -30,120 +30,6 @@ __all__ = ["Error", "Scene", "load", "render", "explain", "write_image", "to_png
 #: command line's one line, "WHERE: WHAT" (WHERE a file:line:col, a JSON path
 #: or an option).
 Error = _sombra.Error
-
-PathLike = Union[str, "os.PathLike[str]"]
-Progress = Union[bool, Callable[[int, int], Any], None]
-
-# keyword → (command-line option, the Python types it takes). bool is refused
-# where a number is asked for, though Python counts it an int.
-_INT = (int,)
-_NUMBER = (int, float)
-_STR = (str,)
-_SCENE_OPTIONS = {
-    "width": ("--width", _INT),
-    "height": ("--height", _INT),
-    "spp": ("--spp", _INT),
-    "seed": ("--seed", _INT),
-    "integrator": ("--integrator", _STR),
-    "max_depth": ("--max-depth", _INT),
-    "texture_filter": ("--texture-filter", _STR),
-}
-_RUN_OPTIONS = {
-    **_SCENE_OPTIONS,
-    "threads": ("--threads", _INT),
-    "accel": ("--accel", _STR),
-    "light_tree": ("--light-tree", _STR),
-}
-_RENDER_OPTIONS = {
-    **_RUN_OPTIONS,
-    "time": ("--time", _NUMBER),
-    "noise_threshold": ("--noise-threshold", _NUMBER),
-    "min_spp": ("--min-spp", _INT),
-}
-
-
-def _words(function: str, options: Mapping[str, Any], table: Mapping[str, tuple]) -> list[str]:
-    """The keyword options as command-line words ("--spp=64"), types checked."""
-    words = []
-    for key, value in options.items():
-        if key not in table:
-            raise TypeError(f"{function}() got an unexpected keyword argument '{key}'")
-        if value is None:
-            continue  # None means "as the scene says", like leaving the option out
-        flag, types = table[key]
-        if isinstance(value, bool) or not isinstance(value, types):
-            names = " or ".join(t.__name__ for t in types)
-            raise TypeError(f"{function}(): {key} must be {names}, not {type(value).__name__}")
-        words.append(f"{flag}={value!r}" if isinstance(value, float) else f"{flag}={value}")
-    return words
-
-
-def _warn(scene_impl: Any) -> None:
-    for text in scene_impl.warnings:
-        warnings.warn(f"sombra: {text}", RuntimeWarning, stacklevel=3)
-
-
-def _path(path: PathLike, what: str) -> str:
-    if not isinstance(path, (str, os.PathLike)):
-        raise TypeError(f"{what}: expected a path (str or os.PathLike), not {type(path).__name__}")
-    text = os.fspath(path)
-    if not isinstance(text, str):
-        raise TypeError(f"{what}: expected a str path, not {type(text).__name__}")
-    return text
-
-
-class Scene:
-    """A scene ready to render: its geometry, materials, lights, camera and
-    render settings (the scene file's "render" section with any overrides).
-
-    Made by :func:`load` (a scene file or a model) or :meth:`Scene.from_dict`
-    (the scene-file schema as a dict).
-    """
-
-    def __init__(self) -> None:
-        raise TypeError("sombra.Scene() from code is not there yet: use sombra.load(path) or "
-                        "sombra.Scene.from_dict(d)")
-
-    @classmethod
-    def _wrap(cls, impl: Any) -> "Scene":
-        scene = cls.__new__(cls)
-        scene._impl = impl
-        _warn(impl)
-        return scene
-
-    @classmethod
-    def from_dict(cls, d: Mapping[str, Any], base_dir: PathLike = ".", **overrides: Any) -> "Scene":
-        """The scene a scene file holding ``d`` would be (spec §2): the same
-        keys, the same checks, errors naming the JSON path
-        (``<dict>: /materials/white/kd: ...``). Relative paths in it (mesh
-        files, textures) are relative to ``base_dir``. ``overrides`` as for
-        :func:`load`."""
-        if not isinstance(d, Mapping):
-            raise TypeError(f"Scene.from_dict: expected a dict, not {type(d).__name__}")
-        text = json.dumps(d)
-        name = os.path.join(_path(base_dir, "Scene.from_dict: base_dir"), "<dict>")
-        return cls._wrap(_sombra.load_text(text, name, _words("from_dict", overrides, _SCENE_OPTIONS)))
-
-    @property
-    def render_settings(self) -> dict:
-        """The settings a render starts from: width, height, spp, seed,
-        integrator, max_depth, texture_filter."""
-        return self._impl.render_settings
-
-    @property
-    def triangle_count(self) -> int:
-        """Triangles in the scene, every object's together."""
-        return self._impl.triangle_count
-
-    @property
-    def source(self) -> str:
-        """The file the scene came from (``<dict>`` for a dict), as messages name it."""
-        return self._impl.source
-
-    def __repr__(self) -> str:
-        s = self.render_settings
-        return (f"<sombra.Scene {self.source!r}: {self.triangle_count} triangles, "
-                f"{s['width']}x{s['height']}, {s['spp']} spp, {s['integrator']}>")
 
 
 def load(path: PathLike, **overrides: Any) -> Scene:
@@ -162,7 +48,7 @@ def load(path: PathLike, **overrides: Any) -> Scene:
 def _scene_impl(scene: Any, function: str) -> Any:
     if not isinstance(scene, Scene):
         raise TypeError(f"{function}(): expected a sombra.Scene, not {type(scene).__name__}")
-    return scene._impl
+    return scene._assembled()
 
 
 class _Bar:
