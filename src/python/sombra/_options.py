@@ -10,6 +10,8 @@ from typing import Any, Callable, Mapping, Union
 
 import numpy as np
 
+from . import _sombra
+
 PathLike = Union[str, "os.PathLike[str]"]
 Progress = Union[bool, Callable[[int, int], Any], None]
 
@@ -81,4 +83,7 @@ def _path(path: PathLike, what: str) -> str:
     text = os.fspath(path)
     if not isinstance(text, str):
         raise TypeError(f"{what}: expected a str path, not {type(text).__name__}")
+    if "\0" in text:
+        # The system would read the path up to the NUL, and open another file.
+        raise _sombra.Error(f"{text!r}: the path contains a NUL character")
     return text

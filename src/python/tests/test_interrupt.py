@@ -44,3 +44,21 @@ def test_sigint_raises_keyboard_interrupt_within_a_second():
         watchdog.cancel()
         p.kill()
         p.wait()
+
+
+def test_an_interrupt_from_another_thread_stops_the_render_and_the_scene_stays_usable():
+    import _thread
+
+    import pytest
+    sombra = import_sombra()
+    scene = sombra.load("scenes/cornell-box-path.json")
+    timer = threading.Timer(0.2, _thread.interrupt_main)
+    start = time.monotonic()
+    timer.start()
+    try:
+        with pytest.raises(KeyboardInterrupt):
+            sombra.render(scene, width=512, height=512, spp=65536)
+    finally:
+        timer.cancel()
+    assert time.monotonic() - start < 1.2  # 0.2 s until the interrupt, then within a second
+    assert sombra.render(scene, width=8, height=8, spp=1).shape == (8, 8, 3)
