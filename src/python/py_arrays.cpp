@@ -15,7 +15,7 @@ namespace py = pybind11;
 
 namespace sombra::python {
 
-py::array_t<float> numpy_from(std::vector<float>&& values, std::vector<py::ssize_t> shape) {
+py::array_t<float> numpy_from(std::vector<float>&& values, const std::vector<py::ssize_t>& shape) {
     auto* owned = new std::vector<float>(std::move(values));
     py::capsule free_when_done(owned, [](void* p) { delete static_cast<std::vector<float>*>(p); });
     return py::array_t<float>(shape, owned->data(), free_when_done);

@@ -11,7 +11,7 @@
 namespace sombra::python {
 
 // A numpy float32 array of `shape` that owns `values` (moved, not copied).
-pybind11::array_t<float> numpy_from(std::vector<float>&& values, std::vector<pybind11::ssize_t> shape);
+pybind11::array_t<float> numpy_from(std::vector<float>&& values, const std::vector<pybind11::ssize_t>& shape);
 
 // An RGB image from Python: a float32 or float64 numpy array of shape
 // (height, width, 3), within the image limits, without NaN; as contiguous

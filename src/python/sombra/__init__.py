@@ -15,6 +15,7 @@ raises :class:`Error` with the command line's one-line message (without its
 from __future__ import annotations
 
 import json
+import math
 import sys
 from typing import Any, Sequence, Union
 
@@ -149,6 +150,8 @@ def write_image(path: PathLike, array: np.ndarray, exposure: float = 0) -> None:
     """
     if isinstance(exposure, bool) or not isinstance(exposure, (int, float)):
         raise TypeError(f"write_image(): exposure must be a number, not {type(exposure).__name__}")
+    if not math.isfinite(exposure):
+        raise Error(f"exposure: must be a finite number, not {exposure}")
     _sombra.write_image(_path(path, "write_image"), array, float(exposure))
 
 
@@ -157,4 +160,6 @@ def to_png(array: np.ndarray, exposure: float = 0) -> bytes:
     ``IPython.display.Image(sombra.to_png(img))``)."""
     if isinstance(exposure, bool) or not isinstance(exposure, (int, float)):
         raise TypeError(f"to_png(): exposure must be a number, not {type(exposure).__name__}")
+    if not math.isfinite(exposure):
+        raise Error(f"exposure: must be a finite number, not {exposure}")
     return _sombra.to_png(array, float(exposure))

@@ -88,6 +88,15 @@ def test_hostile_images_are_refused(tmp_path, array, message):
     assert not (tmp_path / "x.pfm").exists()
 
 
+def test_a_non_finite_exposure_is_refused(tmp_path):
+    image = np.ones((2, 2, 3), dtype=np.float32)
+    with pytest.raises(sombra.Error, match="exposure"):
+        sombra.write_image(tmp_path / "x.png", image, exposure=float("inf"))
+    with pytest.raises(sombra.Error, match="exposure"):
+        sombra.to_png(image, exposure=float("nan"))
+    assert not (tmp_path / "x.png").exists()
+
+
 def test_write_image_round_trips_through_pfm_and_png(tmp_path):
     from conftest import read_pfm
     rng = np.random.default_rng(1)
