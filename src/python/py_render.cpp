@@ -83,6 +83,8 @@ void run_watched(Work&& work, RenderProgress& watched, std::uint64_t total, cons
     }
     if (python_error) throw py::error_already_set();
     done.get();  // the work's own exception, if any
+    // The last word: a bar ends where the render did, not at its last poll.
+    if (!progress.is_none()) progress(watched.samples_done.load(), total);
 }
 
 py::object render(const std::shared_ptr<PyScene>& scene, const std::vector<std::string>& words,

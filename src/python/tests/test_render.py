@@ -80,5 +80,7 @@ def test_a_progress_callable_is_called_and_its_exception_stops_the_render():
         sombra.render(scene, width=256, height=256, spp=4096, threads=1, progress=progress)
     assert time.monotonic() - start < 2.0
     assert len(calls) == 1 and calls[0][1] == 256 * 256 * 4096 and 0 <= calls[0][0] <= calls[0][1]
-    # The scene is still usable.
-    assert sombra.render(scene, spp=1, width=8, height=8).shape == (8, 8, 3)
+    # The scene is still usable, and a render that ends reports its end.
+    calls.clear()
+    sombra.render(scene, spp=2, width=8, height=8, progress=lambda done, total: calls.append((done, total)))
+    assert calls[-1] == (8 * 8 * 2, 8 * 8 * 2)
