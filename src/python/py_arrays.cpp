@@ -26,8 +26,9 @@ ImageView image_from(const py::handle& array, py::array_t<float>& storage) {
         throw py::type_error("image: expected a numpy array of shape (height, width, 3), not " +
                              std::string(py::str(py::type::of(array).attr("__name__"))));
     const auto a = py::reinterpret_borrow<py::array>(array);
-    if (!a.dtype().is(py::dtype::of<float>()) && !a.dtype().is(py::dtype::of<double>()))
-        throw py::type_error("image: expected dtype float32 or float64, not " + std::string(py::str(a.dtype())));
+    // Any float dtype (float16 to float64, either byte order) is read as the float32 values it rounds to.
+    if (a.dtype().kind() != 'f')
+        throw py::type_error("image: expected a float dtype, not " + std::string(py::str(a.dtype())));
     std::string shape;
     for (py::ssize_t i = 0; i < a.ndim(); ++i) shape += (i ? ", " : "") + std::to_string(a.shape(i));
     if (a.ndim() != 3 || a.shape(2) != 3) throw Error("image", "shape (" + shape + ") is not (height, width, 3)");

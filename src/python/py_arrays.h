@@ -13,9 +13,9 @@ namespace sombra::python {
 // A numpy float32 array of `shape` that owns `values` (moved, not copied).
 pybind11::array_t<float> numpy_from(std::vector<float>&& values, const std::vector<pybind11::ssize_t>& shape);
 
-// An RGB image from Python: a float32 or float64 numpy array of shape
+// An RGB image from Python: a numpy array of a float dtype and shape
 // (height, width, 3), within the image limits, without NaN; as contiguous
-// float32 in `storage`. TypeError for a non-array or another dtype,
+// float32 in `storage`. TypeError for a non-array or a dtype not float,
 // Error("array", ...) for a wrong shape or a NaN.
 ImageView image_from(const pybind11::handle& array, pybind11::array_t<float>& storage);
 

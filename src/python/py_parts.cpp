@@ -68,16 +68,21 @@ std::vector<T> rows_of(const py::handle& value, const char* what, py::ssize_t co
 std::shared_ptr<LoadedMesh> make_mesh(const py::handle& positions, const py::handle& indices, const py::handle& normals,
                                       const py::handle& uvs, const std::string& where) {
     std::vector<Vec3> p = rows_of<Vec3>(positions, "positions", 3);
-    const auto i = py::array_t<std::int64_t, py::array::c_style | py::array::forcecast>::ensure(
-        expect_array(indices, "indices", 3, 'i'));
-    std::vector<std::uint32_t> corners(static_cast<std::size_t>(i.size()));
-    const std::int64_t* q = i.data();
-    for (std::size_t k = 0; k < corners.size(); ++k) {
-        if (q[k] < 0 || q[k] > std::numeric_limits<std::uint32_t>::max() - 1)
-            throw Error(where, "indices[" + std::to_string(k / 3) + "] holds " + std::to_string(q[k]) +
-                                   ", not a vertex index");
-        corners[k] = static_cast<std::uint32_t>(q[k]);
-    }
+    const py::array a = expect_array(indices, "indices", 3, 'i');
+    // Unsigned indices are read as such: 2^64 - 1 must not wrap to -1 in the message.
+    std::vector<std::uint32_t> corners(static_cast<std::size_t>(a.size()));
+    auto check_all = [&](const auto* q) {
+        for (std::size_t k = 0; k < corners.size(); ++k) {
+            if (q[k] < 0 || static_cast<std::uint64_t>(q[k]) > std::numeric_limits<std::uint32_t>::max() - 1)
+                throw Error(where, "indices[" + std::to_string(k / 3) + "] holds " + std::to_string(q[k]) +
+                                       ", not a vertex index");
+            corners[k] = static_cast<std::uint32_t>(q[k]);
+        }
+    };
+    if (a.dtype().kind() == 'u')
+        check_all(py::array_t<std::uint64_t, py::array::c_style | py::array::forcecast>::ensure(a).data());
+    else
+        check_all(py::array_t<std::int64_t, py::array::c_style | py::array::forcecast>::ensure(a).data());
     std::vector<Vec3> n = normals.is_none() ? std::vector<Vec3>{} : rows_of<Vec3>(normals, "normals", 3);
     std::vector<Vec2> t = uvs.is_none() ? std::vector<Vec2>{} : rows_of<Vec2>(uvs, "uvs", 2);
     Diagnostics diag;

@@ -106,6 +106,8 @@ def test_write_image_round_trips_through_pfm_and_png(tmp_path):
     # A non-contiguous float64 view is taken as the float32 values it rounds to.
     sombra.write_image(str(tmp_path / "y.pfm"), image.astype(np.float64)[:, ::-1][:, ::-1])
     assert read_pfm(tmp_path / "y.pfm").tobytes() == image.tobytes()
+    sombra.write_image(tmp_path / "z.pfm", image.astype(">f4"))  # big-endian float32 is float32
+    assert read_pfm(tmp_path / "z.pfm").tobytes() == image.tobytes()
     sombra.write_image(tmp_path / "x.png", image, exposure=-1)
     png = pathlib.Path(tmp_path / "x.png").read_bytes()
     assert png.startswith(b"\x89PNG") and png == sombra.to_png(image, exposure=-1)

@@ -102,6 +102,7 @@ def test_pieces_are_checked_when_given():
     (np.eye(3), [[0, 1, 3]], sombra.Error, r"indices\[0\] refers to vertex 3, past the 3 vertices"),
     (np.eye(3), [[0, -1, 2]], sombra.Error, r"indices\[0\] holds -1"),
     (np.eye(3), [[0, 1, 2**40]], sombra.Error, r"indices\[0\] holds 1099511627776"),
+    (np.eye(3), np.array([[0, 1, 2**64 - 1]], dtype=np.uint64), sombra.Error, r"holds 18446744073709551615,"),
     (np.eye(3)[:, :2], [[0, 1, 2]], sombra.Error, r"positions: shape \(3, 2\) is not \(N, 3\)"),
     (np.eye(3), [0, 1, 2], sombra.Error, r"indices: shape \(3,\) is not \(N, 3\)"),
     (np.eye(3), np.zeros((0, 3), dtype=int), sombra.Error, "no triangles"),
