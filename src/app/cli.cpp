@@ -4,8 +4,10 @@
 #include <cctype>
 #include <filesystem>
 #include <iostream>
+#include <sstream>
 
 #include "accel/accel.h"
+#include "core/error.h"
 #include "render/render_settings.h"
 
 namespace sombra {
@@ -114,7 +116,10 @@ void add_output_options(CLI::App& render, CliOptions& o) {
 
 }  // namespace
 
-CliParse parse_command_line(int argc, const char* const* argv) {
+namespace {
+
+// parse_command_line, printing help and version to `out` and errors to `err`.
+CliParse parse(int argc, const char* const* argv, std::ostream& out, std::ostream& err) {
     CLI::App app{"sombra: a ray tracer that is right to the last pixel", "sombra"};
     // The contract version it implements, e.g. "sombra 2.0.0 (scene format version 2)".
     app.set_version_flag("--version", std::string("sombra ") + SOMBRA_VERSION + " (scene format version " +
@@ -144,18 +149,18 @@ CliParse parse_command_line(int argc, const char* const* argv) {
     try {
         app.parse(argc, argv);
     } catch (const CLI::CallForHelp&) {
-        std::cout << app.help();
+        out << app.help();
         return {std::nullopt, 0};
     } catch (const CLI::CallForAllHelp&) {
-        std::cout << app.help("", CLI::AppFormatMode::All);
+        out << app.help("", CLI::AppFormatMode::All);
         return {std::nullopt, 0};
     } catch (const CLI::CallForVersion& e) {
-        std::cout << e.what() << '\n';
+        out << e.what() << '\n';
         return {std::nullopt, 0};
     } catch (const CLI::ParseError& e) {
         const bool explaining = argc > 1 && std::string_view(argv[1]) == "explain";
-        std::cerr << "sombra: error: command line: " << one_line(e.what()) << " (see 'sombra "
-                  << (explaining ? "explain" : "render") << " --help')\n";
+        err << "sombra: error: command line: " << one_line(e.what()) << " (see 'sombra "
+            << (explaining ? "explain" : "render") << " --help')\n";
         return {std::nullopt, 2};
     }
     o.command = app.got_subcommand(explain) ? Command::Explain : Command::Render;
@@ -163,12 +168,30 @@ CliParse parse_command_line(int argc, const char* const* argv) {
         std::string ext = std::filesystem::path(o.output).extension().string();
         for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
         if (ext != ".exr") {
-            std::cerr << "sombra: error: command line: --aov needs an .exr output, not '" << one_line(o.output)
-                      << "' (see 'sombra render --help')\n";
+            err << "sombra: error: command line: --aov needs an .exr output, not '" << one_line(o.output)
+                << "' (see 'sombra render --help')\n";
             return {std::nullopt, 2};
         }
     }
     return {o, 0};
+}
+
+}  // namespace
+
+CliParse parse_command_line(int argc, const char* const* argv) { return parse(argc, argv, std::cout, std::cerr); }
+
+CliOptions parse_options(const std::string& command, const std::vector<std::string>& words) {
+    std::vector<const char*> argv{"sombra", command.c_str()};
+    for (const std::string& word : words) argv.push_back(word.c_str());
+    std::ostringstream out, err;
+    const CliParse parsed = parse(static_cast<int>(argv.size()), argv.data(), out, err);
+    if (parsed.options) return *parsed.options;
+    // The line without its frame: the caller is not at a command line.
+    std::string message = err.str().empty() ? out.str() : err.str();
+    const std::string prefix = "sombra: error: command line: ";
+    if (message.starts_with(prefix)) message.erase(0, prefix.size());
+    if (const std::size_t see = message.find(" (see 'sombra "); see != std::string::npos) message.erase(see);
+    throw Error("command line", one_line(message));
 }
 
 }  // namespace sombra

@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "render/aov_set.h"
 
@@ -53,5 +54,12 @@ struct CliParse {
 // Parses argv. Prints help/version to stdout and command-line errors as one
 // line "sombra: error: command line: ..." to stderr (exit code 2).
 CliParse parse_command_line(int argc, const char* const* argv);
+
+// The options of `sombra render` or `sombra explain` (`command`) given as the
+// words after the subcommand, checked exactly as the command line checks them,
+// printing nothing: the Python module's keyword arguments (spec §19) go
+// through here. Throws Error("command line", what) with the message the
+// command line would print.
+CliOptions parse_options(const std::string& command, const std::vector<std::string>& words);
 
 }  // namespace sombra

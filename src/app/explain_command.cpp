@@ -27,18 +27,6 @@ void check_svg_path(const std::filesystem::path& path) {
     check_side_file_path(path);
 }
 
-void check_pixel(const CliOptions& o, const RenderSettings& s) {
-    const std::string where = "pixel (" + std::to_string(o.pixel_x) + ", " + std::to_string(o.pixel_y) + ")";
-    if (o.pixel_x < 0 || o.pixel_x >= s.width || o.pixel_y < 0 || o.pixel_y >= s.height)
-        throw Error(where, "outside the " + std::to_string(s.width) + "x" + std::to_string(s.height) +
-                               " image (columns 0 to " + std::to_string(s.width - 1) + ", rows 0 to " +
-                               std::to_string(s.height - 1) + ")");
-    if (o.sample < 0 || o.sample >= s.spp)
-        throw Error("--sample", "sample " + std::to_string(o.sample) + " does not exist: the pixel has " +
-                                    std::to_string(s.spp) + " sample" + (s.spp == 1 ? "" : "s") + " (0 to " +
-                                    std::to_string(s.spp - 1) + ")");
-}
-
 }  // namespace
 
 int run_explain(const CliOptions& o) {
@@ -51,7 +39,7 @@ int run_explain(const CliOptions& o) {
         Scene& scene = input.scene;
         const RenderSettings settings = resolve_settings(input.settings, o);
         print_warnings(diag, scene, settings, o);
-        check_pixel(o, settings);
+        check_explain_pixel(o, settings);
         prepare_textures(scene, settings);  // the lookups must be the render's
 
         const Accel accel = make_accel(scene, *parse_accel_kind(o.accel));

@@ -66,6 +66,34 @@ RenderSettings resolve_settings(const RenderSettings& scene_settings, const CliO
     return s;
 }
 
+RenderSettings resolve_render_settings(const RenderSettings& scene_settings, const CliOptions& o) {
+    RenderSettings s = resolve_settings(scene_settings, o);
+    if (o.time_budget && !o.spp) s.spp = kMaxSpp;
+    return s;
+}
+
+SamplingLimits sampling_limits(const CliOptions& o, std::chrono::steady_clock::time_point start) {
+    SamplingLimits limits;
+    if (o.time_budget)
+        limits.deadline = start + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                                      std::chrono::duration<double>(*o.time_budget));
+    if (o.noise_threshold) limits.noise_threshold = *o.noise_threshold;
+    limits.min_spp = o.min_spp;
+    return limits;
+}
+
+void check_explain_pixel(const CliOptions& o, const RenderSettings& s) {
+    const std::string where = "pixel (" + std::to_string(o.pixel_x) + ", " + std::to_string(o.pixel_y) + ")";
+    if (o.pixel_x < 0 || o.pixel_x >= s.width || o.pixel_y < 0 || o.pixel_y >= s.height)
+        throw Error(where, "outside the " + std::to_string(s.width) + "x" + std::to_string(s.height) +
+                               " image (columns 0 to " + std::to_string(s.width - 1) + ", rows 0 to " +
+                               std::to_string(s.height - 1) + ")");
+    if (o.sample < 0 || o.sample >= s.spp)
+        throw Error("--sample", "sample " + std::to_string(o.sample) + " does not exist: the pixel has " +
+                                    std::to_string(s.spp) + " sample" + (s.spp == 1 ? "" : "s") + " (0 to " +
+                                    std::to_string(s.spp - 1) + ")");
+}
+
 void prepare_textures(Scene& scene, const RenderSettings& settings) {
     if (settings.texture_filter == TextureFilter::Mipmap) build_mip_pyramids(scene.textures);
 }

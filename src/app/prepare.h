@@ -2,6 +2,7 @@
 // apply the command line's overrides, and say what is off.
 #pragma once
 
+#include <chrono>
 #include <filesystem>
 #include <iostream>
 #include <new>
@@ -11,6 +12,7 @@
 #include "core/error.h"
 #include "io/loaded_scene.h"
 #include "render/lights.h"
+#include "render/render.h"
 #include "render/render_settings.h"
 #include "scene/scene.h"
 
@@ -34,6 +36,18 @@ LoadedScene load_input(const std::filesystem::path& input, Diagnostics& diag);
 // each checked against the same limits as the scene file's values (a problem
 // names the option that caused it). Throws Error.
 RenderSettings resolve_settings(const RenderSettings& scene_settings, const CliOptions& options);
+
+// The settings `sombra render` renders at: resolve_settings, and under a
+// time budget without --spp no spp limit, since the budget decides (spec §18).
+RenderSettings resolve_render_settings(const RenderSettings& scene_settings, const CliOptions& options);
+
+// When pixels stop sampling, as --time, --noise-threshold and --min-spp ask;
+// the budget counts from `start`, the command's start (the wait the user asked for).
+SamplingLimits sampling_limits(const CliOptions& options, std::chrono::steady_clock::time_point start);
+
+// `sombra explain`'s pixel and sample checked against the image `settings`
+// describe. Throws Error naming the pixel or --sample.
+void check_explain_pixel(const CliOptions& options, const RenderSettings& settings);
 
 // What the textures need for `settings`: their mip pyramids under
 // TextureFilter::Mipmap (scene/texture_mipmap.h), nothing otherwise.

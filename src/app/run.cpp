@@ -60,9 +60,8 @@ int run_render(const CliOptions& o) {
         LoadedScene input = load_input(o.input, diag);
         Scene& scene = input.scene;
         stats.load_seconds = seconds_since(load_start);
-        RenderSettings settings = resolve_settings(input.settings, o);
         // Under a time budget the scene's spp does not limit the passes; --spp does (spec §18).
-        if (o.time_budget && !o.spp) settings.spp = kMaxSpp;
+        const RenderSettings settings = resolve_render_settings(input.settings, o);
         print_warnings(diag, scene, settings, o);
         const AccelKind kind = *parse_accel_kind(o.accel);  // the command line checked the name
 
@@ -75,12 +74,7 @@ int run_render(const CliOptions& o) {
         stats.build_seconds = seconds_since(build_start);
 
         RenderJob job = make_render_job(scene, accel, settings, o.threads, light_selection(o));
-        // The budget counts from the command's start: it is the wait the user asked for.
-        if (o.time_budget)
-            job.limits.deadline =
-                start + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(*o.time_budget));
-        if (o.noise_threshold) job.limits.noise_threshold = *o.noise_threshold;
-        job.limits.min_spp = o.min_spp;
+        job.limits = sampling_limits(o, start);
         job.aovs = o.aovs;
 
         interrupt.set_phase(InterruptWatcher::Phase::Rendering);

@@ -32,15 +32,13 @@ struct ObjectSpec {
     fs::path path;                          // the mesh file, relative to the working directory
     std::optional<std::uint32_t> material;  // override: index into Scene::materials
     Transform transform;
-    bool is_quad_light = false;  // a quad light: no file behind it
+    bool is_quad_light = false;         // a quad light: no file behind it
+    const LoadedMesh* given = nullptr;  // a mesh made from arrays ("mesh": i), no file behind it
 };
 
-ObjectSpec read_object(const SceneJson& s, const Json& v, std::string_view pointer, const fs::path& scene_path,
-                       const std::map<std::string, std::uint32_t, std::less<>>& material_index) {
-    expect_keys(s, v, pointer, {"file", "material", "transform"});
-    ObjectSpec spec;
-    spec.pointer = std::string(pointer);
-
+// The object's file, checked to be one before any mesh is read.
+void read_object_file(const SceneJson& s, const Json& v, std::string_view pointer, const fs::path& scene_path,
+                      ObjectSpec& spec) {
     const std::string file_pointer = json_child(pointer, "file");
     const std::string& file = read_string(s, require_member(s, v, pointer, "file"), file_pointer);
     if (file.empty()) json_fail(s, file_pointer, "expected a file name, not an empty string");
@@ -55,6 +53,28 @@ ObjectSpec read_object(const SceneJson& s, const Json& v, std::string_view point
     if (!fs::is_regular_file(status)) json_fail(s, file_pointer, "'" + file + "' is not a regular file");
     if (fs::equivalent(spec.path, scene_path, ec))
         json_fail(s, file_pointer, "'" + file + "' is the scene file itself, not a mesh");
+}
+
+ObjectSpec read_object(const SceneJson& s, const Json& v, std::string_view pointer, const fs::path& scene_path,
+                       const std::map<std::string, std::uint32_t, std::less<>>& material_index,
+                       std::span<const LoadedMesh* const> given_meshes) {
+    ObjectSpec spec;
+    spec.pointer = std::string(pointer);
+    if (given_meshes.empty()) {
+        expect_keys(s, v, pointer, {"file", "material", "transform"});
+        read_object_file(s, v, pointer, scene_path, spec);
+    } else {
+        expect_keys(s, v, pointer, {"file", "mesh", "material", "transform"});
+        if (const Json* m = find_member(v, "mesh")) {
+            if (find_member(v, "file")) json_fail(s, pointer, "give either 'file' or 'mesh', not both");
+            const std::int64_t i =
+                read_integer(s, *m, json_child(pointer, "mesh"), 0, static_cast<std::int64_t>(given_meshes.size()) - 1);
+            spec.given = given_meshes[static_cast<std::size_t>(i)];
+            spec.path = "mesh " + std::to_string(i);
+        } else {
+            read_object_file(s, v, pointer, scene_path, spec);
+        }
+    }
 
     if (const Json* m = find_member(v, "material")) {
         const std::string material_pointer = json_child(pointer, "material");
@@ -120,7 +140,8 @@ LoadedScene load_scene_file(const fs::path& path, Diagnostics& diag) {
     return load_scene_text(read_scene_text(path), path, diag);
 }
 
-LoadedScene load_scene_text(const std::string& text, const fs::path& path, Diagnostics& diag) {
+LoadedScene load_scene_text(const std::string& text, const fs::path& path, Diagnostics& diag,
+                            std::span<const LoadedMesh* const> given_meshes) {
     const SceneJson s{path.string(), diag};
     const Json root = parse_scene_json(text, s.name);
     expect_keys(s, root, "", {"render", "background", "environment", "camera", "materials", "lights", "objects"});
@@ -156,7 +177,7 @@ LoadedScene load_scene_text(const std::string& text, const fs::path& path, Diagn
     std::vector<ObjectSpec> specs;
     specs.reserve(objects.size());
     for (std::size_t i = 0; i < objects.size(); ++i)
-        specs.push_back(read_object(s, objects[i], json_child("/objects", i), path, material_index));
+        specs.push_back(read_object(s, objects[i], json_child("/objects", i), path, material_index, given_meshes));
 
     // Quad lights join the geometry after the objects, through the same
     // assembly: each is a two-triangle mesh with its own material.
@@ -176,6 +197,10 @@ LoadedScene load_scene_text(const std::string& text, const fs::path& path, Diagn
     MeshSizes sizes;
     for (std::size_t i = 0; i < specs.size(); ++i) {
         const ObjectSpec& spec = specs[i];
+        if (spec.given) {
+            sizes += sizes_of(spec.given->mesh);
+            continue;
+        }
         std::error_code ec;
         fs::path key = fs::canonical(spec.path, ec);
         if (ec) key = spec.path;
@@ -199,6 +224,10 @@ LoadedScene load_scene_text(const std::string& text, const fs::path& path, Diagn
 
     builder.reserve(sizes);
     for (std::size_t i = 0; i < specs.size(); ++i) {
+        if (specs[i].given) {
+            add_object(builder, *specs[i].given, specs[i], s);
+            continue;
+        }
         // Lights a glTF file places move with its object (§13, §16).
         for (const PunctualLight& light : meshes[mesh_of[i]].lights)
             builder.add_light(placed_light(light, specs[i].transform, s, specs[i].pointer));

@@ -4,10 +4,12 @@
 #pragma once
 
 #include <filesystem>
+#include <span>
 #include <string>
 
 #include "core/error.h"
 #include "io/loaded_scene.h"
+#include "io/mesh_file.h"
 
 namespace sombra {
 
@@ -20,7 +22,11 @@ namespace sombra {
 LoadedScene load_scene_file(const std::filesystem::path& path, Diagnostics& diag);
 
 // The same from JSON text already in memory; `path` names it in messages and
-// anchors relative mesh paths.
-LoadedScene load_scene_text(const std::string& text, const std::filesystem::path& path, Diagnostics& diag);
+// anchors relative mesh paths. With `given_meshes` (meshes made from arrays,
+// io/array_mesh.h: the Python module's scenes from code), an object may name
+// one by index, {"mesh": i, "material": …, "transform": …}, in place of a
+// "file"; without, "mesh" is an unknown key as in any scene file.
+LoadedScene load_scene_text(const std::string& text, const std::filesystem::path& path, Diagnostics& diag,
+                            std::span<const LoadedMesh* const> given_meshes = {});
 
 }  // namespace sombra

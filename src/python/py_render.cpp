@@ -1,0 +1,152 @@
+// sombra.render and sombra.explain: the command line's options parsed and
+// applied by its own code (app/cli.h, app/prepare.h), the render run by
+// render_image on a thread of its own while the caller's thread, holding the
+// GIL only briefly, watches for Ctrl-C and reports progress.
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include <chrono>
+#include <future>
+#include <mutex>
+#include <string>
+#include <vector>
+
+#include "accel/accel.h"
+#include "app/cli.h"
+#include "app/prepare.h"
+#include "explain/explain.h"
+#include "python/py_arrays.h"
+#include "python/py_bindings.h"
+#include "python/py_scene.h"
+#include "render/render.h"
+
+namespace py = pybind11;
+
+namespace sombra::python {
+
+namespace {
+
+// How often the waiting thread looks for Ctrl-C: well within the second
+// spec §19 allows, and rare enough to cost nothing.
+constexpr std::chrono::milliseconds kPollInterval{50};
+
+CliOptions parse_with_input(const char* command, const PyScene& scene, const std::vector<std::string>& words) {
+    std::vector<std::string> argv{scene.source};
+    argv.insert(argv.end(), words.begin(), words.end());
+    return parse_options(command, argv);
+}
+
+// The scene, read-locked for a render; its mip pyramids built first (under
+// the write lock, once) when the settings ask for them, as prepare_textures
+// does for the command line.
+std::shared_lock<std::shared_mutex> lock_for_render(PyScene& scene, const RenderSettings& settings) {
+    if (settings.texture_filter == TextureFilter::Mipmap) {
+        const std::unique_lock write(scene.access);
+        if (!scene.mip_pyramids_built) {
+            prepare_textures(scene.loaded.scene, settings);
+            scene.mip_pyramids_built = true;
+        }
+    }
+    return std::shared_lock(scene.access);
+}
+
+// Runs `work` on its own thread with the GIL released; every kPollInterval
+// takes the GIL to check for signals and call `progress`. A KeyboardInterrupt
+// (or an exception from `progress`) sets `cancel`, waits for the work to
+// stop, and propagates.
+template <class Work>
+void run_watched(Work&& work, RenderProgress& watched, std::uint64_t total, const py::object& progress) {
+    bool python_error = false;
+    std::future<void> done;
+    {
+        py::gil_scoped_release release;
+        done = std::async(std::launch::async, std::forward<Work>(work));
+        while (done.wait_for(kPollInterval) != std::future_status::ready) {
+            const py::gil_scoped_acquire gil;
+            if (PyErr_CheckSignals() != 0) {
+                python_error = true;  // the error stays set in this thread until raised below
+            } else if (!progress.is_none()) {
+                try {
+                    progress(watched.samples_done.load(), total);
+                } catch (py::error_already_set& e) {
+                    e.restore();
+                    python_error = true;
+                }
+            }
+            if (python_error) {
+                watched.cancel = true;
+                break;
+            }
+        }
+        done.wait();
+    }
+    if (python_error) throw py::error_already_set();
+    done.get();  // the work's own exception, if any
+    // The last word: a bar ends where the render did, not at its last poll.
+    if (!progress.is_none()) progress(watched.samples_done.load(), total);
+}
+
+py::object render(const std::shared_ptr<PyScene>& scene, const std::vector<std::string>& words,
+                  const py::object& progress) {
+    const auto start = std::chrono::steady_clock::now();
+    const CliOptions o = parse_with_input("render", *scene, words);
+    const RenderSettings settings = resolve_render_settings(scene->loaded.settings, o);
+    RenderProgress watched;
+    RenderOutput rendered;
+    const std::uint64_t total = static_cast<std::uint64_t>(settings.width) *
+                                static_cast<std::uint64_t>(settings.height) * static_cast<std::uint64_t>(settings.spp);
+    run_watched(
+        [&] {
+            const auto lock = lock_for_render(*scene, settings);
+            const Scene& s = scene->loaded.scene;
+            const Accel accel = make_accel(s, *parse_accel_kind(o.accel));  // the parser checked the name
+            RenderJob job = make_render_job(s, accel, settings, o.threads, light_selection(o));
+            job.limits = sampling_limits(o, start);
+            job.aovs = o.aovs;
+            rendered = render_image(job, watched);
+        },
+        watched, total, progress);
+    const py::ssize_t w = settings.width, h = settings.height;
+    py::dict out;
+    out["color"] = numpy_from(std::move(rendered.film.rgb), {h, w, 3});
+    auto add = [&out, w, h](const char* name, std::vector<float>& layer, py::ssize_t channels) {
+        if (layer.empty()) return;
+        if (channels == 3)
+            out[name] = numpy_from(std::move(layer), {h, w, 3});
+        else
+            out[name] = numpy_from(std::move(layer), {h, w});
+    };
+    add("albedo", rendered.aovs.albedo, 3);
+    add("normal", rendered.aovs.normal, 3);
+    add("depth", rendered.aovs.depth, 1);
+    add("position", rendered.aovs.position, 3);
+    add("spp", rendered.aovs.spp, 1);
+    out["spp_reached"] = static_cast<double>(rendered.samples) / static_cast<double>(w * h);
+    out["passes"] = rendered.passes;
+    return out;
+}
+
+std::string explain(const std::shared_ptr<PyScene>& scene, const std::vector<std::string>& words) {
+    const CliOptions o = parse_with_input("explain", *scene, words);
+    const RenderSettings settings = resolve_settings(scene->loaded.settings, o);
+    check_explain_pixel(o, settings);
+    py::gil_scoped_release release;
+    const auto lock = lock_for_render(*scene, settings);
+    const Scene& s = scene->loaded.scene;
+    const Accel accel = make_accel(s, *parse_accel_kind(o.accel));
+    const RenderJob job = make_render_job(s, accel, settings, o.threads, light_selection(o));
+    SampleRecord record;
+    RayCounters counters;
+    trace_pixel_sample(job, o.pixel_x, o.pixel_y, o.sample, counters, record);
+    return explain_json(ExplainContext{s, job, scene->source}, record);
+}
+
+}  // namespace
+
+void bind_render(py::module_& m) {
+    m.def("render", &render, py::arg("scene"), py::arg("words"), py::arg("progress") = py::none());
+    m.def("explain", &explain, py::arg("scene"), py::arg("words"));
+}
+
+}  // namespace sombra::python

@@ -1,0 +1,88 @@
+// sombra.Scene and how one is read: a scene file or model (load) or scene
+// JSON text (load_text, which Scene.from_dict sends its dict through), with
+// the overrides checked as the command line checks them.
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "app/cli.h"
+#include "app/prepare.h"
+#include "io/scene_json/scene_file.h"
+#include "python/py_bindings.h"
+#include "python/py_scene.h"
+
+namespace py = pybind11;
+
+namespace sombra::python {
+
+namespace {
+
+// The overrides, command-line words ("--spp=4") after the input, checked
+// before the (possibly long) load as the command line checks them.
+CliOptions overrides(const std::string& source, const std::vector<std::string>& words) {
+    std::vector<std::string> argv{source};
+    argv.insert(argv.end(), words.begin(), words.end());
+    return parse_options("render", argv);
+}
+
+template <class Read>
+std::shared_ptr<PyScene> read_scene(const std::string& source, const std::vector<std::string>& words, Read&& read) {
+    const CliOptions options = overrides(source, words);
+    Diagnostics diag;
+    LoadedScene loaded;
+    {
+        py::gil_scoped_release release;  // other Python threads go on while a big model loads
+        loaded = read(diag);
+    }
+    auto scene = std::make_shared<PyScene>();
+    scene->loaded.settings = resolve_settings(loaded.settings, options);
+    scene->loaded.scene = std::move(loaded.scene);
+    scene->source = source;
+    scene->warnings = diag.warnings;
+    return scene;
+}
+
+std::shared_ptr<PyScene> load(const std::string& path, const std::vector<std::string>& words) {
+    return read_scene(path, words, [&path](Diagnostics& diag) { return load_input(path, diag); });
+}
+
+// `name` names the text in messages; its folder anchors relative mesh paths.
+// `meshes`: those the text's objects name as {"mesh": i} (a scene from code).
+std::shared_ptr<PyScene> load_text(const std::string& text, const std::string& name,
+                                   const std::vector<std::string>& words,
+                                   const std::vector<std::shared_ptr<LoadedMesh>>& meshes) {
+    std::vector<const LoadedMesh*> given;
+    for (const auto& m : meshes) given.push_back(m.get());
+    return read_scene(name, words, [&](Diagnostics& diag) { return load_scene_text(text, name, diag, given); });
+}
+
+}  // namespace
+
+py::dict settings_dict(const RenderSettings& r) {
+    py::dict d;
+    d["width"] = r.width;
+    d["height"] = r.height;
+    d["spp"] = r.spp;
+    d["seed"] = r.seed;
+    d["integrator"] = r.integrator == IntegratorKind::Path ? "path" : "direct";
+    d["max_depth"] = r.max_depth;
+    d["texture_filter"] = r.texture_filter == TextureFilter::Mipmap ? "mipmap" : "bilinear";
+    return d;
+}
+
+void bind_scene(py::module_& m) {
+    py::class_<PyScene, std::shared_ptr<PyScene>>(m, "Scene")
+        .def_property_readonly("render_settings", [](const PyScene& s) { return settings_dict(s.loaded.settings); })
+        .def_readonly("source", &PyScene::source)
+        .def_readonly("warnings", &PyScene::warnings)
+        .def_property_readonly("triangle_count",
+                               [](const PyScene& s) { return s.loaded.scene.geometry.triangle_count(); });
+    m.def("load", &load, py::arg("path"), py::arg("words"));
+    m.def("load_text", &load_text, py::arg("text"), py::arg("name"), py::arg("words"),
+          py::arg("meshes") = std::vector<std::shared_ptr<LoadedMesh>>{});
+}
+
+}  // namespace sombra::python

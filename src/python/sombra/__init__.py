@@ -1,0 +1,165 @@
+"""sombra: a ray tracer that is right to the last pixel, from Python (spec §19).
+
+    import sombra
+    scene = sombra.load("scenes/cornell-box-path.json")
+    image = sombra.render(scene, spp=64)       # numpy float32 (height, width, 3), linear RGB
+    sombra.write_image("out.png", image)
+
+The keyword options are the command line's (``sombra render --help``), with
+``-`` written ``_``: the same names, the same checks, the same numbers (a
+render equals ``sombra render ... -o x.pfm`` float for float). A wrong input
+raises :class:`Error` with the command line's one-line message (without its
+``sombra: error:`` prefix); an argument of the wrong type raises TypeError.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+import sys
+from typing import Any, Sequence, Union
+
+import numpy as np
+
+from . import _sombra
+from ._options import _RENDER_OPTIONS, _RUN_OPTIONS, _SCENE_OPTIONS, PathLike, Progress, _path, _words
+from ._scene import Scene
+
+__all__ = ["Error", "Scene", "load", "render", "explain", "write_image", "to_png"]
+
+#: A wrong input (scene, option value, array): a ValueError whose text is the
+#: command line's one line, "WHERE: WHAT" (WHERE a file:line:col, a JSON path
+#: or an option).
+Error = _sombra.Error
+
+
+def load(path: PathLike, **overrides: Any) -> Scene:
+    """Reads a scene file (.json) or a model for a quick look (.obj, .ply,
+    .gltf, .glb; spec §7).
+
+    overrides: width, height, spp, seed, integrator ("direct" or "path"),
+    max_depth, texture_filter ("bilinear" or "mipmap"): they replace the
+    scene's "render" values, checked as the command line checks them.
+    The reader's warnings are issued as RuntimeWarning.
+    Raises Error for a file that is missing or wrong.
+    """
+    return Scene._wrap(_sombra.load(_path(path, "load"), _words("load", overrides, _SCENE_OPTIONS)))
+
+
+def _scene_impl(scene: Any, function: str) -> Any:
+    if not isinstance(scene, Scene):
+        raise TypeError(f"{function}(): expected a sombra.Scene, not {type(scene).__name__}")
+    return scene._assembled()
+
+
+class _Bar:
+    """progress=True: a text bar on stderr, redrawn in place (a terminal,
+    or a notebook's output)."""
+
+    def __init__(self) -> None:
+        self.shown = -1
+
+    def __call__(self, done: int, total: int) -> None:
+        percent = min(100, done * 100 // total) if total else 100
+        if percent == self.shown:
+            return
+        self.shown = percent
+        filled = percent * 30 // 100
+        sys.stderr.write(f"\rsombra: [{'#' * filled}{'.' * (30 - filled)}] {percent:3d}%")
+        sys.stderr.flush()
+
+    def close(self) -> None:
+        if self.shown >= 0:
+            sys.stderr.write("\n")
+            sys.stderr.flush()
+
+
+def render(scene: Scene, *, aov: Union[Sequence[str], str, None] = None, progress: Progress = None,
+           **options: Any) -> Union[np.ndarray, dict]:
+    """Renders the scene; returns the image as a float32 numpy array of
+    shape (height, width, 3), linear RGB, top row first: the values
+    ``sombra render SCENE -o x.pfm`` writes, float for float.
+
+    options (the command line's, spec §1, §10, §18; None = as the scene says):
+      width, height, spp, seed   image size, samples per pixel, random seed
+      threads                    worker threads; 0 = all hardware threads
+      integrator                 "direct" or "path"
+      max_depth                  most scattering events on a path (path), 0 to 1024
+      light_tree                 "auto", "on" or "off"
+      texture_filter             "bilinear" or "mipmap"
+      accel                      "bvh", "brute", or "embree" where built
+      time                       seconds: render sample passes until the next would
+                                 end past the budget (counted from this call)
+      noise_threshold, min_spp   adaptive sampling
+    aov: any of "albedo", "normal", "depth", "position", "spp": then the result
+      is a dict of arrays, "color" the image, "albedo"/"normal"/"position"
+      (height, width, 3), "depth"/"spp" (height, width).
+    progress: True for a text bar on stderr, or a callable receiving
+      (samples done, samples in all) about every 50 ms.
+
+    The GIL is released while rendering; Ctrl-C raises KeyboardInterrupt
+    within a second.
+    """
+    impl = _scene_impl(scene, "render")
+    words = _words("render", options, _RENDER_OPTIONS)
+    if aov is not None:
+        names = [aov] if isinstance(aov, str) else aov
+        if not isinstance(names, (list, tuple)) or not all(isinstance(n, str) for n in names):
+            raise TypeError("render(): aov must be a list of str (albedo, normal, depth, position, spp)")
+        if names:
+            words += ["--aov=" + ",".join(names), "--output=python.exr"]
+    bar = None
+    if progress is True:
+        bar = progress = _Bar()
+    elif progress is False:
+        progress = None
+    elif progress is not None and not callable(progress):
+        raise TypeError("render(): progress must be True, False, None or a callable(done, total)")
+    try:
+        out = _sombra.render(impl, words, progress)
+    finally:
+        if bar is not None:
+            bar.close()
+    if aov is None or not names:
+        return out["color"]
+    return {key: value for key, value in out.items() if isinstance(value, np.ndarray)}
+
+
+def explain(scene: Scene, x: int, y: int, sample: int = 0, **options: Any) -> dict:
+    """The story of pixel (x, y) (column, row) for its sample ``sample``
+    (spec §14): the object ``sombra explain SCENE X Y --json`` prints, with
+    "pixel", "sample", "value" (equal, to the last bit, to what the render
+    computes for that sample), "camera_ray", "hit", "lights" and "vertices".
+
+    options: width, height, spp, seed, threads, integrator, max_depth,
+    light_tree, texture_filter, accel, as for :func:`render`.
+    """
+    impl = _scene_impl(scene, "explain")
+    for name, value in (("x", x), ("y", y), ("sample", sample)):
+        if isinstance(value, bool) or not isinstance(value, int):
+            raise TypeError(f"explain(): {name} must be int, not {type(value).__name__}")
+    words = _words("explain", options, _RUN_OPTIONS) + [f"--sample={sample}", "--", str(x), str(y)]
+    return json.loads(_sombra.explain(impl, words))
+
+
+def write_image(path: PathLike, array: np.ndarray, exposure: float = 0) -> None:
+    """Writes a (height, width, 3) float image, linear RGB, as the path's
+    extension says: .png (8-bit sRGB, radiance × 2^exposure), .pfm or .exr
+    (linear floats). The file is written whole or not at all.
+    Raises Error for a wrong shape, a NaN, or a file that cannot be written.
+    """
+    if isinstance(exposure, bool) or not isinstance(exposure, (int, float)):
+        raise TypeError(f"write_image(): exposure must be a number, not {type(exposure).__name__}")
+    if not math.isfinite(exposure):
+        raise Error(f"exposure: must be a finite number, not {exposure}")
+    _sombra.write_image(_path(path, "write_image"), array, float(exposure))
+
+
+def to_png(array: np.ndarray, exposure: float = 0) -> bytes:
+    """The PNG file write_image would write, as bytes (for notebooks:
+    ``IPython.display.Image(sombra.to_png(img))``)."""
+    if isinstance(exposure, bool) or not isinstance(exposure, (int, float)):
+        raise TypeError(f"to_png(): exposure must be a number, not {type(exposure).__name__}")
+    if not math.isfinite(exposure):
+        raise Error(f"exposure: must be a finite number, not {exposure}")
+    return _sombra.to_png(array, float(exposure))

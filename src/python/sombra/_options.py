@@ -1,0 +1,89 @@
+"""The keyword options of sombra's functions as command-line words, and
+the small conversions every function shares (private to the package)."""
+
+from __future__ import annotations
+
+import json
+import os
+import warnings
+from typing import Any, Callable, Mapping, Union
+
+import numpy as np
+
+from . import _sombra
+
+PathLike = Union[str, "os.PathLike[str]"]
+Progress = Union[bool, Callable[[int, int], Any], None]
+
+# keyword → (command-line option, the Python types it takes). bool is refused
+# where a number is asked for, though Python counts it an int.
+_INT = (int,)
+_NUMBER = (int, float)
+_STR = (str,)
+_SCENE_OPTIONS = {
+    "width": ("--width", _INT),
+    "height": ("--height", _INT),
+    "spp": ("--spp", _INT),
+    "seed": ("--seed", _INT),
+    "integrator": ("--integrator", _STR),
+    "max_depth": ("--max-depth", _INT),
+    "texture_filter": ("--texture-filter", _STR),
+}
+_RUN_OPTIONS = {
+    **_SCENE_OPTIONS,
+    "threads": ("--threads", _INT),
+    "accel": ("--accel", _STR),
+    "light_tree": ("--light-tree", _STR),
+}
+_RENDER_OPTIONS = {
+    **_RUN_OPTIONS,
+    "time": ("--time", _NUMBER),
+    "noise_threshold": ("--noise-threshold", _NUMBER),
+    "min_spp": ("--min-spp", _INT),
+}
+
+
+def _words(function: str, options: Mapping[str, Any], table: Mapping[str, tuple]) -> list[str]:
+    """The keyword options as command-line words ("--spp=64"), types checked."""
+    words = []
+    for key, value in options.items():
+        if key not in table:
+            raise TypeError(f"{function}() got an unexpected keyword argument '{key}'")
+        if value is None:
+            continue  # None means "as the scene says", like leaving the option out
+        flag, types = table[key]
+        if isinstance(value, bool) or not isinstance(value, types):
+            names = " or ".join(t.__name__ for t in types)
+            raise TypeError(f"{function}(): {key} must be {names}, not {type(value).__name__}")
+        words.append(f"{flag}={value!r}" if isinstance(value, float) else f"{flag}={value}")
+    return words
+
+
+def _warn(scene_impl: Any) -> None:
+    for text in scene_impl.warnings:
+        warnings.warn(f"sombra: {text}", RuntimeWarning, stacklevel=3)
+
+
+def _plain(value: Any) -> Any:
+    """A copy of a dict or list as plain JSON values (numpy numbers and
+    arrays as Python ones), so later changes to the caller's value do not
+    reach the scene."""
+    def convert(v: Any) -> Any:
+        if isinstance(v, np.ndarray):
+            return v.tolist()
+        if isinstance(v, np.generic):
+            return v.item()
+        raise TypeError(f"{type(v).__name__} is not a JSON value")
+    return json.loads(json.dumps(value, default=convert))
+
+
+def _path(path: PathLike, what: str) -> str:
+    if not isinstance(path, (str, os.PathLike)):
+        raise TypeError(f"{what}: expected a path (str or os.PathLike), not {type(path).__name__}")
+    text = os.fspath(path)
+    if not isinstance(text, str):
+        raise TypeError(f"{what}: expected a str path, not {type(text).__name__}")
+    if "\0" in text:
+        # The system would read the path up to the NUL, and open another file.
+        raise _sombra.Error(f"{text!r}: the path contains a NUL character")
+    return text

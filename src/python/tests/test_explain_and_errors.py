@@ -1,0 +1,114 @@
+"""sombra.explain against `sombra explain --json`, and how every mistake is reported."""
+
+import json
+import pathlib
+
+import numpy as np
+import pytest
+
+from conftest import import_sombra, run_cli
+
+sombra = import_sombra()
+
+
+@pytest.mark.parametrize("scene_file", ["scenes/cornell-box.json", "scenes/cornell-box-path.json"])
+def test_explain_is_the_command_lines_json(scene_file):
+    status, out, err = run_cli("explain", scene_file, 20, 17, "--sample", 1, "--spp", 4, "--width", 48,
+                               "--height", 36, "--json")
+    assert status == 0, err
+    story = sombra.explain(sombra.load(scene_file), 20, 17, sample=1, spp=4, width=48, height=36)
+    assert story == json.loads(out)
+    assert story["pixel"] == [20, 17] and story["sample"] == 1
+
+
+def test_a_missing_file_is_the_command_lines_one_line():
+    status, _, err = run_cli("render", "scenes/no-such.json", "-o", "/tmp/never.png", "-q")
+    assert status == 1
+    with pytest.raises(sombra.Error) as caught:
+        sombra.load("scenes/no-such.json")
+    assert "sombra: error: " + str(caught.value) == err.strip()
+    assert isinstance(caught.value, ValueError)
+
+
+def test_bad_option_values_are_errors_naming_the_option():
+    scene = sombra.load("scenes/cornell-box.json")
+    with pytest.raises(sombra.Error, match="^--spp: spp must be between 1 and 65536$"):
+        sombra.render(scene, spp=0)
+    with pytest.raises(sombra.Error, match="--integrator"):
+        sombra.render(scene, integrator="pth")
+    with pytest.raises(sombra.Error, match="unknown AOV 'colour'"):
+        sombra.render(scene, aov=["colour"])
+    with pytest.raises(sombra.Error, match="--time"):
+        sombra.render(scene, time=float("nan"))
+    with pytest.raises(sombra.Error, match=r"pixel \(48, 0\): outside the 48x36 image"):
+        sombra.explain(scene, 48, 0, width=48, height=36)
+
+
+def test_a_bad_dict_names_its_json_path():
+    d = {"camera": {"origin": [0, 0, 1], "look_at": [0, 0, 0], "fov": 40},
+         "materials": {"m": {"type": "diffuse", "kd": [0.5, 0.5]}},
+         "objects": [{"file": "models/cornell-box.obj"}]}
+    with pytest.raises(sombra.Error, match="/materials/m/kd"):
+        sombra.Scene.from_dict(d, base_dir="scenes")
+
+
+def test_wrong_types_raise_type_error():
+    scene = sombra.load("scenes/cornell-box.json")
+    with pytest.raises(TypeError):
+        sombra.render(scene, spp="4")
+    with pytest.raises(TypeError):
+        sombra.render(scene, spp=True)
+    with pytest.raises(TypeError):
+        sombra.render(scene, sppp=4)
+    with pytest.raises(TypeError):
+        sombra.render("scenes/cornell-box.json")
+    with pytest.raises(TypeError):
+        sombra.load(42)
+    with pytest.raises(TypeError):
+        sombra.explain(scene, 1.5, 2)
+    with pytest.raises(TypeError):
+        sombra.Scene.from_dict([1, 2])
+    with pytest.raises(TypeError):
+        sombra.write_image("/tmp/x.pfm", [[[0.0, 0.0, 0.0]]])
+    with pytest.raises(TypeError):
+        sombra.to_png(np.zeros((2, 2, 3), dtype=np.int32))
+
+
+@pytest.mark.parametrize("array,message", [
+    (np.zeros((4, 4), dtype=np.float32), r"shape \(4, 4\) is not \(height, width, 3\)"),
+    (np.zeros((4, 4, 4), dtype=np.float32), r"shape \(4, 4, 4\)"),
+    (np.zeros((0, 4, 3), dtype=np.float32), r"shape \(0, 4, 3\)"),
+    (np.full((2, 3, 3), np.nan, dtype=np.float32), r"NaN at pixel \(0, 0\)"),
+])
+def test_hostile_images_are_refused(tmp_path, array, message):
+    with pytest.raises(sombra.Error, match=message):
+        sombra.write_image(tmp_path / "x.pfm", array)
+    with pytest.raises(sombra.Error, match=message):
+        sombra.to_png(array)
+    assert not (tmp_path / "x.pfm").exists()
+
+
+def test_a_non_finite_exposure_is_refused(tmp_path):
+    image = np.ones((2, 2, 3), dtype=np.float32)
+    with pytest.raises(sombra.Error, match="exposure"):
+        sombra.write_image(tmp_path / "x.png", image, exposure=float("inf"))
+    with pytest.raises(sombra.Error, match="exposure"):
+        sombra.to_png(image, exposure=float("nan"))
+    assert not (tmp_path / "x.png").exists()
+
+
+def test_write_image_round_trips_through_pfm_and_png(tmp_path):
+    from conftest import read_pfm
+    rng = np.random.default_rng(1)
+    image = rng.random((5, 7, 3), dtype=np.float32) * 4
+    sombra.write_image(tmp_path / "x.pfm", image)
+    assert read_pfm(tmp_path / "x.pfm").tobytes() == image.tobytes()
+    # A non-contiguous float64 view is taken as the float32 values it rounds to.
+    sombra.write_image(str(tmp_path / "y.pfm"), image.astype(np.float64)[:, ::-1][:, ::-1])
+    assert read_pfm(tmp_path / "y.pfm").tobytes() == image.tobytes()
+    sombra.write_image(tmp_path / "z.pfm", image.astype(">f4"))  # big-endian float32 is float32
+    assert read_pfm(tmp_path / "z.pfm").tobytes() == image.tobytes()
+    sombra.write_image(tmp_path / "x.png", image, exposure=-1)
+    png = pathlib.Path(tmp_path / "x.png").read_bytes()
+    assert png.startswith(b"\x89PNG") and png == sombra.to_png(image, exposure=-1)
+    assert png != sombra.to_png(image)

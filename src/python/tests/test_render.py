@@ -1,0 +1,86 @@
+"""sombra.render against `sombra render`: the same floats, the AOVs, the time budget."""
+
+import time
+
+import numpy as np
+import pytest
+
+from conftest import import_sombra, read_pfm, run_cli
+
+sombra = import_sombra()
+
+SMALL = dict(width=48, height=36)
+
+
+@pytest.mark.parametrize("scene_file,spp", [("scenes/cornell-box.json", 4), ("scenes/cornell-box-path.json", 8)])
+def test_render_equals_the_command_lines_pfm_float_for_float(tmp_path, scene_file, spp):
+    out = tmp_path / "cli.pfm"
+    status, _, err = run_cli("render", scene_file, "-o", out, "-q", "--width", 48, "--height", 36, "--spp", spp)
+    assert status == 0, err
+    image = sombra.render(sombra.load(scene_file), spp=spp, **SMALL)
+    assert image.dtype == np.float32 and image.shape == (36, 48, 3)
+    assert image.any()
+    assert image.tobytes() == read_pfm(out).tobytes()
+
+
+def test_overrides_given_to_load_equal_those_given_to_render():
+    a = sombra.render(sombra.load("scenes/cornell-box.json", spp=2, seed=3, **SMALL))
+    b = sombra.render(sombra.load("scenes/cornell-box.json"), spp=2, seed=3, **SMALL)
+    c = sombra.render(sombra.load("scenes/cornell-box.json"), spp=2, seed=4, **SMALL)
+    assert a.tobytes() == b.tobytes()
+    assert a.tobytes() != c.tobytes()  # the seed reached the render
+
+
+def test_from_dict_renders_as_the_file_does():
+    import json
+    with open("scenes/cornell-box.json") as f:
+        d = json.load(f)
+    a = sombra.render(sombra.Scene.from_dict(d, base_dir="scenes"), **SMALL)
+    b = sombra.render(sombra.load("scenes/cornell-box.json"), **SMALL)
+    assert a.tobytes() == b.tobytes()
+
+
+def test_aovs_come_back_as_a_dict_of_arrays():
+    scene = sombra.load("scenes/cornell-box.json")
+    out = sombra.render(scene, spp=4, aov=["albedo", "normal", "position", "depth", "spp"], **SMALL)
+    assert set(out) == {"color", "albedo", "normal", "position", "depth", "spp"}
+    for name in ("color", "albedo", "normal", "position"):
+        assert out[name].shape == (36, 48, 3) and out[name].dtype == np.float32
+    for name in ("depth", "spp"):
+        assert out[name].shape == (36, 48)
+    assert (out["spp"] == 4).all()  # every pixel took the 4 samples asked for
+    assert out["color"].tobytes() == sombra.render(scene, spp=4, **SMALL).tobytes()  # the AOVs change nothing
+    # A pixel where every sample hits: the mean of unit normals is at most 1 long, and not 0.
+    centre = np.linalg.norm(out["normal"][18, 24])
+    assert 0.5 < centre <= 1.0 + 1e-5
+    assert np.isfinite(out["depth"][18, 24]) and out["depth"][18, 24] > 0
+
+
+def test_a_time_budget_returns_and_equals_the_spp_it_reached():
+    scene = sombra.load("scenes/cornell-box-path.json")
+    start = time.monotonic()
+    out = sombra.render(scene, time=0.3, aov=["spp"], **SMALL)
+    assert time.monotonic() - start < 3.0
+    reached = int(out["spp"][0, 0])
+    assert reached >= 2 and (out["spp"] == reached).all()
+    again = sombra.render(scene, spp=reached, **SMALL)
+    assert out["color"].tobytes() == again.tobytes()
+
+
+def test_a_progress_callable_is_called_and_its_exception_stops_the_render():
+    calls = []
+
+    def progress(done, total):
+        calls.append((done, total))
+        raise RuntimeError("stop here")
+
+    scene = sombra.load("scenes/cornell-box-path.json")
+    start = time.monotonic()
+    with pytest.raises(RuntimeError, match="stop here"):
+        sombra.render(scene, width=256, height=256, spp=4096, threads=1, progress=progress)
+    assert time.monotonic() - start < 2.0
+    assert len(calls) == 1 and calls[0][1] == 256 * 256 * 4096 and 0 <= calls[0][0] <= calls[0][1]
+    # The scene is still usable, and a render that ends reports its end.
+    calls.clear()
+    sombra.render(scene, spp=2, width=8, height=8, progress=lambda done, total: calls.append((done, total)))
+    assert calls[-1] == (8 * 8 * 2, 8 * 8 * 2)

@@ -1,0 +1,130 @@
+"""Scenes built from code: meshes from numpy arrays render as the same mesh
+from an OBJ file, and every piece is checked when it is given."""
+
+import json
+
+import numpy as np
+import pytest
+
+from conftest import REPO, import_sombra
+
+sombra = import_sombra()
+
+CHECKER = str(REPO / "scenes" / "textures" / "checker.png")
+MATERIALS = {"floor": {"type": "diffuse", "kd": {"texture": CHECKER}},
+             "gold": {"type": "phong", "kd": [0.5, 0.4, 0.1], "ks": [0.4, 0.4, 0.3], "shininess": 40}}
+LIGHTS = [{"type": "point", "position": [0.5, 3, 2], "intensity": [12, 12, 12]},
+          {"type": "quad", "corner": [-1, 2.5, -1], "edge1": [1, 0, 0], "edge2": [0, 0, 1], "radiance": [3, 3, 3]}]
+CAMERA = {"origin": [0, 1.5, 4], "look_at": [0, 0.3, 0], "fov": 45}
+RENDER = {"width": 40, "height": 30, "spp": 4, "integrator": "path", "max_depth": 3}
+TRANSFORM = [{"rotate": {"axis": [0, 1, 0], "degrees": 30}}, {"translate": [0.2, 0.1, 0]}]
+
+
+def wavy_grid(n=6):
+    """A bumpy grid with normals and uvs, float32 values."""
+    u, v = np.meshgrid(np.linspace(0, 1, n), np.linspace(0, 1, n))
+    x, z = u * 2 - 1, v * 2 - 1
+    y = 0.15 * np.sin(3 * x) * np.cos(2 * z)
+    positions = np.stack([x, y, z], -1).reshape(-1, 3).astype(np.float32)
+    normals = np.stack([-0.45 * np.cos(3 * x) * np.cos(2 * z), np.ones_like(x), 0.3 * np.sin(3 * x) * np.sin(2 * z)],
+                       -1).reshape(-1, 3).astype(np.float32)
+    uvs = np.stack([u, v], -1).reshape(-1, 2).astype(np.float32)
+    q = np.arange(n * n).reshape(n, n)[:-1, :-1].ravel()
+    indices = np.concatenate([np.stack([q, q + n, q + 1], -1), np.stack([q + 1, q + n, q + n + 1], -1)])
+    return positions, indices, normals, uvs
+
+
+def write_obj(path, positions, indices, normals, uvs):
+    # %.9g writes each float32 so that it reads back as the same float32.
+    with open(path, "w") as f:
+        for p in positions:
+            f.write("v %.9g %.9g %.9g\n" % tuple(p))
+        for n in normals:
+            f.write("vn %.9g %.9g %.9g\n" % tuple(n))
+        for t in uvs:
+            f.write("vt %.9g %.9g\n" % tuple(t))
+        for a, b, c in indices + 1:
+            f.write(f"f {a}/{a}/{a} {b}/{b}/{b} {c}/{c}/{c}\n")
+
+
+def code_scene(positions, indices, normals, uvs):
+    s = sombra.Scene()
+    for name, m in MATERIALS.items():
+        s.add_material(name, m)
+    for light in LIGHTS:
+        s.add_light(light)
+    s.camera = CAMERA
+    s.render_settings = RENDER
+    s.add_mesh(positions, indices, normals=normals, uvs=uvs, material="floor")
+    s.add_mesh(positions * 0.3, indices, normals=normals, material="gold", transform=TRANSFORM)
+    return s
+
+
+def test_a_mesh_from_arrays_renders_as_the_same_mesh_from_an_obj_file(tmp_path):
+    positions, indices, normals, uvs = wavy_grid()
+    write_obj(tmp_path / "grid.obj", positions, indices, normals, uvs)
+    write_obj(tmp_path / "small.obj", positions * 0.3, indices, normals, np.zeros((0, 2)))
+    scene_file = {"render": RENDER, "camera": CAMERA, "materials": MATERIALS, "lights": LIGHTS,
+                  "objects": [{"file": "grid.obj", "material": "floor"},
+                              {"file": "small.obj", "material": "gold", "transform": TRANSFORM}]}
+    (tmp_path / "scene.json").write_text(json.dumps(scene_file))
+    from_file = sombra.render(sombra.load(tmp_path / "scene.json"))
+    from_code = sombra.render(code_scene(positions, indices, normals, uvs))
+    assert from_file.shape == (30, 40, 3) and from_file.std() > 0
+    assert from_code.tobytes() == from_file.tobytes()
+    # The arrays were copied: changing them afterwards changes nothing.
+    s = code_scene(positions, indices, normals, uvs)
+    positions[:] = 0
+    assert sombra.render(s).tobytes() == from_file.tobytes()
+
+
+def test_pieces_are_checked_when_given():
+    s = sombra.Scene()
+    with pytest.raises(sombra.Error, match=r"^<scene>: /materials/x/kd: expected an array of 3 numbers$"):
+        s.add_material("x", {"type": "diffuse", "kd": [1, 2]})
+    with pytest.raises(sombra.Error, match=r"/lights/0/position: missing required key 'position'"):
+        s.add_light({"type": "spot"})
+    with pytest.raises(sombra.Error, match=r"^<scene>: /camera"):
+        s.camera = {"origin": [0, 0, 0]}
+    with pytest.raises(sombra.Error, match=r"/render/spp: must be between 1 and 65536"):
+        s.render_settings = {"spp": 0}
+    assert s.render_settings["spp"] == 1  # the refused value was not kept
+    with pytest.raises(sombra.Error, match=r"/objects/0/transform/0/scale"):
+        s.add_mesh(np.eye(3), np.array([[0, 1, 2]]), transform=[{"scale": 0}])
+    with pytest.raises(sombra.Error, match=r"/objects/0/material: unknown material 'nope'"):
+        s.add_mesh(np.eye(3), np.array([[0, 1, 2]]), material="nope")
+    with pytest.raises(sombra.Error, match="/camera"):
+        sombra.render(s)  # nothing was added, and a render needs a camera
+
+
+@pytest.mark.parametrize("positions,indices,error,message", [
+    (np.array([[np.nan, 0, 0], [1, 0, 0], [0, 1, 0]]), [[0, 1, 2]], sombra.Error, r"positions\[0\] is not finite"),
+    (np.eye(3), [[0, 1, 3]], sombra.Error, r"indices\[0\] refers to vertex 3, past the 3 vertices"),
+    (np.eye(3), [[0, -1, 2]], sombra.Error, r"indices\[0\] holds -1"),
+    (np.eye(3), [[0, 1, 2**40]], sombra.Error, r"indices\[0\] holds 1099511627776"),
+    (np.eye(3), np.array([[0, 1, 2**64 - 1]], dtype=np.uint64), sombra.Error, r"holds 18446744073709551615,"),
+    (np.eye(3)[:, :2], [[0, 1, 2]], sombra.Error, r"positions: shape \(3, 2\) is not \(N, 3\)"),
+    (np.eye(3), [0, 1, 2], sombra.Error, r"indices: shape \(3,\) is not \(N, 3\)"),
+    (np.eye(3), np.zeros((0, 3), dtype=int), sombra.Error, "no triangles"),
+    (np.eye(3).tolist(), [[0, 1, 2]], TypeError, "positions: expected a numpy array"),
+    (np.eye(3).astype(np.int32), [[0, 1, 2]], TypeError, "positions: expected a float dtype"),
+    (np.eye(3), np.array([[0.0, 1.0, 2.0]]), TypeError, "indices: expected an integer dtype"),
+])
+def test_hostile_arrays_are_refused(positions, indices, error, message):
+    s = sombra.Scene()
+    with pytest.raises(error, match=message):
+        s.add_mesh(positions, np.asarray(indices) if isinstance(indices, list) else indices)
+    assert s.triangle_count == 0
+
+
+def test_normals_and_uvs_must_match_the_vertices():
+    s = sombra.Scene()
+    with pytest.raises(sombra.Error, match="2 normals for 3 vertices"):
+        s.add_mesh(np.eye(3), np.array([[0, 1, 2]]), normals=np.eye(3)[:2])
+    with pytest.raises(sombra.Error, match=r"uvs: shape \(3, 3\) is not \(N, 2\)"):
+        s.add_mesh(np.eye(3), np.array([[0, 1, 2]]), uvs=np.eye(3))
+
+
+def test_a_scene_read_from_a_file_is_not_built_from_code():
+    with pytest.raises(TypeError, match="sombra.Scene()"):
+        sombra.load("scenes/cornell-box.json").add_light({"position": [0, 1, 0], "intensity": [1, 1, 1]})
