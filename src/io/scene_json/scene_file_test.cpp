@@ -1,12 +1,13 @@
 #include "io/scene_json/scene_file.h"
 
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <cmath>
 #include <fstream>
 #include <string>
 #include <vector>
+
+#include "io/scene_json/scene_file_fixture.h"
 
 namespace sombra {
 namespace {
@@ -14,35 +15,19 @@ namespace {
 namespace fs = std::filesystem;
 
 // A folder of tiny meshes and a scene file on disk, shared by the tests.
-class SceneFile : public ::testing::Test {
+class SceneFile : public testing::SceneFileTest {
 protected:
-    static inline fs::path dir;
-    static inline fs::path scene_path;
-
     static void SetUpTestSuite() {
-        dir = fs::temp_directory_path() / ("sombra_scene_file_test_" + std::to_string(::getpid()));
+        make_folder("scene_file_test");
         fs::create_directories(dir / "models");
-        // One triangle on the axes; no normals, no materials.
-        write(dir / "tri.obj", "v 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 2 3\n");
         // The plane x + y = 1 with its normal at every corner.
         write(dir / "tilted.obj", "v 1 0 0\nv 0 1 0\nv 1 0 1\nvn 0.70710678 0.70710678 0\nf 1//1 2//1 3//1\n");
         // Two triangles with two MTL materials.
         write(dir / "two.mtl", "newmtl red\nKd 1 0 0\nnewmtl shiny\nKd 0.2 0.2 0.2\nKs 0.5 0.5 0.5\nNs 20\n");
         write(dir / "two.obj",
               "mtllib two.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nusemtl red\nf 1 2 3\nusemtl shiny\nf 2 4 3\n");
-        scene_path = dir / "scene.json";
         write(scene_path, "{}");
     }
-    static void TearDownTestSuite() {
-        std::error_code ec;
-        fs::remove_all(dir, ec);
-    }
-    static void write(const fs::path& path, const std::string& text) { std::ofstream(path, std::ios::binary) << text; }
-
-    Scene load(const std::string& text) { return load_scene_text(text, scene_path, diag).scene; }
-    RenderSettings settings_of(const std::string& text) { return load_scene_text(text, scene_path, diag).settings; }
-
-    Diagnostics diag;
 };
 
 constexpr const char* kCamera = R"("camera": {"origin": [0, 0, 5], "look_at": [0, 0, 0]})";

@@ -2,31 +2,24 @@
 // mirror, dielectric, conductor and pbr materials, quad lights, environment maps
 // (with the clamp_negative extension), and winding under mirroring transforms.
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <cmath>
-#include <fstream>
 #include <string>
 #include <vector>
 
 #include "io/images/exr_test_file.h"
 #include "io/scene_json/scene_file.h"
+#include "io/scene_json/scene_file_fixture.h"
 
 namespace sombra {
 namespace {
 
-namespace fs = std::filesystem;
 using testing::write_exr;
 
-class SceneV2 : public ::testing::Test {
+class SceneV2 : public testing::SceneFileTest {
 protected:
-    static inline fs::path dir;
-    static inline fs::path scene_path;
-
     static void SetUpTestSuite() {
-        dir = fs::temp_directory_path() / ("sombra_scene_v2_test_" + std::to_string(::getpid()));
-        fs::create_directories(dir);
-        write(dir / "tri.obj", "v 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 2 3\n");
+        make_folder("scene_v2_test");
         // Each corner's normal points along its position (all distinct), and a uv per corner.
         write(dir / "normals.obj",
               "v 1 0 0\nv 0 1 0\nv 0 0 1\nvn 1 0 0\nvn 0 1 0\nvn 0 0 1\nvt 0 0\nvt 1 0\nvt 0 1\n"
@@ -36,28 +29,7 @@ protected:
         ringing[3 * 5 + 1] = -2.5f;  // pixel (1, 1)
         ringing[3 * 6 + 0] = -0.5f;
         write_exr(dir / "ringing.exr", 4, 2, ringing);
-        scene_path = dir / "scene.json";
     }
-    static void TearDownTestSuite() {
-        std::error_code ec;
-        fs::remove_all(dir, ec);
-    }
-    static void write(const fs::path& path, const std::string& text) { std::ofstream(path, std::ios::binary) << text; }
-
-    Scene load(const std::string& text) { return load_scene_text(text, scene_path, diag).scene; }
-    RenderSettings settings_of(const std::string& text) { return load_scene_text(text, scene_path, diag).settings; }
-
-    // The Error message of loading `text` ("" when it loads).
-    std::string error_of(const std::string& text) {
-        try {
-            load(text);
-        } catch (const Error& e) {
-            return e.what();
-        }
-        return "";
-    }
-
-    Diagnostics diag;
 };
 
 constexpr const char* kCamera = R"("camera": {"origin": [0, 0, 5], "look_at": [0, 0, 0]})";

@@ -2,47 +2,20 @@
 // thin lens (spec §17), as read, and every hostile value as one error that
 // names where and what.
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <cmath>
-#include <fstream>
 #include <string>
 #include <vector>
 
 #include "io/scene_json/scene_file.h"
+#include "io/scene_json/scene_file_fixture.h"
 
 namespace sombra {
 namespace {
 
-namespace fs = std::filesystem;
-
-class SceneV3 : public ::testing::Test {
+class SceneV3 : public testing::SceneFileTest {
 protected:
-    static inline fs::path dir;
-    static inline fs::path scene_path;
-
-    static void SetUpTestSuite() {
-        dir = fs::temp_directory_path() / ("sombra_scene_v3_test_" + std::to_string(::getpid()));
-        fs::create_directories(dir);
-        std::ofstream(dir / "tri.obj", std::ios::binary) << "v 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 2 3\n";
-        scene_path = dir / "scene.json";
-    }
-    static void TearDownTestSuite() {
-        std::error_code ec;
-        fs::remove_all(dir, ec);
-    }
-
-    Scene load(const std::string& text) { return load_scene_text(text, scene_path, diag).scene; }
-    std::string error_of(const std::string& text) {
-        try {
-            load(text);
-        } catch (const Error& e) {
-            return e.what();
-        }
-        return "";
-    }
-
-    Diagnostics diag;
+    static void SetUpTestSuite() { make_folder("scene_v3_test"); }
 };
 
 constexpr const char* kCamera = R"("camera": {"origin": [0, 0, 5], "look_at": [0, 0, 0]})";
