@@ -31,6 +31,10 @@ public:
     Accumulation(int width, int height, bool moments, AovSet aovs);
 
     std::size_t pixels() const { return count_.size(); }
+    // Pixel (i, j)'s index in the arrays (row-major, top row first).
+    std::size_t index(int i, int j) const {
+        return static_cast<std::size_t>(j) * static_cast<std::size_t>(width_) + static_cast<std::size_t>(i);
+    }
     std::uint32_t count(std::size_t pixel) const { return count_[pixel]; }
     bool done(std::size_t pixel) const { return done_[pixel] != 0; }
     void finish(std::size_t pixel) { done_[pixel] = 1; }
@@ -67,10 +71,6 @@ public:
     static constexpr double kLuminanceFloor = 1e-3;
 
 private:
-    std::size_t index(int i, int j) const {
-        return static_cast<std::size_t>(j) * static_cast<std::size_t>(width_) + static_cast<std::size_t>(i);
-    }
-
     int width_ = 0, height_ = 0;
     AovSet aovs_;
     std::vector<float> rgb_sum_;  // 3 a pixel

@@ -62,8 +62,7 @@ Vec3 trace_sample(const RenderJob& job, const IntegratorContext& ctx, std::uint6
 void sample_pixel(const RenderJob& job, const IntegratorContext& ctx, Accumulation& acc, int i, int j,
                   std::uint32_t end, RayCounters& counters) {
     const RenderSettings& s = job.settings;
-    const std::size_t pixel =
-        static_cast<std::size_t>(j) * static_cast<std::size_t>(s.width) + static_cast<std::size_t>(i);
+    const std::size_t pixel = acc.index(i, j);
     const std::uint64_t key = pixel_key(s.seed, i, j, s.width);
     const bool first_hits = job.aovs.needs_first_hit();
     for (std::uint32_t k = acc.count(pixel); k < end; ++k) {
@@ -89,8 +88,7 @@ void stop_converged_pixels(const RenderJob& job, Accumulation& acc) {
     std::vector<std::uint8_t> stop(acc.pixels(), 0);
     tbb::parallel_for(0, s.height, [&](int j) {
         for (int i = 0; i < s.width; ++i) {
-            const std::size_t pixel =
-                static_cast<std::size_t>(j) * static_cast<std::size_t>(s.width) + static_cast<std::size_t>(i);
+            const std::size_t pixel = acc.index(i, j);
             if (acc.done(pixel) || acc.count(pixel) < min_spp) continue;
             stop[pixel] = acc.luminance_standard_error(i, j) <=
                           threshold * std::max(acc.luminance_mean(pixel), Accumulation::kLuminanceFloor);
@@ -187,8 +185,7 @@ RenderOutput render_image(const RenderJob& job, RenderProgress& progress) {
                     for (int i = tile.cols().begin(); i < tile.cols().end(); ++i) {
                         // Checked per pixel too: at thousands of samples a tile can take seconds.
                         if (progress.cancel.load(std::memory_order_relaxed)) return;
-                        const std::size_t pixel = static_cast<std::size_t>(j) * static_cast<std::size_t>(rs.width) +
-                                                  static_cast<std::size_t>(i);
+                        const std::size_t pixel = acc.index(i, j);
                         if (acc.done(pixel)) continue;
                         const std::uint32_t before = acc.count(pixel);
                         sample_pixel(job, ctx, acc, i, j, pass_end, counters);
