@@ -28,8 +28,9 @@ float bounding_radius(const TriangleMesh& mesh) {
     return r > 0.0f && std::isfinite(r) ? r : 1.0f;
 }
 
-// Triangles subtending a solid angle in this range are sampled uniformly
-// over it (spherical triangles); outside it by area. Below the range d² and
+// Triangles subtending a solid angle in this range (estimated first, see
+// spherical_triangle_to_sample) are sampled uniformly over it (spherical
+// triangles); outside it by area. Below the range d² and
 // cos θ vary little over the triangle, so area sampling is nearly as good
 // and cheaper: measured (docs/performance.md, "Sampling triangle lights"),
 // the Cornell box's light (about 0.02 sr per triangle from the floor) is
@@ -41,6 +42,23 @@ constexpr double kMaxSphericalSolidAngle = 6.0;
 
 bool sample_by_solid_angle(const SphericalTriangle& t) {
     return t.solid_angle >= kMinSphericalSolidAngle && t.solid_angle <= kMaxSphericalSolidAngle;
+}
+
+// The spherical triangle of p0 p1 p2 seen from x when it is to be sampled by
+// solid angle, or an empty one (solid angle 0: sampled by area). The choice
+// is made on the solid angle estimated from the centroid c, area · |cos θ_c|
+// / |x − c|², in float: building the spherical triangle (double precision,
+// atan2, asin) to decide was a tenth of the path-traced Cornell box's render
+// instructions, for the 5 % of its shading points that see the light above
+// kMinSphericalSolidAngle. Any choice that is a function of x and the
+// triangle alone keeps the estimator unbiased, as long as sample_light and
+// pdf_light_triangle make the same one.
+SphericalTriangle spherical_triangle_to_sample(Vec3 x, Vec3 p0, Vec3 p1, Vec3 p2, Vec3 unit_normal, float area) {
+    const Vec3 to_x = x - (1.0f / 3.0f) * (p0 + p1 + p2);
+    const float dist2 = dot(to_x, to_x);
+    const float cos_area = std::fabs(dot(unit_normal, to_x)) * area;  // |cos θ_c| · area · |x − c|
+    if (!(cos_area >= static_cast<float>(kMinSphericalSolidAngle) * dist2 * std::sqrt(dist2))) return {};
+    return make_spherical_triangle(x, p0, p1, p2);
 }
 
 // Solid-angle density of area-uniform sampling of a triangle of `area` at
@@ -156,7 +174,8 @@ bool sample_light(const LightSet& lights, const Scene& scene, Vec3 x, Vec3 n, fl
     const std::uint32_t triangle = lights.emitters[chosen];
     const auto [p0, p1, p2] = triangle_corners(scene.geometry, triangle);
     const Vec3 n_w = normalize(cross(p1 - p0, p2 - p0));
-    const SphericalTriangle spherical = make_spherical_triangle(x, p0, p1, p2);
+    const SphericalTriangle spherical =
+        spherical_triangle_to_sample(x, p0, p1, p2, n_w, lights.emitter_areas[chosen]);
     Vec3 y, wi;
     float pdf = 0;
     if (sample_by_solid_angle(spherical)) {
@@ -203,9 +222,9 @@ float pdf_light_triangle(const LightSet& lights, const Scene& scene, std::uint32
                                          : lights.choice_probability[e];
     if (!(choice > 0.0f)) return 0.0f;
     const auto [p0, p1, p2] = triangle_corners(scene.geometry, triangle);
-    const SphericalTriangle spherical = make_spherical_triangle(x, p0, p1, p2);
-    if (sample_by_solid_angle(spherical)) return choice * static_cast<float>(1.0 / spherical.solid_angle);
     const Vec3 n_w = normalize(cross(p1 - p0, p2 - p0));
+    const SphericalTriangle spherical = spherical_triangle_to_sample(x, p0, p1, p2, n_w, lights.emitter_areas[e]);
+    if (sample_by_solid_angle(spherical)) return choice * static_cast<float>(1.0 / spherical.solid_angle);
     return choice * area_to_solid_angle(x, y, n_w, lights.emitter_areas[e]);
 }
 

@@ -84,6 +84,32 @@ TEST(Lights, SampledDensityEqualsTheDensityOfTheSampledPoint) {
     }
 }
 
+TEST(Lights, SamplingAndDensityAgreeOnBothSidesOfTheStrategyChoice) {
+    // Shading points from 0.05 to 20 units away from a triangle light, above
+    // it and beside it: the near ones see it by solid angle, the far ones by
+    // area, and some near the choice's threshold. Wherever x is, the density a
+    // sample reports must be the one pdf_light_triangle gives for its point.
+    Scene scene = two_emitters_and_a_floor();
+    scene.materials[2].ke = Vec3{0.0f};  // only the near light remains
+    const LightSet lights = make_light_set(scene, make_constant_environment(Vec3{0.0f}), true, LightSelection::Power);
+    ASSERT_EQ(lights.emitters.size(), 1u);
+    int checked = 0;
+    for (int step = 0; step < 400; ++step) {
+        const auto i = static_cast<std::uint32_t>(step);
+        const float distance = 0.05f * std::pow(400.0f, static_cast<float>(step % 40) / 39.0f);
+        const float angle = static_cast<float>(step / 40) * 0.15f;  // from straight below to nearly in plane
+        const Vec3 x{distance * std::sin(angle), 2.0f - distance * std::cos(angle), 0.1f};
+        LightSample ls;
+        if (!sample_light(lights, scene, x, Vec3{0, 1, 0}, hash_to_unit(i, 4), hash_to_unit(i, 5), hash_to_unit(i, 6),
+                          ls))
+            continue;
+        ++checked;
+        const float pdf = pdf_light_triangle(lights, scene, 1, x, Vec3{0, 1, 0}, ls.target);
+        EXPECT_NEAR(ls.pdf, pdf, 1e-3f * ls.pdf) << "x = " << x.x << " " << x.y << " " << x.z;
+    }
+    EXPECT_GT(checked, 300);
+}
+
 TEST(Lights, SmallDistantTrianglesAreSampledUniformlyByArea) {
     // Seen from the floor, the far light subtends well under 1e-3 sr, so it
     // is sampled by area: every cell of its 4-fold midpoint subdivision
