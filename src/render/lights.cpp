@@ -174,8 +174,7 @@ bool sample_light(const LightSet& lights, const Scene& scene, Vec3 x, Vec3 n, fl
     const std::uint32_t triangle = lights.emitters[chosen];
     const auto [p0, p1, p2] = triangle_corners(scene.geometry, triangle);
     const Vec3 n_w = normalize(cross(p1 - p0, p2 - p0));
-    const SphericalTriangle spherical =
-        spherical_triangle_to_sample(x, p0, p1, p2, n_w, lights.emitter_areas[chosen]);
+    const SphericalTriangle spherical = spherical_triangle_to_sample(x, p0, p1, p2, n_w, lights.emitter_areas[chosen]);
     Vec3 y, wi;
     float pdf = 0;
     if (sample_by_solid_angle(spherical)) {
