@@ -97,7 +97,8 @@ TEST(Lights, SamplingAndDensityAgreeOnBothSidesOfTheStrategyChoice) {
     for (int step = 0; step < 400; ++step) {
         const auto i = static_cast<std::uint32_t>(step);
         const float distance = 0.05f * std::pow(400.0f, static_cast<float>(step % 40) / 39.0f);
-        const float angle = static_cast<float>(step / 40) * 0.15f;  // from straight below to nearly in plane
+        const int row = step / 40;
+        const float angle = static_cast<float>(row) * 0.15f;  // from straight below to nearly in plane
         const Vec3 x{distance * std::sin(angle), 2.0f - distance * std::cos(angle), 0.1f};
         LightSample ls;
         if (!sample_light(lights, scene, x, Vec3{0, 1, 0}, hash_to_unit(i, 4), hash_to_unit(i, 5), hash_to_unit(i, 6),
