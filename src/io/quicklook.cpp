@@ -73,7 +73,10 @@ LoadedScene make_quicklook_scene(const std::filesystem::path& model, Diagnostics
     // horizontal one is wider for landscape images), with a 10 % margin.
     const float half_fov = kFovDegrees * 0.5f * std::numbers::pi_v<float> / 180.0f;
     const float distance = 1.1f * sphere.radius / std::sin(half_fov);
-    const Vec3 view_dir = normalize(Vec3{0.0f, 0.35f, 1.0f});  // front, a little above
+    // A three-quarter view from the front (+z, glTF's and most OBJ files'
+    // front) and its left, 24° above: the Stanford bunny and dragon, which
+    // face −x, show their heads, and boxy models show three faces.
+    const Vec3 view_dir = normalize(Vec3{-0.5f, 0.45f, 0.9f});
     if (!camera.look_at)
         camera.look_at = CameraLookAt{sphere.centre + distance * view_dir, sphere.centre, Vec3{0, 1, 0}, kFovDegrees};
     builder.set_camera(camera);

@@ -10,8 +10,8 @@
 namespace sombra {
 
 // Loads the model and frames it: a look-at camera with a 40° vertical field
-// of view, in front of the model (+z) and a little above, at the distance
-// where the bounding sphere fits the frame; a key, a fill and a rim light
+// of view, in a three-quarter view from the model's front (+z), left and
+// above, at the distance where the bounding sphere fits the frame; a key, a fill and a rim light
 // scaled to the model's size so the lit side shows mid-grey to light tones;
 // the model's own MTL materials, or neutral grey. Assumes +y is up. A glTF
 // file's first perspective camera replaces the framing (its aspect ratio
