@@ -73,9 +73,31 @@ py::dict settings_dict(const RenderSettings& r) {
     return d;
 }
 
+py::list vec3_list(Vec3 v) { return py::cast(std::vector<float>{v.x, v.y, v.z}); }
+
+// The camera as a scene file's "camera" object would give it (spec §3, §17).
+py::dict camera_dict(const CameraSpec& c) {
+    py::dict d;
+    if (c.look_at) {
+        d["origin"] = vec3_list(c.look_at->origin);
+        d["look_at"] = vec3_list(c.look_at->look_at);
+        d["up"] = vec3_list(c.look_at->up);
+        d["fov"] = c.look_at->fov_degrees;
+    } else if (c.basis) {
+        d["origin"] = vec3_list(c.basis->origin);
+        d["left"] = vec3_list(c.basis->left);
+        d["up"] = vec3_list(c.basis->up);
+        d["forward"] = vec3_list(c.basis->forward);
+    }
+    if (c.aperture_radius > 0) d["aperture_radius"] = c.aperture_radius;
+    if (c.focus_distance) d["focus_distance"] = *c.focus_distance;
+    return d;
+}
+
 void bind_scene(py::module_& m) {
     py::class_<PyScene, std::shared_ptr<PyScene>>(m, "Scene")
         .def_property_readonly("render_settings", [](const PyScene& s) { return settings_dict(s.loaded.settings); })
+        .def_property_readonly("camera", [](const PyScene& s) { return camera_dict(s.loaded.scene.camera); })
         .def_readonly("source", &PyScene::source)
         .def_readonly("warnings", &PyScene::warnings)
         .def_property_readonly("triangle_count",

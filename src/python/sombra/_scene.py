@@ -142,10 +142,15 @@ class Scene:
 
     @property
     def camera(self) -> Optional[dict]:
-        """The camera, a dict as in a scene file's "camera" (spec §3, §17);
-        None until set (a scene from code)."""
+        """The camera, a dict as in a scene file's "camera" (spec §3, §17):
+        the look-at form (origin, look_at, up, fov) or the basis form
+        (origin, left, up, forward), with aperture_radius and
+        focus_distance when it has a lens. A quick look's is the framing it
+        chose (spec §7); a scene from code's is None until set. Read-only
+        for a scene read from a file or a dict: render it from elsewhere
+        with ``Scene.from_dict`` and another "camera"."""
         if self._meshes is None:
-            raise TypeError("Scene.camera: the camera of a scene read from a file is not shown yet")
+            return self._impl.camera
         return None if self._camera is None else json.loads(json.dumps(self._camera))
 
     @camera.setter

@@ -84,3 +84,26 @@ def test_a_progress_callable_is_called_and_its_exception_stops_the_render():
     calls.clear()
     sombra.render(scene, spp=2, width=8, height=8, progress=lambda done, total: calls.append((done, total)))
     assert calls[-1] == (8 * 8 * 2, 8 * 8 * 2)
+
+
+@pytest.mark.parametrize("scene_file", ["scenes/cornell-box.json", "scenes/spot-sun-dof.json"])
+def test_a_loaded_scenes_camera_reads_back_as_the_file_gives_it(scene_file):
+    import json
+    with open(scene_file) as f:
+        d = json.load(f)
+    camera = sombra.load(scene_file).camera
+    assert set(camera) == set(d["camera"]) | ({"up", "fov"} if "look_at" in d["camera"] else set())
+    for key, value in d["camera"].items():
+        assert camera[key] == pytest.approx(value), key
+    # Given back to from_dict it renders the same image.
+    d["camera"] = camera
+    a = sombra.render(sombra.Scene.from_dict(d, base_dir="scenes"), spp=2, **SMALL)
+    b = sombra.render(sombra.load(scene_file), spp=2, **SMALL)
+    assert a.tobytes() == b.tobytes()
+
+
+def test_a_quick_looks_camera_is_the_framing_it_chose():
+    camera = sombra.load("scenes/models/cube.obj").camera
+    assert set(camera) == {"origin", "look_at", "up", "fov"}
+    assert camera["fov"] == pytest.approx(40)
+    assert camera["origin"][2] > camera["look_at"][2]  # in front of the model (+z)
