@@ -113,6 +113,9 @@ py::object check_part(const std::string& kind, const std::string& text, const st
         (void)read_transform(s, v, pointer);
     } else if (kind == "background") {
         (void)read_rgb(s, v, pointer);
+    } else if (kind == "environment") {
+        py::gil_scoped_release release;  // reading a large map takes a moment
+        (void)read_environment(s, v, pointer, ".");
     } else {
         throw std::invalid_argument("check_part: unknown kind " + kind);
     }

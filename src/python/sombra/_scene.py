@@ -42,6 +42,7 @@ class Scene:
         self._lights: list = []
         self._render: dict = {}
         self._background = None
+        self._environment = None
         self._meshes: list = []  # _sombra.Mesh, copies of the arrays given
         self._objects: list = []  # {"mesh": i, "material": …, "transform": …}
 
@@ -82,6 +83,8 @@ class Scene:
                 d["camera"] = self._camera
             if self._background is not None:
                 d["background"] = self._background
+            if self._environment is not None:
+                d["environment"] = self._environment
             self._impl = _sombra.load_text(json.dumps(d), "<scene>", [], self._meshes)
             _warn(self._impl)
         return self._impl
@@ -165,17 +168,49 @@ class Scene:
 
     @property
     def background(self) -> Optional[list]:
-        """The background colour [r, g, b] (a scene from code); None = black."""
+        """The background colour [r, g, b] (a scene from code); None = black.
+        A scene has a background or an environment, not both (spec §10):
+        set the other to None first."""
         self._from_code("background")
         return self._background
 
     @background.setter
-    def background(self, rgb: Sequence[float]) -> None:
+    def background(self, rgb: Optional[Sequence[float]]) -> None:
         self._from_code("background")
-        value = _plain(rgb)
-        _sombra.check_part("background", json.dumps(value), "/background")
-        self._background = value
+        if rgb is not None:
+            self._only_one("background", "environment", self._environment)
+            value = _plain(rgb)
+            _sombra.check_part("background", json.dumps(value), "/background")
+        self._background = None if rgb is None else value
         self._changed()
+
+    @property
+    def environment(self) -> Optional[dict]:
+        """The environment map (a scene from code), a dict as in a scene
+        file's "environment": ``{"file": "sky.exr", "scale": 1, "rotate_y":
+        0}``, the file relative to the working directory (spec §10). It
+        replaces the background, lights the scene under ``integrator="path"``
+        and is read when set. None = none."""
+        self._from_code("environment")
+        return None if self._environment is None else dict(self._environment)
+
+    @environment.setter
+    def environment(self, environment: Optional[Mapping[str, Any]]) -> None:
+        self._from_code("environment")
+        if environment is not None:
+            if not isinstance(environment, Mapping):
+                raise TypeError(f"Scene.environment: expected a dict, not {type(environment).__name__}")
+            self._only_one("environment", "background", self._background)
+            value = _plain(environment)
+            _sombra.check_part("environment", json.dumps(value), "/environment")
+        self._environment = None if environment is None else value
+        self._changed()
+
+    @staticmethod
+    def _only_one(key: str, other: str, other_value: Any) -> None:
+        if other_value is not None:
+            raise Error(f"<scene>: /{key}: give either 'background' or 'environment', not both (the map replaces "
+                        f"the background); set Scene.{other} to None first")
 
     @property
     def render_settings(self) -> dict:

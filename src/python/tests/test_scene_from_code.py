@@ -128,3 +128,48 @@ def test_normals_and_uvs_must_match_the_vertices():
 def test_a_scene_read_from_a_file_is_not_built_from_code():
     with pytest.raises(TypeError, match="sombra.Scene()"):
         sombra.load("scenes/cornell-box.json").add_light({"position": [0, 1, 0], "intensity": [1, 1, 1]})
+
+
+SKY = REPO.parent / "shared" / "envmaps" / "sunset.exr"
+
+
+def test_an_environment_map_set_from_code_renders_as_in_a_scene_file(tmp_path):
+    if not SKY.exists():
+        pytest.skip(f"shared/ not found at {SKY}")
+    positions, indices, normals, uvs = wavy_grid()
+    sky = {"file": str(SKY), "scale": 0.5, "rotate_y": 30}
+    write_obj(tmp_path / "grid.obj", positions, indices, normals, uvs)
+    write_obj(tmp_path / "small.obj", positions * 0.3, indices, normals, np.zeros((0, 2)))
+    scene_file = {"render": RENDER, "camera": CAMERA, "materials": MATERIALS, "lights": LIGHTS, "environment": sky,
+                  "objects": [{"file": "grid.obj", "material": "floor"},
+                              {"file": "small.obj", "material": "gold", "transform": TRANSFORM}]}
+    (tmp_path / "scene.json").write_text(json.dumps(scene_file))
+    from_file = sombra.render(sombra.load(tmp_path / "scene.json"))
+    s = code_scene(positions, indices, normals, uvs)
+    without = sombra.render(s)
+    s.environment = sky
+    assert s.environment == sky
+    assert sombra.render(s).tobytes() == from_file.tobytes()
+    assert from_file.tobytes() != without.tobytes()  # the map was seen and lit the scene
+    s.environment = None
+    assert sombra.render(s).tobytes() == without.tobytes()
+
+
+def test_background_and_environment_exclude_each_other_and_bad_maps_are_refused():
+    if not SKY.exists():
+        pytest.skip(f"shared/ not found at {SKY}")
+    s = sombra.Scene()
+    s.background = [0.1, 0.2, 0.3]
+    with pytest.raises(sombra.Error, match=r"^<scene>: /environment: give either 'background' or 'environment'"):
+        s.environment = {"file": str(SKY)}
+    s.background = None
+    s.environment = {"file": str(SKY)}
+    with pytest.raises(sombra.Error, match=r"^<scene>: /background: give either"):
+        s.background = [0, 0, 0]
+    with pytest.raises(sombra.Error, match=r"/environment"):
+        s.environment = {"file": "no-such-sky.exr"}
+    with pytest.raises(sombra.Error, match=r"/environment/scale"):
+        s.environment = {"file": str(SKY), "scale": -1}
+    with pytest.raises(TypeError):
+        s.environment = "sky.exr"
+    assert s.environment == {"file": str(SKY)}  # the refused values changed nothing
