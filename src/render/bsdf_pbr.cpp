@@ -2,11 +2,13 @@
 // specification's Appendix B, in its mix form,
 //
 //   f = (1 − m)·fresnel_mix(ior, diffuse_brdf(c), specular_brdf(α)) + m·conductor_fresnel(c, specular_brdf(α))
-//     = (1 − m)(1 − F_d)·c/π  +  ((1 − m)·F_d + m·F_c)·V·D          ("diffuse" + "specular" below)
+//     = (1 − m)(1 − max(F_d))·c/π  +  ((1 − m)·F_d + m·F_c)·V·D     ("diffuse" + "specular" below)
 //
 // with c = base_color, m = metallic, α = roughness², D the GGX distribution
 // (render/microfacet.h), F_d = Schlick with f0 = ((1 − ior)/(1 + ior))² and
-// F_c = Schlick with f0 = c, both at ωo·h, h = normalize(ωi + ωo).
+// F_c = Schlick with f0 = c, both at ωo·h, h = normalize(ωi + ωo). glTF's
+// KHR_materials_specular makes F_d coloured and weighted (dielectric_fresnel
+// below; max(F_d) is its max_value); without it F_d is grey and max(F_d) = F_d.
 //
 // V is the height-correlated Smith visibility G2/(4 cos θ_i cos θ_o),
 // G2 = 1/(1 + Λ(ωi) + Λ(ωo)), because Appendix B ("Specular BRDF") defines
@@ -34,10 +36,16 @@ float pbr_alpha(const Material& m) { return m.roughness * m.roughness; }
 // Below kDeltaAlpha the specular part is a delta mirror (as the conductor's).
 bool smooth(const Material& m) { return pbr_alpha(m) < kDeltaAlpha; }
 
-// Schlick's Fresnel of the dielectric layer at cos θ, from f0 = ((1 − ior)/(1 + ior))².
-float dielectric_fresnel(const Material& m, float cos_theta) {
+// Schlick's Fresnel of the dielectric layer at cos θ as KHR_materials_specular
+// defines it: from f0 = min(((1 − ior)/(1 + ior))² · specular_color, 1) ·
+// specular to f90 = specular. With the defaults (1, white) it is glTF's core
+// Schlick term from f0 = ((1 − ior)/(1 + ior))² to 1, bit for bit.
+Vec3 dielectric_fresnel(const Material& m, float cos_theta) {
     const float r = (1.0f - m.ior) / (1.0f + m.ior);
-    return fresnel_schlick(Vec3{r * r}, cos_theta).x;
+    const Vec3 f0 = min(Vec3{r * r} * m.specular_color, Vec3{1.0f}) * m.specular;
+    const float c = 1.0f - std::clamp(cos_theta, 0.0f, 1.0f);
+    const float c2 = c * c;
+    return f0 + (Vec3{m.specular} - f0) * (c2 * c2 * c);
 }
 
 // The two parts of f (1/sr), both directions local with z > 0: the diffuse
@@ -51,11 +59,13 @@ struct PbrParts {
 PbrParts eval_parts(const Material& m, Vec3 wo, Vec3 wi) {
     const Vec3 h = normalize(wi + wo);
     const float cos_oh = dot(wo, h);
-    const float fd = dielectric_fresnel(m, cos_oh);
-    PbrParts parts{m.base_color * ((1.0f - m.metallic) * (1.0f - fd) * kInvPi), Vec3{0.0f}};
+    const Vec3 fd = dielectric_fresnel(m, cos_oh);
+    // The base keeps what the layer's strongest channel leaves (the
+    // extension's max_value), so that a coloured layer adds no complementary colour.
+    PbrParts parts{m.base_color * ((1.0f - m.metallic) * (1.0f - max_component(fd)) * kInvPi), Vec3{0.0f}};
     if (smooth(m)) return parts;
     const float alpha = pbr_alpha(m);
-    const Vec3 fresnel = Vec3{(1.0f - m.metallic) * fd} + m.metallic * fresnel_schlick(m.base_color, cos_oh);
+    const Vec3 fresnel = (1.0f - m.metallic) * fd + m.metallic * fresnel_schlick(m.base_color, cos_oh);
     parts.specular = fresnel * (ggx_v_height_correlated(wo, wi, alpha) * ggx_d(h, alpha));
     return parts;
 }
@@ -64,7 +74,7 @@ PbrParts eval_parts(const Material& m, Vec3 wo, Vec3 wi) {
 // the smooth mirror's reflectance, and the rough lobe's albedo as lobe
 // selection estimates it.
 Vec3 specular_reflectance(const Material& m, float cos_o) {
-    return Vec3{(1.0f - m.metallic) * dielectric_fresnel(m, cos_o)} + m.metallic * fresnel_schlick(m.base_color, cos_o);
+    return (1.0f - m.metallic) * dielectric_fresnel(m, cos_o) + m.metallic * fresnel_schlick(m.base_color, cos_o);
 }
 
 // The probability of sampling the specular lobe rather than the cosine one:
@@ -74,7 +84,7 @@ Vec3 specular_reflectance(const Material& m, float cos_o) {
 // samples); 1 when the diffuse part is black (a metal), which needs no cosine lobe.
 float specular_probability(const Material& m, float cos_o) {
     const float s = mean(specular_reflectance(m, cos_o));
-    const float d = (1.0f - m.metallic) * (1.0f - dielectric_fresnel(m, cos_o)) * mean(m.base_color);
+    const float d = (1.0f - m.metallic) * (1.0f - max_component(dielectric_fresnel(m, cos_o))) * mean(m.base_color);
     if (!(d > 0.0f)) return 1.0f;
     return std::clamp(s / (s + d), 0.25f, 0.9f);
 }

@@ -27,7 +27,7 @@ constexpr double kPi = 3.14159265358979323846;
 // |z| beyond this fails: ~1 in 10^6 for a correct estimator.
 constexpr double kZ = 5.0;
 // Every χ² test in this file, for the Šidák correction of the suite's α = 0.01.
-constexpr int kChi2Tests = 5 * 3 * 4 + 3;
+constexpr int kChi2Tests = 5 * 3 * 4 + 3 + 4;
 
 Material pbr(Vec3 base_color, float metallic, float roughness, float ior = 1.5f) {
     Material m;
@@ -39,7 +39,17 @@ Material pbr(Vec3 base_color, float metallic, float roughness, float ior = 1.5f)
     return m;
 }
 
-ref::Params params(const Material& m, int channel) { return {m.base_color[channel], m.metallic, m.roughness, m.ior}; }
+ref::Params params(const Material& m, int channel) {
+    return {m.base_color[channel],          m.metallic, m.roughness, m.ior, m.specular, m.specular_color[channel],
+            max_component(m.specular_color)};
+}
+
+// A pbr material with glTF's KHR_materials_specular.
+Material with_specular(Material m, float specular, Vec3 specular_color) {
+    m.specular = specular;
+    m.specular_color = specular_color;
+    return m;
+}
 
 Vec3 polar(double theta_deg, double phi) {
     const double t = theta_deg * kPi / 180.0;
@@ -69,6 +79,13 @@ std::vector<Material> materials() {
         for (const float metallic : {0.0f, 0.4f, 1.0f}) out.push_back(pbr({0.9f, 0.5f, 0.1f}, metallic, r));
     out.push_back(pbr({0.2f, 0.7f, 1.0f}, 0.0f, 0.5f, 2.4f));
     out.push_back(pbr(Vec3{0.0f}, 0.0f, 0.3f));
+    // KHR_materials_specular: weaker and coloured layers, a colour past 1
+    // (clamped to f0 = 1 in one channel), gltf-transform's metalrough output
+    // (ior 1000, colour 0.2), and no layer at all.
+    out.push_back(with_specular(pbr({0.9f, 0.5f, 0.1f}, 0.0f, 0.4f), 0.5f, {1.0f, 0.2f, 0.6f}));
+    out.push_back(with_specular(pbr({0.3f, 0.6f, 0.9f}, 0.3f, 0.0f), 0.8f, {30.0f, 1.0f, 0.0f}));
+    out.push_back(with_specular(pbr({0.8f, 0.8f, 0.8f}, 0.0f, 0.6f, 1000.0f), 1.0f, Vec3{0.2f}));
+    out.push_back(with_specular(pbr({0.5f, 0.4f, 0.3f}, 0.0f, 0.5f), 0.0f, Vec3{1.0f}));
     return out;
 }
 
@@ -165,8 +182,9 @@ TEST(Pbr, WeightIsEvalTimesCosOverPdf) {
                     EXPECT_NEAR(length(s.wi - mirror), 0.0f, 1e-5f);
                     const float cos_o = dot(wo, p.n_s), w = std::pow(1.0f - cos_o, 5.0f);
                     for (int c = 0; c < 3; ++c) {
-                        const float fresnel = (1 - m.metallic) * (0.04f + 0.96f * w) +
-                                              m.metallic * (m.base_color[c] + (1 - m.base_color[c]) * w);
+                        const double dielectric = ref::dielectric_fresnel(params(m, c), m.specular_color[c], w);
+                        const double fresnel =
+                            (1 - m.metallic) * dielectric + m.metallic * (m.base_color[c] + (1 - m.base_color[c]) * w);
                         EXPECT_NEAR(s.weight[c] * s.pdf, fresnel, 1e-5f);
                     }
                     continue;
@@ -219,6 +237,31 @@ TEST(Pbr, Chi2SamplingMatchesThePdf) {
     expect_chi2(pbr({0.5f, 0.5f, 0.5f}, 0.0f, 0.3f), kTilted, polar(40, 2.0), 501);
     expect_chi2(pbr({0.5f, 0.5f, 0.5f}, 0.5f, 0.7f), kTilted, polar(30, 1.0 + kPi), 502);
     expect_chi2(pbr({0.5f, 0.5f, 0.5f}, 0.0f, 0.0f), kTilted, polar(60, 1.0 + kPi), 503);
+    // KHR_materials_specular moves weight between the lobes.
+    expect_chi2(with_specular(pbr({0.9f, 0.6f, 0.3f}, 0.0f, 0.4f), 0.3f, {1.0f, 0.2f, 0.6f}), kFlat, polar(30, 0.4),
+                504);
+    expect_chi2(with_specular(pbr({0.9f, 0.6f, 0.3f}, 0.0f, 0.4f), 1.0f, {25.0f, 25.0f, 25.0f}), kFlat, polar(60, 0.4),
+                505);
+    expect_chi2(with_specular(pbr(Vec3{0.8f}, 0.0f, 0.6f, 1000.0f), 1.0f, Vec3{0.2f}), kFlat, polar(45, 0.4), 506);
+    expect_chi2(with_specular(pbr(Vec3{0.8f}, 0.2f, 0.5f), 0.0f, Vec3{1.0f}), kFlat, polar(10, 0.4), 507);
+}
+
+TEST(Pbr, SpecularExtensionAtNormalIncidenceIsTheClosedForm) {
+    // ωi = ωo = n: F_d = min(0.04 · colour, 1) · specular per channel, and
+    // the base keeps 1 − max over channels (KHR_materials_specular's fresnel_mix).
+    const Vec3 n{0, 0, 1};
+    const Material m = with_specular(pbr({0.8f, 0.4f, 0.2f}, 0.0f, 0.5f, 1.5f), 0.5f, {1.0f, 10.0f, 40.0f});
+    const double alpha = 0.25, d = 1 / (kPi * alpha * alpha), v = 0.25;
+    const double fd[3] = {0.04 * 0.5, 0.4 * 0.5, 1.0 * 0.5};  // 0.04 · 40 = 1.6 is clamped to 1
+    const Vec3 f = eval_bsdf(m, kFlat, n, n);
+    for (int c = 0; c < 3; ++c) {
+        const double expected = (1 - 0.5) * m.base_color[c] / kPi + fd[c] * v * d;
+        EXPECT_NEAR(f[c], expected, 1e-5 * expected) << "channel " << c;
+    }
+    // specular = 0: no layer, a Lambertian base.
+    const Material lambert = with_specular(pbr({0.8f, 0.4f, 0.2f}, 0.0f, 0.5f), 0.0f, Vec3{1.0f});
+    const Vec3 wi = polar(50, 2.0);
+    for (int c = 0; c < 3; ++c) EXPECT_NEAR(eval_bsdf(lambert, kFlat, n, wi)[c], lambert.base_color[c] / kPi, 1e-7);
 }
 
 // The mean sample weight of channel c (the directional albedo ∫ f cos θ_i dωi
@@ -257,6 +300,17 @@ TEST(Pbr, AlbedoMatchesQuadratureOfAppendixB) {
                         << "r " << r << " m " << metallic << " at " << theta << "°: " << a.mean << " ± " << a.error
                         << ", quadrature " << q.value << " ± " << q.error;
                 }
+    // KHR_materials_specular, each channel (the coloured Fresnel and the base's max_value differ by channel).
+    for (const float r : {0.0f, 0.4f})
+        for (const Material& m : {with_specular(pbr({0.9f, 0.5f, 0.1f}, 0.2f, r), 0.6f, {1.0f, 8.0f, 30.0f}),
+                                  with_specular(pbr(Vec3{1.0f}, 0.0f, r, 1000.0f), 1.0f, Vec3{0.2f})})
+            for (int c = 0; c < 3; ++c) {
+                const Albedo a = albedo(m, polar(50, 0.3), c, 20000, ++key);
+                const ref::Quadrature q = ref::albedo_with_error(params(m, c), 50 * kPi / 180, 400);
+                EXPECT_LT(std::fabs(a.mean - q.value), kZ * a.error + q.error + 1e-6)
+                    << "r " << r << " channel " << c << ": " << a.mean << " ± " << a.error << ", quadrature " << q.value
+                    << " ± " << q.error;
+            }
 }
 
 TEST(Pbr, MetalAlbedoIsAtMostOne) {

@@ -1,5 +1,6 @@
 // An independent reference for tests of spec §11's `pbr` material: the glTF
-// 2.0 specification's Appendix B written out in double precision, in its own
+// 2.0 specification's Appendix B (with KHR_materials_specular's
+// fresnel_mix) written out in double precision, in its own
 // notation (N, V, L, H and the Heaviside χ⁺), from the formulas of the
 // specification rather than from render/microfacet.h. One colour channel at a
 // time. Header-only and for tests.
@@ -16,7 +17,20 @@ struct Params {
     double metallic = 0;
     double roughness = 0.5;
     double ior = 1.5;
+    // KHR_materials_specular: the strength, this channel's specular colour
+    // and the colour's largest channel (its max_value of the Fresnel term
+    // belongs to the channel with the largest colour).
+    double specular = 1;
+    double specular_color = 1;
+    double specular_color_max = 1;
 };
+
+// KHR_materials_specular's dielectric_fresnel for a colour channel c at
+// fresnel_w = (1 − |V·H|)⁵: mix(min(f0_ior · c, 1) · specular, specular, fresnel_w).
+inline double dielectric_fresnel(const Params& p, double color, double fresnel_w) {
+    const double f0 = std::min(std::pow((1 - p.ior) / (1 + p.ior), 2) * color, 1.0) * p.specular;
+    return f0 + (p.specular - f0) * fresnel_w;
+}
 
 struct Dir {
     double x, y, z;
@@ -43,9 +57,9 @@ inline double brdf(const Params& p, Dir v, Dir l) {
     const double specular_brdf = vis * d_term;
     const double diffuse_brdf = p.base / pi;
     const double fresnel_w = std::pow(1 - std::fabs(v_h), 5);
-    const double f0 = std::pow((1 - p.ior) / (1 + p.ior), 2);
-    const double dielectric_fresnel = f0 + (1 - f0) * fresnel_w;
-    const double dielectric_brdf = (1 - dielectric_fresnel) * diffuse_brdf + dielectric_fresnel * specular_brdf;
+    const double fresnel = dielectric_fresnel(p, p.specular_color, fresnel_w);
+    const double fresnel_max = dielectric_fresnel(p, p.specular_color_max, fresnel_w);
+    const double dielectric_brdf = (1 - fresnel_max) * diffuse_brdf + fresnel * specular_brdf;
     const double metal_brdf = (p.base + (1 - p.base) * fresnel_w) * specular_brdf;
     return (1 - p.metallic) * dielectric_brdf + p.metallic * metal_brdf;
 }
@@ -57,9 +71,8 @@ inline double diffuse_part(const Params& p, Dir v, Dir l) {
     Dir h{v.x + l.x, v.y + l.y, v.z + l.z};
     const double len = std::sqrt(dot(h, h));
     const double v_h = dot(v, {h.x / len, h.y / len, h.z / len});
-    const double f0 = std::pow((1 - p.ior) / (1 + p.ior), 2);
-    const double fresnel = f0 + (1 - f0) * std::pow(1 - std::fabs(v_h), 5);
-    return (1 - p.metallic) * (1 - fresnel) * p.base / std::numbers::pi;
+    const double fresnel_max = dielectric_fresnel(p, p.specular_color_max, std::pow(1 - std::fabs(v_h), 5));
+    return (1 - p.metallic) * (1 - fresnel_max) * p.base / std::numbers::pi;
 }
 
 // The directional albedo ∫ f(V, L) cos θ_L dL for V at theta_o (radians, in
@@ -87,8 +100,9 @@ inline double albedo(const Params& p, double theta_o, int n) {
     }
     sum *= d_theta * d_phi;
     if (p.roughness > 0) return sum;
-    const double f0 = std::pow((1 - p.ior) / (1 + p.ior), 2), w = std::pow(1 - v.z, 5);
-    return sum + (1 - p.metallic) * (f0 + (1 - f0) * w) + p.metallic * (p.base + (1 - p.base) * w);
+    const double w = std::pow(1 - v.z, 5);
+    return sum + (1 - p.metallic) * dielectric_fresnel(p, p.specular_color, w) +
+           p.metallic * (p.base + (1 - p.base) * w);
 }
 
 // albedo at resolution n and its error estimate, |albedo(n) − albedo(n/2)|

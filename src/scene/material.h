@@ -60,8 +60,8 @@ struct TextureRef {
 // the material's constant (the scale, 1 when a file gives none) times the
 // texel's RGB; a textured scalar's is the constant times the chosen channel.
 struct MaterialTextures {
-    TextureRef kd, ks, kr, kt, ke, base_color;  // RGB parameters (see kRgbTextureSlots)
-    TextureRef roughness, metallic;             // scalar parameters (see kScalarTextureSlots)
+    TextureRef kd, ks, kr, kt, ke, base_color, specular_color;  // RGB parameters (see kRgbTextureSlots)
+    TextureRef roughness, metallic, specular;                   // scalar parameters (see kScalarTextureSlots)
     // Tangent-space normal map (OpenGL convention, +y toward increasing v):
     // data, n = normalize((2·texel − 1) ⊙ (normal_scale, normal_scale, 1))
     // (glTF normalTexture.scale; 1 elsewhere). Wins over the bump map.
@@ -96,6 +96,12 @@ struct Material {
     float roughness = 0;    // Conductor and Pbr roughness r in [0, 1]; GGX α = r²
     Vec3 base_color{1.0f};  // Pbr base colour, each channel in [0, 1]: diffuse albedo, and f0 of the metal
     float metallic = 0.0f;  // Pbr metalness m in [0, 1]: the mix (1 − m)·dielectric + m·metal
+    // Pbr, glTF's KHR_materials_specular: the dielectric layer's Fresnel runs
+    // from f0 = min(((1 − ior)/(1 + ior))² · specular_color, 1) · specular at
+    // normal incidence to specular at grazing; specular in [0, 1], the colour
+    // ≥ 0 (it may exceed 1). The defaults leave glTF's core model unchanged.
+    float specular = 1.0f;
+    Vec3 specular_color{1.0f};
     // Quad lights (§10) emit only toward the side their winding normal
     // (v1 − v0) × (v2 − v0) points to, and are black from behind.
     bool emits_front_only = false;
@@ -124,6 +130,7 @@ inline constexpr RgbTextureSlot kRgbTextureSlots[] = {
     {"kt", &Material::kt, &MaterialTextures::kt, true},
     {"ke", &Material::ke, &MaterialTextures::ke, false},
     {"base_color", &Material::base_color, &MaterialTextures::base_color, true},
+    {"specular_color", &Material::specular_color, &MaterialTextures::specular_color, false},
 };
 struct ScalarTextureSlot {
     const char* key;
@@ -133,6 +140,7 @@ struct ScalarTextureSlot {
 inline constexpr ScalarTextureSlot kScalarTextureSlots[] = {
     {"roughness", &Material::roughness, &MaterialTextures::roughness},
     {"metallic", &Material::metallic, &MaterialTextures::metallic},
+    {"specular", &Material::specular, &MaterialTextures::specular},
 };
 
 // The image of `ref` (set) in `table` at the hit's uv, moved by the
@@ -176,8 +184,8 @@ inline bool any_texture(const MaterialTextures& t) {
 // name's copy would cost per ray. The binding lists every field, so that a
 // field added to Material fails to compile here until it is copied too.
 inline void copy_parameters(const Material& from, Material& to) {
-    const auto& [name, type, kd, ks, shininess, ke, kr, kt, ior, roughness, base_color, metallic, emits_front_only,
-                 textures, textured] = from;
+    const auto& [name, type, kd, ks, shininess, ke, kr, kt, ior, roughness, base_color, metallic, specular,
+                 specular_color, emits_front_only, textures, textured] = from;
     static_cast<void>(name);
     to.type = type;
     to.kd = kd;
@@ -190,6 +198,8 @@ inline void copy_parameters(const Material& from, Material& to) {
     to.roughness = roughness;
     to.base_color = base_color;
     to.metallic = metallic;
+    to.specular = specular;
+    to.specular_color = specular_color;
     to.emits_front_only = emits_front_only;
     to.textures = textures;
     to.textured = textured;

@@ -41,6 +41,7 @@ inline constexpr const char* kQuantization = "KHR_mesh_quantization";
 inline constexpr const char* kLights = "KHR_lights_punctual";
 inline constexpr const char* kIor = "KHR_materials_ior";
 inline constexpr const char* kEmissiveStrength = "KHR_materials_emissive_strength";
+inline constexpr const char* kSpecular = "KHR_materials_specular";
 inline constexpr const char* kTextureTransform = "KHR_texture_transform";
 
 // Reads and parses a .gltf or .glb file with tinygltf, after the checks that
@@ -131,6 +132,7 @@ Materials convert_materials(const tinygltf::Model& model, const std::string& fil
 // material's texture slots (scene/material.h) at them in `textures`: base
 // colour (sRGB; its A channel the cut-out of MASK and BLEND materials),
 // metallic-roughness (roughness from G, metallic from B), normal, emissive,
+// KHR_materials_specular's specular (A) and specular colour (sRGB RGB),
 // with the samplers' wrap modes; occlusion is ignored (spec §13). Images come
 // from buffer views (checked against their buffers), data: URIs, or files
 // beside the model (a missing one is a warning and the constant is used; a

@@ -187,8 +187,8 @@ std::string rebuild_glb(const std::string& bytes, std::string_view json_chunk, s
 }
 
 bool supported_extension(const std::string& name) {
-    static const std::set<std::string> supported{kDraco, kQuantization,     kLights,
-                                                 kIor,   kEmissiveStrength, kTextureTransform};
+    static const std::set<std::string> supported{
+        kDraco, kQuantization, kLights, kIor, kEmissiveStrength, kTextureTransform, kSpecular};
     return supported.count(name) > 0;
 }
 

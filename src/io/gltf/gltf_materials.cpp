@@ -110,6 +110,49 @@ std::optional<double> extension_number(const tinygltf::Material& m, const char* 
     return v.GetNumberAsDouble();
 }
 
+// A textureInfo object inside an extension (which tinygltf leaves as a
+// generic value) as a GltfTextureRef; an empty one when `name` is absent.
+GltfTextureRef extension_texture_ref(const MaterialContext& c, const tinygltf::Value& extension, const char* name) {
+    if (!extension.Has(name)) return {};
+    const tinygltf::Value& info = extension.Get(name);
+    const std::optional<int> index = info.IsObject() ? value_int(info.Get("index"), 0, 1 << 30) : std::nullopt;
+    if (!index) throw Error(c.file, c.what + ": " + name + " needs a texture index");
+    const std::optional<int> texcoord = info.Has("texCoord") ? value_int(info.Get("texCoord"), 0, 255) : 0;
+    if (!texcoord) throw Error(c.file, c.what + ": " + name + " has a bad texCoord");
+    tinygltf::ExtensionMap extensions;
+    if (const tinygltf::Value& x = info.Get("extensions"); x.IsObject())
+        for (const std::string& key : x.Keys()) extensions[key] = x.Get(key);
+    return texture_ref(c, *index, *texcoord, extensions, name);
+}
+
+// KHR_materials_specular (Blender writes it on every material): the
+// dielectric layer's strength in [0, 1] and its F0 colour, which may exceed
+// 1 (the BSDF clamps f0 = F0(ior) · colour at 1), with their textures.
+void read_specular(const MaterialContext& c, const tinygltf::Material& g, Material& m, GltfMaterialTextures& refs) {
+    const auto it = g.extensions.find(kSpecular);
+    if (it == g.extensions.end() || !it->second.IsObject()) return;
+    const tinygltf::Value& x = it->second;
+    const std::string where = std::string(kSpecular) + " ";
+    if (x.Has("specularFactor")) {
+        if (!x.Get("specularFactor").IsNumber())
+            throw Error(c.file, c.what + ": " + where + "specularFactor must be a number");
+        m.specular = clamped(c, x.Get("specularFactor").GetNumberAsDouble(), "specularFactor");
+    }
+    if (x.Has("specularColorFactor")) {
+        const tinygltf::Value& v = x.Get("specularColorFactor");
+        std::vector<double> rgb;
+        for (int k = 0; v.IsArray() && k < static_cast<int>(v.ArrayLen()) && k < 3; ++k)
+            if (v.Get(k).IsNumber()) rgb.push_back(v.Get(k).GetNumberAsDouble());
+        if (!v.IsArray() || v.ArrayLen() != 3 || rgb.size() != 3)
+            throw Error(c.file, c.what + ": " + where + "specularColorFactor must be 3 numbers");
+        const Vec3 colour = read_colour(c, rgb, Vec3{1.0f}, "specularColorFactor");
+        if (min_component(colour) < 0.0f) c.diag.warn(c.file, c.what + ": specularColorFactor below 0 clamped to 0");
+        m.specular_color = max(colour, Vec3{0.0f});
+    }
+    refs.specular = extension_texture_ref(c, x, "specularTexture");
+    refs.specular_color = extension_texture_ref(c, x, "specularColorTexture");
+}
+
 }  // namespace
 
 Materials convert_materials(const tinygltf::Model& model, const std::string& file, Diagnostics& diag) {
@@ -158,6 +201,7 @@ Materials convert_materials(const tinygltf::Model& model, const std::string& fil
         refs.occlusion = texture_ref(c, g.occlusionTexture.index, g.occlusionTexture.texCoord,
                                      g.occlusionTexture.extensions, "occlusionTexture");
         refs.occlusion.strength = finite_number(tinygltf::Value(g.occlusionTexture.strength), 1);
+        read_specular(c, g, m, refs);
         refs.alpha_mode = g.alphaMode == "MASK"    ? AlphaMode::Mask
                           : g.alphaMode == "BLEND" ? AlphaMode::Blend
                                                    : AlphaMode::Opaque;

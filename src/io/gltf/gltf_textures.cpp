@@ -161,6 +161,8 @@ void apply_textures(const tinygltf::Model& model, const std::filesystem::path& p
         t.normal_map = slot(r.normal, TextureEncoding::Data);
         t.normal_scale = r.normal.strength;
         t.ke = slot(r.emissive, TextureEncoding::Color);
+        t.specular = slot(r.specular, TextureEncoding::Data, 3);
+        t.specular_color = slot(r.specular_color, TextureEncoding::Color);
         if (r.alpha_mode != AlphaMode::Opaque) {
             // Alpha is baseColorFactor's A times the base colour image's A
             // (never sRGB-decoded, so the colour image serves as it is).

@@ -4,6 +4,8 @@
 // alpha masks reach the right slots; missing and escaping image paths.
 #include <gtest/gtest.h>
 
+#include <tuple>
+
 #include <array>
 #include <cmath>
 #include <set>
@@ -124,6 +126,63 @@ TEST(GltfTextures, MetallicRoughnessChannelsAndAlphaMask) {
     const MaterialTextures opaque = load_mesh_file(dir.path / "o.gltf", diag).materials[0].textures;
     EXPECT_FALSE(opaque.alpha.is_set());
     EXPECT_FALSE(opaque.alpha_test);
+}
+
+TEST(GltfTextures, SpecularExtensionSetsTheLayerAndItsTextures) {
+    // KHR_materials_specular as Blender and gltf-transform write it: the
+    // strength from specularTexture's A, the F0 colour from
+    // specularColorTexture's RGB (sRGB), each times its factor; a colour
+    // factor above 1 is kept (the BSDF clamps f0 at 1).
+    TempFolder dir;
+    two_by_two_png(dir);
+    GltfFile f = textured_quad({{"uri", "tex.png"}});
+    f.doc["materials"][0]["extensions"]["KHR_materials_specular"] = {
+        {"specularFactor", 0.5},
+        {"specularColorFactor", {2.0, 0.2, 0.0}},
+        {"specularTexture", {{"index", 0}}},
+        {"specularColorTexture", {{"index", 0}, {"extensions", {{"KHR_texture_transform", {{"scale", {2, 2}}}}}}}}};
+    f.use_extension("KHR_materials_specular");
+    f.use_extension("KHR_texture_transform");
+    f.save(dir.path / "m.gltf");
+    Diagnostics diag;
+    const LoadedMesh m = load_mesh_file(dir.path / "m.gltf", diag);
+    EXPECT_TRUE(diag.warnings.empty()) << diag.warnings[0];  // a supported extension: no complaint
+    const Material& mat = m.materials[0];
+    EXPECT_FLOAT_EQ(mat.specular, 0.5f);
+    EXPECT_EQ(mat.specular_color, (Vec3{2.0f, 0.2f, 0.0f}));
+    const MaterialTextures& t = mat.textures;
+    ASSERT_TRUE(t.specular.is_set());
+    EXPECT_EQ(t.specular.channel, 3);  // A
+    EXPECT_EQ(m.textures[t.specular.texture].encoding, TextureEncoding::Data);
+    ASSERT_TRUE(t.specular_color.is_set());
+    EXPECT_EQ(m.textures[t.specular_color.texture].encoding, TextureEncoding::Color);
+    EXPECT_TRUE(t.specular_color.transformed);
+    EXPECT_FALSE(t.specular.transformed);
+
+    // Without the extension the layer is glTF's core one.
+    textured_quad({{"uri", "tex.png"}}).save(dir.path / "plain.gltf");
+    const Material plain = load_mesh_file(dir.path / "plain.gltf", diag).materials[0];
+    EXPECT_EQ(plain.specular, 1.0f);
+    EXPECT_EQ(plain.specular_color, Vec3{1.0f});
+    EXPECT_FALSE(plain.textures.specular.is_set());
+
+    // Broken values are refused with the member's name.
+    for (const auto& [member, value, message] :
+         {std::tuple<const char*, nlohmann::json, const char*>{"specularFactor", "high",
+                                                               "specularFactor must be a number"},
+          {"specularColorFactor", {1, 1}, "specularColorFactor must be 3 numbers"},
+          {"specularTexture", {{"index", 7}}, "specularTexture names texture 7"},
+          {"specularColorTexture", {{"texCoord", 0}}, "specularColorTexture needs a texture index"}}) {
+        GltfFile bad = textured_quad({{"uri", "tex.png"}});
+        bad.doc["materials"][0]["extensions"]["KHR_materials_specular"] = {{member, value}};
+        bad.save(dir.path / "bad.gltf");
+        try {
+            load_mesh_file(dir.path / "bad.gltf", diag);
+            ADD_FAILURE() << member << " was accepted";
+        } catch (const Error& e) {
+            EXPECT_NE(std::string(e.what()).find(message), std::string::npos) << e.what();
+        }
+    }
 }
 
 // Where the surface of the quad at (x, y, 0) exists, by the loaded mesh's cut-outs.
