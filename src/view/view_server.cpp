@@ -73,7 +73,7 @@ ViewServer::ViewServer(const Scene& scene, const Accel& accel, const ViewServerO
     server.set_error_handler([](const httplib::Request&, httplib::Response& res) {
         if (res.body.empty()) res.set_content(std::to_string(res.status) + "\n", "text/plain");
     });
-    server.set_exception_handler([](const httplib::Request&, httplib::Response& res, std::exception_ptr) {
+    server.set_exception_handler([](const httplib::Request&, httplib::Response& res, const std::exception_ptr&) {
         res.status = 500;
         res.set_content("500 internal error\n", "text/plain");
     });
