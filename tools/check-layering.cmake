@@ -21,6 +21,7 @@ set(rules
   "render:io"
   "explain:io"
   "image:io"
+  "view:io,app"
   "scene:io,accel,render,explain,image,app"
   "core:scene,io,accel,render,explain,image,app")
 

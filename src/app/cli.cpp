@@ -146,6 +146,14 @@ CliParse parse(int argc, const char* const* argv, std::ostream& out, std::ostrea
     explain->add_option("--svg", o.svg, "Also draw the story (the path in the scene, beside the render) into FILE");
     add_render_options(*explain, o);
 
+    CLI::App* view = app.add_subcommand(
+        "view", "Serve the render on 127.0.0.1 to a browser: it refines live, the camera moves, pixels explain");
+    view->add_option("input", o.input, "Scene file (.json) or model (.obj, .ply, .gltf, .glb)")->required();
+    view->add_option("--port", o.port, "Port on 127.0.0.1 to listen on; 0 = a free one")
+        ->check(CLI::Range(0, 65535))
+        ->capture_default_str();
+    add_render_options(*view, o);
+
     try {
         app.parse(argc, argv);
     } catch (const CLI::CallForHelp&) {
@@ -158,12 +166,14 @@ CliParse parse(int argc, const char* const* argv, std::ostream& out, std::ostrea
         out << e.what() << '\n';
         return {std::nullopt, 0};
     } catch (const CLI::ParseError& e) {
-        const bool explaining = argc > 1 && std::string_view(argv[1]) == "explain";
+        const std::string_view sub = argc > 1 ? std::string_view(argv[1]) : std::string_view();
         err << "sombra: error: command line: " << one_line(e.what()) << " (see 'sombra "
-            << (explaining ? "explain" : "render") << " --help')\n";
+            << (sub == "explain" || sub == "view" ? sub : "render") << " --help')\n";
         return {std::nullopt, 2};
     }
-    o.command = app.got_subcommand(explain) ? Command::Explain : Command::Render;
+    o.command = app.got_subcommand(explain) ? Command::Explain
+                : app.got_subcommand(view)  ? Command::View
+                                            : Command::Render;
     if (o.aovs.any()) {
         std::string ext = std::filesystem::path(o.output).extension().string();
         for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));

@@ -14,6 +14,7 @@ namespace sombra {
 enum class Command {
     Render,   // sombra render: the image
     Explain,  // sombra explain: the story of one pixel's sample (spec §14)
+    View,     // sombra view: the render in a browser, refining live (spec §20)
 };
 
 struct CliOptions {
@@ -42,6 +43,9 @@ struct CliOptions {
     int sample = 0;                // which of the pixel's samples; checked against spp after loading
     bool json = false;             // print JSON instead of text
     std::string svg;               // empty = no picture
+
+    // sombra view SCENE [--port P]
+    int port = 0;  // 0 = a free port the system picks
 };
 
 // What parsing decided: run a render, or exit now with `exit_code` after

@@ -11,6 +11,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <ctime>
+#include <utility>
 
 namespace sombra {
 
@@ -44,6 +45,11 @@ InterruptWatcher::~InterruptWatcher() {
     pthread_sigmask(SIG_SETMASK, &previous_mask_, nullptr);
 }
 
+void InterruptWatcher::on_interrupt(std::function<void()> stop) {
+    const std::lock_guard lock(on_interrupt_mutex_);
+    on_interrupt_ = std::move(stop);
+}
+
 int InterruptWatcher::next_signal() {
     if (signal_fd_ < 0 || wake_fd_ < 0) {
         // Waking ten times a second to check stop_ keeps the reaction to a
@@ -64,6 +70,11 @@ void InterruptWatcher::watch() {
         if (sig <= 0) continue;
         signal_.store(sig);
         progress_.cancel.store(true);
+        if (phase_.load() == Phase::Serving) {
+            const std::lock_guard lock(on_interrupt_mutex_);
+            if (on_interrupt_) on_interrupt_();
+            continue;
+        }
         if (phase_.load() == Phase::Preparing) {
             // Loading a large mesh cannot be cut short, and nothing has been
             // written yet: leave now. _Exit runs no destructors that could

@@ -7,6 +7,8 @@
 
 #include <atomic>
 #include <csignal>
+#include <functional>
+#include <mutex>
 #include <thread>
 
 #include "render/render.h"
@@ -19,6 +21,7 @@ public:
         Preparing,  // loading and building: nothing to save, so the watcher exits the process at once
         Rendering,  // the watcher cancels the render; the run then stops without writing
         Writing,    // too late to stop: the (atomic) write completes and the run ends normally
+        Serving,    // `sombra view`: the watcher calls the function given to on_interrupt, which ends the server
     };
 
     // Must be constructed before any other thread exists (oneTBB's workers
@@ -29,6 +32,9 @@ public:
     InterruptWatcher& operator=(const InterruptWatcher&) = delete;
 
     void set_phase(Phase phase) { phase_.store(phase); }
+    // What the watcher calls (on its thread) when a signal arrives while
+    // Serving; set it before entering that phase.
+    void on_interrupt(std::function<void()> stop);
     // The signal received, or 0 when none was.
     int signal_received() const { return signal_.load(); }
 
@@ -39,6 +45,8 @@ private:
 
     RenderProgress& progress_;
     std::atomic<Phase> phase_{Phase::Preparing};
+    std::mutex on_interrupt_mutex_;
+    std::function<void()> on_interrupt_;
     std::atomic<int> signal_{0};
     std::atomic<bool> stop_{false};
     sigset_t blocked_{};

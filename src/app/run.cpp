@@ -132,6 +132,7 @@ int run_sombra(int argc, const char* const* argv) {
     const CliParse parsed = parse_command_line(argc, argv);
     if (!parsed.options) return parsed.exit_code;
     if (parsed.options->command == Command::Explain) return run_explain(*parsed.options);
+    if (parsed.options->command == Command::View) return run_view(*parsed.options);
     return run_render(*parsed.options);
 }
 

@@ -18,6 +18,12 @@ int run_render(const CliOptions& options);
 // outside the image.
 int run_explain(const CliOptions& options);
 
+// Runs `sombra view` (spec §20): loads and builds as run_render does, then
+// serves the render on 127.0.0.1 and prints the URL to open, until Ctrl-C
+// (SIGINT) or SIGTERM, which end it at once with status 0. Exit status 1
+// for a wrong input or a port that cannot be bound.
+int run_view(const CliOptions& options);
+
 // Parses the command line and runs it: what main() does.
 int run_sombra(int argc, const char* const* argv);
 

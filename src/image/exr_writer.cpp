@@ -6,10 +6,13 @@
 
 #include <cerrno>
 #include <cstdio>
+#include <cstdlib>
 #include <limits>
+#include <new>
 #include <utility>
 #include <vector>
 
+#include "core/error.h"
 #include "image/writers.h"
 
 namespace sombra {
@@ -48,11 +51,8 @@ private:
     int failure_ = 0;
 };
 
-}  // namespace
-
-// 32-bit float channels rather than half: the file holds exactly the radiance
-// the renderer computed (half would round to 11 bits and overflow above 65504).
-void write_exr(const std::filesystem::path& file, ImageView image, std::span<const ImageChannel> layers) {
+// The EXR file of write_exr written to `out` (a file or a memory stream); throws on failure.
+void encode_exr(std::FILE* out, const char* name, ImageView image, std::span<const ImageChannel> layers) {
     const auto width = static_cast<std::size_t>(image.width);
     const auto height = static_cast<std::size_t>(image.height);
 
@@ -79,15 +79,44 @@ void write_exr(const std::filesystem::path& file, ImageView image, std::span<con
                                             stride, stride * width));
     }
 
-    OutputFile out = open_for_writing(file);
-    CheckedStream stream(out.get(), file.c_str());
+    CheckedStream stream(out, name);
     {
         Imf::OutputFile exr(stream, header);  // single-threaded: the global OpenEXR thread count is 0
         exr.setFrameBuffer(frame);
         exr.writePixels(image.height);
     }
     if (stream.failure() != 0) throw std::system_error(stream.failure(), std::generic_category());
+}
+
+}  // namespace
+
+// 32-bit float channels rather than half: the file holds exactly the radiance
+// the renderer computed (half would round to 11 bits and overflow above 65504).
+void write_exr(const std::filesystem::path& file, ImageView image, std::span<const ImageChannel> layers) {
+    OutputFile out = open_for_writing(file);
+    encode_exr(out.get(), file.c_str(), image, layers);
     finish_writing(std::move(out));
+}
+
+std::vector<std::uint8_t> encode_exr_bytes(ImageView image) {
+    // A memory stream lets the file encoder write into a buffer (it seeks
+    // back to write the line-offset table, which open_memstream allows).
+    char* buffer = nullptr;
+    std::size_t size = 0;
+    std::FILE* stream = open_memstream(&buffer, &size);
+    if (stream == nullptr) throw std::bad_alloc();
+    bool ok = true;
+    try {
+        encode_exr(stream, "exr", image, {});
+    } catch (...) {
+        ok = false;
+    }
+    ok = std::fflush(stream) == 0 && ok;
+    std::fclose(stream);  // sets buffer and size
+    std::vector<std::uint8_t> exr(buffer, buffer + (ok ? size : 0));
+    std::free(buffer);
+    if (!ok) throw Error("exr", "encoding the image failed");
+    return exr;
 }
 
 }  // namespace sombra

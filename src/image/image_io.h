@@ -53,4 +53,9 @@ void write_image(const std::filesystem::path& path, ImageView image, float expos
 // embedding, e.g. in `sombra explain`'s SVG). Throws Error("png", ...) on failure.
 std::vector<std::uint8_t> encode_png_bytes(ImageView image, float exposure);
 
+// The bytes of the EXR file write_image would write for `image` without
+// layers (32-bit float R, G, B, linear; the viewer's "save EXR"). Throws
+// Error("exr", ...) on failure.
+std::vector<std::uint8_t> encode_exr_bytes(ImageView image);
+
 }  // namespace sombra

@@ -105,6 +105,14 @@ Film Accumulation::take_image() {
     return film;
 }
 
+Film Accumulation::mean_image() const {
+    Film film;
+    film.width = width_;
+    film.height = height_;
+    film.rgb = mean3(rgb_sum_, count_);
+    return film;
+}
+
 AovImages Accumulation::aov_images() const {
     AovImages out;
     if (aovs_.albedo) out.albedo = mean3(albedo_sum_, count_);

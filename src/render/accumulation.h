@@ -66,6 +66,9 @@ public:
     // place (a film-sized buffer less at the peak), so the radiance sums are
     // gone after it.
     Film take_image();
+    // The same image as take_image would give now, as a copy: the sums stay
+    // and further samples may be added (the viewer's image after each pass).
+    Film mean_image() const;
 
     // §18's floor on the mean luminance the threshold scales with.
     static constexpr double kLuminanceFloor = 1e-3;

@@ -100,6 +100,7 @@ void stop_converged_pixels(const RenderJob& job, Accumulation& acc) {
 
 // How many samples each pass adds (see kTimedPassSamples).
 std::uint32_t pass_samples(const RenderJob& job) {
+    if (job.limits.pass_samples > 0) return static_cast<std::uint32_t>(job.limits.pass_samples);
     if (job.limits.noise_threshold > 0) return kAdaptivePassSamples;
     if (job.limits.deadline) return kTimedPassSamples;
     return static_cast<std::uint32_t>(job.settings.spp);
@@ -200,7 +201,9 @@ RenderOutput render_image(const RenderJob& job, RenderProgress& progress) {
                 if (left) any_left.store(true, std::memory_order_relaxed);
             });
             ++out.passes;
-            if (progress.cancel.load() || !any_left.load()) break;
+            if (progress.cancel.load()) break;
+            if (job.on_pass) job.on_pass(acc, out.passes);
+            if (!any_left.load()) break;
             if (job.limits.noise_threshold > 0) stop_converged_pixels(job, acc);
             // The next pass takes about as long as this one (no longer: it
             // samples the same pixels or fewer).

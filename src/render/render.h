@@ -5,6 +5,7 @@
 #include <atomic>
 #include <chrono>
 #include <cstdint>
+#include <functional>
 #include <optional>
 
 #include "accel/accel.h"
@@ -36,6 +37,9 @@ struct SamplingLimits {
     // pooled over its 3 × 3 neighbourhood) is at most T · max(mean, 10⁻³); 0 = off.
     double noise_threshold = 0;
     int min_spp = 16;  // no pixel stops by the threshold before this many samples
+    // Samples each pass adds to every pixel (the viewer's steps); 0 = as
+    // pass_samples decides below (kTimedPassSamples, kAdaptivePassSamples or all).
+    int pass_samples = 0;
 };
 
 // The samples each pass adds to every pixel still sampling: two under a
@@ -54,6 +58,11 @@ struct RenderJob {
     SamplingLimits limits;
     AovSet aovs;      // the AOVs to gather beside the image
     int threads = 0;  // worker threads; 0 = all hardware threads
+    // Called on the render's thread after each pass that ran to its end (not
+    // after a cancelled one) with what the passes have gathered and the
+    // number of passes so far: the viewer publishes the image from here.
+    // Empty (the default, `sombra render`): nothing is called.
+    std::function<void(const Accumulation&, int passes)> on_pass;
 };
 
 // The job for rendering `scene` with `accel` at `settings`, with the scene's
