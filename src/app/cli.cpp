@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "accel/accel.h"
+#include "app/display_server.h"
 #include "core/error.h"
 #include "render/render_settings.h"
 
@@ -112,6 +113,14 @@ void add_output_options(CLI::App& render, CliOptions& o) {
             o.aovs = *set;
         },
         "Float layers added to an .exr output: any of albedo, normal, depth, position, spp, comma-separated");
+    render
+        .add_option("--display-server", o.display_server,
+                    "Stream the image as it refines to the tev viewer listening at HOST:PORT (e.g. 127.0.0.1:14158)")
+        ->check(CLI::Validator(
+            [](std::string& text) -> std::string {
+                return parse_display_address(text) ? "" : "expected HOST:PORT (or [IPV6]:PORT), port 1-65535";
+            },
+            "HOST:PORT"));
 }
 
 }  // namespace

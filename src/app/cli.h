@@ -36,6 +36,7 @@ struct CliOptions {
     std::optional<double> noise_threshold;
     int min_spp = 16;
     AovSet aovs;
+    std::string display_server;  // --display-server HOST:PORT (tev); empty = none
     bool quiet = false;
 
     // sombra explain SCENE X Y [--sample K] [--json] [--svg FILE]

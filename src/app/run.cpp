@@ -3,13 +3,16 @@
 #include <unistd.h>
 
 #include <tbb/info.h>
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <iostream>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "accel/accel.h"
+#include "app/display_server.h"
 #include "app/interrupt.h"
 #include "app/prepare.h"
 #include "app/progress.h"
@@ -40,6 +43,25 @@ std::vector<ImageChannel> aov_layers(const AovImages& aovs) {
     add3(aovs.position, "position", "XYZ");
     if (!aovs.spp.empty()) layers.push_back({"spp.Y", aovs.spp.data(), 1});
     return layers;
+}
+
+// Under --display-server the render goes in passes (the image after n
+// samples is the same as in one pass: render/accumulation.h), and tev gets
+// the image after a pass at most every kDisplayInterval; the final image is
+// sent after the render. A plain --spp render takes passes of a sixteenth
+// of its samples (at least one); --time and --noise-threshold keep theirs.
+constexpr auto kDisplayInterval = std::chrono::milliseconds(250);
+
+void stream_passes_to(DisplayConnection& display, RenderJob& job) {
+    if (!display.connected()) return;
+    if (!job.limits.deadline && !(job.limits.noise_threshold > 0))
+        job.limits.pass_samples = std::max(1, job.settings.spp / 16);
+    job.on_pass = [&display, last = Clock::time_point{}](const Accumulation& acc, int) mutable {
+        if (!display.connected() || Clock::now() - last < kDisplayInterval) return;
+        const Film image = acc.mean_image();
+        display.show(ImageView{image.width, image.height, image.rgb.data()});
+        last = Clock::now();
+    };
 }
 
 }  // namespace
@@ -76,6 +98,12 @@ int run_render(const CliOptions& o) {
         RenderJob job = make_render_job(scene, accel, settings, o.threads, light_selection(o));
         job.limits = sampling_limits(o, start);
         job.aovs = o.aovs;
+        std::optional<DisplayConnection> display;
+        if (!o.display_server.empty()) {
+            display.emplace(*parse_display_address(o.display_server), output.filename().string(), settings.width,
+                            settings.height);
+            stream_passes_to(*display, job);
+        }
 
         interrupt.set_phase(InterruptWatcher::Phase::Rendering);
         const auto render_start = Clock::now();
@@ -89,6 +117,8 @@ int run_render(const CliOptions& o) {
             rendered = render_image(job, progress);
         }
         stats.render_seconds = seconds_since(render_start);
+        if (display && !rendered.cancelled)
+            display->show(ImageView{rendered.film.width, rendered.film.height, rendered.film.rgb.data()});
         if (rendered.cancelled) {
             const int sig = interrupt.signal_received();
             std::cerr << "sombra: error: " << signal_name(sig) << ": interrupted, nothing written\n";
