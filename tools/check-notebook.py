@@ -62,7 +62,9 @@ def main() -> int:
         print(f"skipped: jupyter-nbconvert is not installed (Debian's jupyter-nbconvert); {NOTEBOOK} not run")
         return SKIP
     with tempfile.TemporaryDirectory() as tmp:
-        env = dict(os.environ, JUPYTER_RUNTIME_DIR=tmp, PYDEVD_DISABLE_FILE_VALIDATION="1")
+        # Kernel, IPython and matplotlib state in the temporary folder: nothing written to $HOME.
+        env = dict(os.environ, JUPYTER_RUNTIME_DIR=tmp, IPYTHONDIR=tmp, MPLCONFIGDIR=tmp,
+                   PYDEVD_DISABLE_FILE_VALIDATION="1")
         # The kernel runs in the notebook's folder: a relative PYTHONPATH would point elsewhere there.
         paths = [p for p in env.get("PYTHONPATH", "").split(os.pathsep) if p]
         env["PYTHONPATH"] = os.pathsep.join(os.path.abspath(p) for p in paths)
