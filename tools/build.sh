@@ -1,6 +1,8 @@
 #!/usr/bin/env bash
-# Installs what is missing and builds sombra (CMake preset "release" unless
-# SOMBRA_PRESET says otherwise). Prints the path of the built binary's folder.
+# The set-up: installs what is missing and builds sombra (CMake preset
+# "release" unless SOMBRA_PRESET says otherwise); after a release build with
+# the Python module, makes .venv so that `.venv/bin/python` imports sombra
+# (tools/venv.sh). tools/demo.sh and tools/test.sh start with it.
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 preset="${SOMBRA_PRESET:-release}"
@@ -8,3 +10,6 @@ preset="${SOMBRA_PRESET:-release}"
 cd "$root"
 cmake --preset "$preset" >/dev/null
 cmake --build --preset "$preset" -j "$(nproc)"
+if [ "$preset" = release ] && [ -d build/release/python/sombra ]; then
+    tools/venv.sh
+fi

@@ -20,6 +20,9 @@ packages=(
   libembree-dev          # --accel embree, the BVH's yardstick (optional: the build works without it)
   python3-matplotlib python3-numpy  # tools/bench.sh: the big benchmark mesh and the cost-growth plot
   pybind11-dev python3-pybind11 python3-pytest  # the Python module (src/python/) and its pytest tests
+  python3-venv           # the set-up's .venv (tools/build.sh: .venv/bin/python imports sombra)
+  jupyter-nbconvert python3-ipykernel  # tests: examples/tour.ipynb executed (jupyter-nbconvert --execute)
+  lintian                # tools/package.sh: checks the .deb
   clang-14 libclang-rt-14-dev  # libFuzzer + sanitizer runtimes (tools/fuzz.sh)
   clang-tidy-14 clang-format-14  # tools/tidy.sh (CI: zero findings), .clang-format
 )

@@ -16,13 +16,13 @@ from __future__ import annotations
 
 import json
 import math
-import sys
 from typing import Any, Sequence, Union
 
 import numpy as np
 
 from . import _sombra
 from ._options import _RENDER_OPTIONS, _RUN_OPTIONS, _SCENE_OPTIONS, PathLike, Progress, _path, _words
+from ._progress import Bar as _Bar
 from ._scene import Scene
 
 __all__ = ["Error", "Scene", "load", "render", "explain", "write_image", "to_png"]
@@ -52,28 +52,6 @@ def _scene_impl(scene: Any, function: str) -> Any:
     return scene._assembled()
 
 
-class _Bar:
-    """progress=True: a text bar on stderr, redrawn in place (a terminal,
-    or a notebook's output)."""
-
-    def __init__(self) -> None:
-        self.shown = -1
-
-    def __call__(self, done: int, total: int) -> None:
-        percent = min(100, done * 100 // total) if total else 100
-        if percent == self.shown:
-            return
-        self.shown = percent
-        filled = percent * 30 // 100
-        sys.stderr.write(f"\rsombra: [{'#' * filled}{'.' * (30 - filled)}] {percent:3d}%")
-        sys.stderr.flush()
-
-    def close(self) -> None:
-        if self.shown >= 0:
-            sys.stderr.write("\n")
-            sys.stderr.flush()
-
-
 def render(scene: Scene, *, aov: Union[Sequence[str], str, None] = None, progress: Progress = None,
            **options: Any) -> Union[np.ndarray, dict]:
     """Renders the scene; returns the image as a float32 numpy array of
@@ -94,7 +72,8 @@ def render(scene: Scene, *, aov: Union[Sequence[str], str, None] = None, progres
     aov: any of "albedo", "normal", "depth", "position", "spp": then the result
       is a dict of arrays, "color" the image, "albedo"/"normal"/"position"
       (height, width, 3), "depth"/"spp" (height, width).
-    progress: True for a text bar on stderr, or a callable receiving
+    progress: True for a text bar (on stderr, redrawn in place; in Jupyter
+      one text output that updates), or a callable receiving
       (samples done, samples in all) about every 50 ms.
 
     The GIL is released while rendering; Ctrl-C raises KeyboardInterrupt
@@ -110,7 +89,7 @@ def render(scene: Scene, *, aov: Union[Sequence[str], str, None] = None, progres
             words += ["--aov=" + ",".join(names), "--output=python.exr"]
     bar = None
     if progress is True:
-        bar = progress = _Bar()
+        bar = progress = _Bar.for_here()
     elif progress is False:
         progress = None
     elif progress is not None and not callable(progress):
