@@ -14,6 +14,8 @@ packages=(
   libcli11-dev           # command line
   libtinygltf-dev        # glTF 2.0 parsing (header-only; src/io/gltf/gltf_file.cpp)
   libdraco-dev           # KHR_draco_mesh_compression
+  libmeshoptimizer-dev   # EXT_meshopt_compression (decoders; the tests encode with it too)
+  libwebp-dev            # WebP textures (EXT_texture_webp; the tests encode with it too)
   assimp-testmodels      # tests: real and deliberately broken glTF 2.0 files (/usr/share/assimp/models/glTF2)
   libgtest-dev libgmock-dev  # tests
   libembree-dev          # --accel embree, the BVH's yardstick (optional: the build works without it)
