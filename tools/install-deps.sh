@@ -15,6 +15,8 @@ packages=(
   libcpp-httplib-dev     # sombra view: the HTTP server on 127.0.0.1 (plain HTTP; the library is built with OpenSSL, zlib, Brotli)
   libtinygltf-dev        # glTF 2.0 parsing (header-only; src/io/gltf/gltf_file.cpp)
   libdraco-dev           # KHR_draco_mesh_compression
+  libmeshoptimizer-dev   # EXT_meshopt_compression (decoders; the tests encode with it too)
+  libwebp-dev            # WebP textures (EXT_texture_webp; the tests encode with it too)
   assimp-testmodels      # tests: real and deliberately broken glTF 2.0 files (/usr/share/assimp/models/glTF2)
   libgtest-dev libgmock-dev  # tests
   libembree-dev          # --accel embree, the BVH's yardstick (optional: the build works without it)

@@ -2,7 +2,8 @@
 // parsing with tinygltf behind guards (gltf_file.cpp) and the JSON types
 // checked before it (gltf_json_types.cpp), reading accessors
 // with every bound checked (gltf_accessors.cpp), decoding Draco-compressed
-// primitives (gltf_draco.cpp), materials and lights (gltf_materials.cpp);
+// primitives (gltf_draco.cpp) and EXT_meshopt_compression's buffer views
+// (gltf_meshopt.cpp), materials and lights (gltf_materials.cpp);
 // gltf_loader.cpp walks the node tree and assembles the LoadedMesh.
 #pragma once
 
@@ -43,6 +44,8 @@ inline constexpr const char* kIor = "KHR_materials_ior";
 inline constexpr const char* kEmissiveStrength = "KHR_materials_emissive_strength";
 inline constexpr const char* kSpecular = "KHR_materials_specular";
 inline constexpr const char* kTextureTransform = "KHR_texture_transform";
+inline constexpr const char* kMeshopt = "EXT_meshopt_compression";
+inline constexpr const char* kWebp = "EXT_texture_webp";
 
 // Reads and parses a .gltf or .glb file with tinygltf, after the checks that
 // keep hostile input away from it: the file's size, the GLB header and chunk
@@ -50,7 +53,8 @@ inline constexpr const char* kTextureTransform = "KHR_texture_transform";
 // file's folder and within a byte budget; images are not read; every
 // member's JSON type (check_json_types), an unsupported extension in
 // extensionsRequired named first. Then checks asset.version and
-// extensionsRequired. Throws Error(path, ...), or Error("PATH: /pointer", ...)
+// extensionsRequired, and decodes EXT_meshopt_compression's buffer views
+// (gltf_meshopt.h), so that accessors and images read them as any other. Throws Error(path, ...), or Error("PATH: /pointer", ...)
 // for a member of the wrong type.
 tinygltf::Model parse_file(const std::filesystem::path& path, Diagnostics& diag);
 

@@ -12,6 +12,7 @@
 #include <set>
 
 #include "io/gltf/gltf_json_types.h"
+#include "io/gltf/gltf_meshopt.h"
 #include "io/mesh_builder.h"
 
 namespace sombra::gltf {
@@ -133,16 +134,19 @@ nlohmann::json parse_json(std::string_view text, const std::string& where) {
 }
 
 // tinygltf copies the BIN chunk into every buffer without a uri: only the
-// first buffer may refer to it (glTF 2.0 §4.4.3.3). Checked on the JSON
-// before tinygltf sees it, so that a thousand such buffers cost nothing.
-void check_glb_buffers(const nlohmann::json& json, const std::string& where) {
+// first buffer of a GLB may refer to it (glTF 2.0 §4.4.3.3), and a .gltf's
+// buffers all need one. Checked on the JSON before tinygltf sees it, so that
+// a thousand such buffers cost nothing, and after EXT_meshopt_compression's
+// fallback buffers, which may have none, became placeholders.
+void check_buffers(const nlohmann::json& json, bool glb, const std::string& where) {
     const auto buffers = json.find("buffers");
     if (buffers == json.end() || !buffers->is_array()) return;
-    for (std::size_t i = 1; i < buffers->size(); ++i) {
+    for (std::size_t i = glb ? 1 : 0; i < buffers->size(); ++i) {
         const nlohmann::json& b = (*buffers)[i];
         if (b.is_object() && !b.contains("uri"))
-            throw Error(where,
-                        "buffer " + std::to_string(i) + " has no uri: only buffer 0 may refer to the GLB's BIN chunk");
+            throw Error(where, "buffer " + std::to_string(i) + " has no uri: " +
+                                   (glb ? "only buffer 0 may refer to the GLB's BIN chunk"
+                                        : "only a fallback buffer of EXT_meshopt_compression may have none"));
     }
 }
 
@@ -163,6 +167,30 @@ bool strip_draco_indices(nlohmann::json& json) {
         }
     }
     return changed;
+}
+
+// emissiveFactor's null entries (obj2gltf writes them) read as 0, with one
+// warning (spec §24); tinygltf would drop the whole array for one null.
+// Returns whether anything was replaced.
+bool zero_null_emissive(nlohmann::json& json, const std::string& where, Diagnostics& diag) {
+    const auto materials = json.find("materials");
+    if (materials == json.end() || !materials->is_array()) return false;
+    std::size_t replaced = 0, in_materials = 0;
+    for (nlohmann::json& m : *materials) {
+        if (!m.is_object() || !m.contains("emissiveFactor") || !m["emissiveFactor"].is_array()) continue;
+        bool any = false;
+        for (nlohmann::json& x : m["emissiveFactor"])
+            if (x.is_null()) {
+                x = 0;
+                ++replaced;
+                any = true;
+            }
+        in_materials += any ? 1 : 0;
+    }
+    if (replaced > 0)
+        diag.warn(where, "emissiveFactor: " + std::to_string(replaced) + " null entries in " +
+                             std::to_string(in_materials) + " materials read as 0");
+    return replaced > 0;
 }
 
 // The GLB container again, with a new JSON chunk (space-padded to 4 bytes)
@@ -188,7 +216,7 @@ std::string rebuild_glb(const std::string& bytes, std::string_view json_chunk, s
 
 bool supported_extension(const std::string& name) {
     static const std::set<std::string> supported{
-        kDraco, kQuantization, kLights, kIor, kEmissiveStrength, kTextureTransform, kSpecular};
+        kDraco, kQuantization, kLights, kIor, kEmissiveStrength, kTextureTransform, kSpecular, kMeshopt, kWebp};
     return supported.count(name) > 0;
 }
 
@@ -234,19 +262,27 @@ tinygltf::Model parse_file(const fs::path& path, Diagnostics& diag) {
         throw Error(where, "glTF file is larger than " + std::to_string(kMaxFileBytes >> 20) + " MiB");
 
     const bool binary = bytes.size() >= 4 && read_u32(bytes, 0) == kGlbMagic;
+    MeshoptPlan meshopt;
     if (binary) {
         const std::string_view json_chunk = check_glb(bytes, where);
         nlohmann::json json = parse_json(json_chunk, where);
-        check_glb_buffers(json, where);
         check_document(json, where);
-        if (json_chunk.find(kDraco) != std::string_view::npos && strip_draco_indices(json))
+        meshopt = prepare_meshopt(json, true, where);
+        check_buffers(json, true, where);
+        const bool draco = json_chunk.find(kDraco) != std::string_view::npos && strip_draco_indices(json);
+        const bool nulls = zero_null_emissive(json, where, diag);
+        if (draco || meshopt.rewritten || nulls)
             bytes = rebuild_glb(bytes, json_chunk, json.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace));
     } else {
         // Text that is no JSON object is left to tinygltf, which names what is wrong.
         nlohmann::json json = nlohmann::json::parse(bytes, nullptr, false);
         if (json.is_object()) {
             check_document(json, where);
-            if (bytes.find(kDraco) != std::string::npos && strip_draco_indices(json))
+            meshopt = prepare_meshopt(json, false, where);
+            check_buffers(json, false, where);
+            const bool draco = bytes.find(kDraco) != std::string::npos && strip_draco_indices(json);
+            const bool nulls = zero_null_emissive(json, where, diag);
+            if (draco || meshopt.rewritten || nulls)
                 bytes = json.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
         }
     }
@@ -274,6 +310,7 @@ tinygltf::Model parse_file(const fs::path& path, Diagnostics& diag) {
     if (model.asset.version.rfind("2.", 0) != 0)
         throw Error(where, "glTF version '" + model.asset.version + "' (only 2.x is supported)");
     check_extensions(model, where, diag);
+    decode_meshopt(model, meshopt, where);
     return model;
 }
 

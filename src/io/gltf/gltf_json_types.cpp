@@ -152,14 +152,39 @@ constexpr Member kAccessor[] = {{"name", T::String},     {"bufferView", T::Index
                                 {"type", T::String},     {"max", T::Numbers},
                                 {"min", T::Numbers},     {"sparse", T::Object, &kSparseShape}};
 constexpr Shape kAccessorShape{kAccessor};
-constexpr Member kBufferView[] = {{"name", T::String},     {"buffer", T::Index},    {"byteOffset", T::Size},
-                                  {"byteLength", T::Size}, {"byteStride", T::Size}, {"target", T::Index}};
+constexpr Member kMeshoptView[] = {{"buffer", T::Index},    {"byteOffset", T::Size}, {"byteLength", T::Size},
+                                   {"byteStride", T::Size}, {"count", T::Size},      {"mode", T::String},
+                                   {"filter", T::String}};
+constexpr Shape kMeshoptViewShape{kMeshoptView};
+constexpr Member kBufferViewExtensions[] = {{kMeshopt, T::Object, &kMeshoptViewShape}};
+constexpr Shape kBufferViewExtensionsShape{kBufferViewExtensions};
+constexpr Member kBufferView[] = {{"name", T::String},
+                                  {"buffer", T::Index},
+                                  {"byteOffset", T::Size},
+                                  {"byteLength", T::Size},
+                                  {"byteStride", T::Size},
+                                  {"target", T::Index},
+                                  {"extensions", T::Object, &kBufferViewExtensionsShape}};
 constexpr Shape kBufferViewShape{kBufferView};
-constexpr Member kBuffer[] = {{"name", T::String}, {"uri", T::String}, {"byteLength", T::Size}};
+constexpr Member kMeshoptBuffer[] = {{"fallback", T::Bool}};
+constexpr Shape kMeshoptBufferShape{kMeshoptBuffer};
+constexpr Member kBufferExtensions[] = {{kMeshopt, T::Object, &kMeshoptBufferShape}};
+constexpr Shape kBufferExtensionsShape{kBufferExtensions};
+constexpr Member kBuffer[] = {{"name", T::String},
+                              {"uri", T::String},
+                              {"byteLength", T::Size},
+                              {"extensions", T::Object, &kBufferExtensionsShape}};
 constexpr Shape kBufferShape{kBuffer};
 
 // texture, image, sampler
-constexpr Member kTexture[] = {{"name", T::String}, {"sampler", T::Index}, {"source", T::Index}};
+constexpr Member kWebpTexture[] = {{"source", T::Index}};
+constexpr Shape kWebpTextureShape{kWebpTexture};
+constexpr Member kTextureExtensions[] = {{kWebp, T::Object, &kWebpTextureShape}};
+constexpr Shape kTextureExtensionsShape{kTextureExtensions};
+constexpr Member kTexture[] = {{"name", T::String},
+                               {"sampler", T::Index},
+                               {"source", T::Index},
+                               {"extensions", T::Object, &kTextureExtensionsShape}};
 constexpr Shape kTextureShape{kTexture};
 constexpr Member kImage[] = {
     {"name", T::String}, {"uri", T::String}, {"mimeType", T::String}, {"bufferView", T::Index}};

@@ -211,6 +211,38 @@ TEST(GltfJsonTypes, ExtrasUnknownMembersAndUnknownExtensionsLoadUnchanged) {
     EXPECT_EQ(m.lights.size(), plain.lights.size());
 }
 
+// emissiveFactor is used as given, above 1 too; its null entries read as 0
+// with one warning (obj2gltf writes them; tinygltf dropped the whole array).
+TEST(GltfJsonTypes, EmissiveNullEntriesReadAsZeroWithOneWarning) {
+    GltfFile f = typed_quad();
+    material(f)["emissiveFactor"] = {2, nullptr, 0.5};
+    TempFolder dir;
+    Diagnostics diag;
+    const LoadedMesh m = load_gltf(dir.write("m.gltf", f.gltf()), diag);
+    EXPECT_EQ(m.materials[0].ke, (Vec3{2, 0, 0.5f}));
+    std::size_t null_warnings = 0;
+    for (const std::string& w : diag.warnings) null_warnings += w.find("null") != std::string::npos ? 1 : 0;
+    EXPECT_EQ(null_warnings, 1u);
+}
+
+// KHR_materials_ior's ior = 1 is valid (f0 = 0), and so is 0 (f0 = 1: the
+// specular-glossiness conversion of KHR_materials_specular); other values
+// below 1 are outside its schema.
+TEST(GltfJsonTypes, IorOfOneIsValid) {
+    for (const double ior : {1.0, 0.0, 0.5}) {
+        GltfFile f = typed_quad();
+        material(f)["extensions"]["KHR_materials_ior"]["ior"] = ior;
+        TempFolder dir;
+        Diagnostics diag;
+        const LoadedMesh m = load_gltf(dir.write("m.gltf", f.gltf()), diag);
+        std::size_t ior_warnings = 0;
+        for (const std::string& w : diag.warnings) ior_warnings += w.find("ior") != std::string::npos ? 1 : 0;
+        const bool valid = ior != 0.5;
+        EXPECT_EQ(m.materials[0].ior, valid ? static_cast<float>(ior) : 1.5f);
+        EXPECT_EQ(ior_warnings, valid ? 0u : 1u);
+    }
+}
+
 // An unsupported extension in extensionsRequired is named before any check
 // its data would fail (spec §24); another glTF version is named as such.
 TEST(GltfJsonTypes, RequiredExtensionsAndTheVersionComeFirst) {

@@ -2,6 +2,7 @@
 // references (as the file gives them; gltf_textures.cpp applies them), and
 // KHR_lights_punctual lights (point, spot, directional).
 #include <algorithm>
+#include <climits>
 #include <cmath>
 #include <numbers>
 
@@ -74,12 +75,18 @@ GltfTextureRef texture_ref(const MaterialContext& c, int index, int texcoord, co
     const tinygltf::Texture& t = m.textures[static_cast<std::size_t>(index)];
     ref.texture = index;
     ref.texcoord = std::max(texcoord, 0);
-    if (t.source >= 0) {
-        if (static_cast<std::size_t>(t.source) >= m.images.size())
-            throw Error(c.file, "texture " + std::to_string(index) + " names image " + std::to_string(t.source) +
+    // EXT_texture_webp's image is preferred: `source`, if any, is its
+    // fallback for readers without WebP.
+    int source = t.source;
+    if (const auto webp = t.extensions.find(kWebp);
+        webp != t.extensions.end() && webp->second.IsObject() && webp->second.Has("source"))
+        source = value_int(webp->second.Get("source"), 0, INT_MAX).value_or(-1);
+    if (source >= 0) {
+        if (static_cast<std::size_t>(source) >= m.images.size())
+            throw Error(c.file, "texture " + std::to_string(index) + " names image " + std::to_string(source) +
                                     ", but the file has " + std::to_string(m.images.size()));
-        ref.image = t.source;
-        ref.uri = m.images[static_cast<std::size_t>(t.source)].uri;
+        ref.image = source;
+        ref.uri = m.images[static_cast<std::size_t>(source)].uri;
     }
     if (t.sampler >= 0) {
         if (static_cast<std::size_t>(t.sampler) >= m.samplers.size())
@@ -173,11 +180,15 @@ Materials convert_materials(const tinygltf::Model& model, const std::string& fil
         m.kd = m.base_color;
         m.metallic = clamped(c, pbr.metallicFactor, "metallicFactor");
         m.roughness = clamped(c, pbr.roughnessFactor, "roughnessFactor");
+        // KHR_materials_ior allows ior = 1 (f0 = 0: no dielectric reflection
+        // at normal incidence), and 0 (f0 = 1), with which KHR_materials_specular
+        // converts specular-glossiness materials (their F0 is then the
+        // specular colour alone); other values below 1 are outside its schema.
         if (const std::optional<double> ior = extension_number(g, kIor, "ior")) {
-            if (std::isfinite(*ior) && *ior > 1.0)
+            if (std::isfinite(static_cast<float>(*ior)) && (*ior >= 1.0 || *ior == 0.0))
                 m.ior = static_cast<float>(*ior);
             else
-                diag.warn(file, c.what + ": " + kIor + " ior " + std::to_string(*ior) + " is not > 1: 1.5 used");
+                diag.warn(file, c.what + ": " + kIor + " ior " + format_number(*ior) + " is below 1 and not 0: 1.5 used");
         }
         const Vec3 emissive = read_colour(c, g.emissiveFactor, Vec3{0.0f}, "emissiveFactor");
         const float strength =

@@ -5,6 +5,7 @@
 #include <map>
 #include <span>
 
+#include "core/base64.h"
 #include "io/gltf/gltf.h"
 #include "io/images/texture_image.h"
 #include "scene/texture.h"
@@ -66,6 +67,18 @@ private:
                                                          encoding, source));
         if (!image.image.empty()) return add_texture(textures_, decode_texture(image.image, encoding, source));
         if (image.uri.empty()) throw Error(file_, "image " + std::to_string(index) + " has neither data nor a uri");
+        // A data: URI of a type tinygltf does not decode (image/webp).
+        if (image.uri.rfind("data:", 0) == 0) {
+            const std::size_t comma = image.uri.find(',');
+            const std::optional<std::string> bytes =
+                comma != std::string::npos && image.uri.substr(0, comma).ends_with(";base64")
+                    ? base64_decode(std::string_view(image.uri).substr(comma + 1))
+                    : std::nullopt;
+            if (!bytes || bytes->empty())
+                throw Error(file_, "image " + std::to_string(index) + ": the data: URI holds no base64 data");
+            const auto* data = reinterpret_cast<const unsigned char*>(bytes->data());
+            return add_texture(textures_, decode_texture(std::span(data, bytes->size()), encoding, source));
+        }
 
         // A file beside the model, never outside its folder.
         const std::filesystem::path relative = std::filesystem::path(decode_uri(image.uri)).lexically_normal();
@@ -118,15 +131,10 @@ struct SlotMaker {
     const tinygltf::Model& model;
     const std::string& file;
     TextureTable& table;
-    int& unapplied_texcoords;
 
     TextureRef operator()(const GltfTextureRef& ref, TextureEncoding encoding, std::uint8_t channel = 0) const {
         TextureRef slot;
-        if (!ref.present()) return slot;
-        if (ref.texcoord != 0) {
-            ++unapplied_texcoords;
-            return slot;
-        }
+        if (!ref.present() || ref.texcoord != 0) return slot;
         if (ref.image < 0) return slot;
         if (ref.offset.x != 0 || ref.offset.y != 0 || ref.rotation != 0 || ref.scale.x != 1 || ref.scale.y != 1) {
             slot.transformed = true;
@@ -150,10 +158,12 @@ void apply_textures(const tinygltf::Model& model, const std::filesystem::path& p
                     std::vector<Texture>& textures, Diagnostics& diag) {
     const std::string file = path.string();
     TextureTable table(model, path, textures, diag);
-    int unapplied_texcoords = 0;
-    const SlotMaker slot{model, file, table, unapplied_texcoords};
+    int unapplied_texcoords = 0;  // references, not slots: metallicRoughness fills two
+    const SlotMaker slot{model, file, table};
     for (std::size_t i = 0; i < refs.size() && i < materials.size(); ++i) {
         const GltfMaterialTextures& r = refs[i];
+        for (const GltfTextureRef* ref : {&r.base_color, &r.metallic_roughness, &r.normal, &r.emissive})
+            unapplied_texcoords += ref->present() && ref->texcoord != 0 ? 1 : 0;
         MaterialTextures& t = materials[i].textures;
         t.base_color = slot(r.base_color, TextureEncoding::Color);
         t.roughness = slot(r.metallic_roughness, TextureEncoding::Data, 1);

@@ -403,5 +403,23 @@ TEST(GltfTextures, ATexCoordOverrideInTheTransformIsStillNotApplied) {
     EXPECT_NE(diag.warnings[0].find("TEXCOORD other than 0"), std::string::npos) << diag.warnings[0];
 }
 
+// The warning counts texture references: metallicRoughness fills two slots
+// (roughness, metallic) but is one reference.
+TEST(GltfTextures, TheTexCoordWarningCountsReferences) {
+    TempFolder dir;
+    two_by_two_png(dir);
+    for (const bool both : {false, true}) {
+        GltfFile f = textured_quad({{"uri", "tex.png"}});
+        f.doc["materials"][0]["pbrMetallicRoughness"]["metallicRoughnessTexture"]["texCoord"] = 1;
+        if (both) f.doc["materials"][0]["pbrMetallicRoughness"]["baseColorTexture"]["texCoord"] = 1;
+        Diagnostics diag;
+        load_mesh_file(dir.write("m.gltf", f.gltf()), diag);
+        ASSERT_EQ(diag.warnings.size(), 1u);
+        EXPECT_EQ(diag.warnings[0].find(std::string(both ? "2" : "1") + " texture references use a TEXCOORD"),
+                  diag.warnings[0].find(": ") + 2)
+            << diag.warnings[0];
+    }
+}
+
 }  // namespace
 }  // namespace sombra

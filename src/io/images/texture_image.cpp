@@ -1,5 +1,6 @@
 // Decoding texture images: PNG, JPEG, TGA and BMP through stb_image (Debian's
-// libstb), EXR and Radiance HDR through read_hdr_image. The format is told
+// libstb), WebP through libwebp (texture_webp.cpp), EXR and Radiance HDR
+// through read_hdr_image. The format is told
 // by the content's first bytes, the size read from the header and checked
 // before any pixel is decoded, and the decoder reads through callbacks that
 // notice when it wants bytes beyond the end (a truncated file; stb would
@@ -21,6 +22,7 @@
 #include "core/image_limits.h"
 #include "io/images/hdr_image.h"
 #include "io/images/stb_guards.h"
+#include "io/images/texture_webp.h"
 #include "scene/texture.h"
 
 namespace sombra {
@@ -29,7 +31,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-enum class Format { Png, Jpeg, Bmp, Tga, Unsupported };
+enum class Format { Png, Jpeg, Bmp, Tga, Webp, Unsupported };
 
 struct Sniffed {
     Format format;
@@ -49,6 +51,8 @@ Sniffed sniff(std::span<const unsigned char> bytes) {
     while (fill < bytes.size() && bytes[fill] == 0xff) ++fill;
     if (fill > 0 && fill < bytes.size() && bytes[fill] == 0xd8) return {Format::Jpeg, "JPEG"};
     if (starts_with(bytes, "BM")) return {Format::Bmp, "BMP"};
+    if (bytes.size() >= 12 && starts_with(bytes, "RIFF") && std::memcmp(bytes.data() + 8, "WEBP", 4) == 0)
+        return {Format::Webp, "WebP"};
     // Formats stb would read too, but spec §12 does not list: refused by name.
     if (starts_with(bytes, "GIF8")) return {Format::Unsupported, "a GIF image"};
     if (starts_with(bytes, "8BPS")) return {Format::Unsupported, "a Photoshop (PSD) image"};
@@ -90,17 +94,6 @@ int source_eof(void* user) {
 }
 constexpr stbi_io_callbacks kCallbacks{&source_read, &source_skip, &source_eof};
 
-// The size limits, from the header, before the decoder allocates anything.
-void check_size(const std::string& where, std::int64_t width, std::int64_t height, std::int64_t channels) {
-    if (width < 1 || height < 1)
-        throw Error(where, "image has no pixels (" + std::to_string(width) + "×" + std::to_string(height) + ")");
-    if (width > kMaxImageSide || height > kMaxImageSide || width * height * channels > kMaxTextureValues)
-        throw Error(where, "image is " + std::to_string(width) + "×" + std::to_string(height) + " pixels of " +
-                               std::to_string(channels) + " channels, more than the limit of " +
-                               std::to_string(kMaxImageSide) + " per side and " + std::to_string(kMaxTextureValues) +
-                               " values in all");
-}
-
 // One stored value in [0, 1] as the encoding wants it: colour channels (not
 // alpha, the last of 2 or 4) through the sRGB curve.
 bool is_colour_channel(TextureEncoding encoding, int channel, int channels) {
@@ -116,34 +109,11 @@ std::string stb_reason() {
     return reason;
 }
 
-Texture decode_stb(std::span<const unsigned char> bytes, Format format, const char* format_name,
-                   TextureEncoding encoding, const std::string& where) {
-    if (format == Format::Jpeg)
-        if (const std::string problem = jpeg_huffman_problem(bytes); !problem.empty()) throw Error(where, problem);
-    std::optional<std::vector<unsigned char>> mended;
-    if (format == Format::Png && (mended = png_without_leading_empty_idat(bytes))) bytes = *mended;
-    MemorySource source{bytes};
-    int width = 0, height = 0, channels = 0;
-    if (!stbi_info_from_callbacks(&kCallbacks, &source, &width, &height, &channels))
-        throw Error(where, std::string("cannot read the ") + format_name + " header: " + stb_reason());
-    if (channels < 1 || channels > 4)
-        throw Error(where, "image has " + std::to_string(channels) + " channels (expected 1 to 4)");
-    check_size(where, width, height, channels);
-    source = MemorySource{bytes};
-    const bool sixteen = format == Format::Png && stbi_is_16_bit_from_callbacks(&kCallbacks, &source);
-
-    source = MemorySource{bytes};
-    int got_width = 0, got_height = 0, got_channels = 0;
-    void* pixels = sixteen ? static_cast<void*>(stbi_load_16_from_callbacks(&kCallbacks, &source, &got_width,
-                                                                            &got_height, &got_channels, channels))
-                           : static_cast<void*>(stbi_load_from_callbacks(&kCallbacks, &source, &got_width, &got_height,
-                                                                         &got_channels, channels));
-    if (!pixels) throw Error(where, std::string("cannot decode as ") + format_name + ": " + stb_reason());
-    const std::unique_ptr<void, void (*)(void*)> owner(pixels, &stbi_image_free);
-    if (source.wanted_more) throw Error(where, std::string(format_name) + " file is truncated");
-    if (got_width != width || got_height != height)
-        throw Error(where, std::string(format_name) + " image decoded to another size than its header gives");
-
+// Decoded pixels (8 or 16 bits per value, `channels` interleaved, rows top
+// to bottom) as a Texture of floats in [0, 1], colour channels sRGB-decoded
+// when `encoding` says so.
+Texture texture_from_pixels(const void* pixels, bool sixteen, int width, int height, int channels,
+                            TextureEncoding encoding, const std::string& where) {
     Texture t;
     t.source = where;
     t.encoding = encoding;
@@ -191,6 +161,37 @@ Texture decode_stb(std::span<const unsigned char> bytes, Format format, const ch
     return t;
 }
 
+Texture decode_stb(std::span<const unsigned char> bytes, Format format, const char* format_name,
+                   TextureEncoding encoding, const std::string& where) {
+    if (format == Format::Jpeg)
+        if (const std::string problem = jpeg_huffman_problem(bytes); !problem.empty()) throw Error(where, problem);
+    std::optional<std::vector<unsigned char>> mended;
+    if (format == Format::Png && (mended = png_without_leading_empty_idat(bytes))) bytes = *mended;
+    MemorySource source{bytes};
+    int width = 0, height = 0, channels = 0;
+    if (!stbi_info_from_callbacks(&kCallbacks, &source, &width, &height, &channels))
+        throw Error(where, std::string("cannot read the ") + format_name + " header: " + stb_reason());
+    if (channels < 1 || channels > 4)
+        throw Error(where, "image has " + std::to_string(channels) + " channels (expected 1 to 4)");
+    check_texture_size(where, width, height, channels);
+    source = MemorySource{bytes};
+    const bool sixteen = format == Format::Png && stbi_is_16_bit_from_callbacks(&kCallbacks, &source);
+
+    source = MemorySource{bytes};
+    int got_width = 0, got_height = 0, got_channels = 0;
+    void* pixels = sixteen ? static_cast<void*>(stbi_load_16_from_callbacks(&kCallbacks, &source, &got_width,
+                                                                            &got_height, &got_channels, channels))
+                           : static_cast<void*>(stbi_load_from_callbacks(&kCallbacks, &source, &got_width, &got_height,
+                                                                         &got_channels, channels));
+    if (!pixels) throw Error(where, std::string("cannot decode as ") + format_name + ": " + stb_reason());
+    const std::unique_ptr<void, void (*)(void*)> owner(pixels, &stbi_image_free);
+    if (source.wanted_more) throw Error(where, std::string(format_name) + " file is truncated");
+    if (got_width != width || got_height != height)
+        throw Error(where, std::string(format_name) + " image decoded to another size than its header gives");
+
+    return texture_from_pixels(pixels, sixteen, width, height, channels, encoding, where);
+}
+
 std::string lowercase(std::string s) {
     std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
     return s;
@@ -198,12 +199,26 @@ std::string lowercase(std::string s) {
 
 }  // namespace
 
+void check_texture_size(const std::string& where, std::int64_t width, std::int64_t height, std::int64_t channels) {
+    if (width < 1 || height < 1)
+        throw Error(where, "image has no pixels (" + std::to_string(width) + "×" + std::to_string(height) + ")");
+    if (width > kMaxImageSide || height > kMaxImageSide || width * height * channels > kMaxTextureValues)
+        throw Error(where, "image is " + std::to_string(width) + "×" + std::to_string(height) + " pixels of " +
+                               std::to_string(channels) + " channels, more than the limit of " +
+                               std::to_string(kMaxImageSide) + " per side and " + std::to_string(kMaxTextureValues) +
+                               " values in all");
+}
+
 Texture decode_texture(std::span<const unsigned char> bytes, TextureEncoding encoding, const std::string& source) {
     if (bytes.empty()) throw Error(source, "image file is empty");
     const Sniffed kind = sniff(bytes);
     if (kind.format == Format::Unsupported)
         throw Error(source, std::string("unsupported image format: ") + kind.name +
-                                " (supported: PNG, JPEG, TGA, BMP, .exr, .hdr)");
+                                " (supported: PNG, JPEG, TGA, BMP, WebP, .exr, .hdr)");
+    if (kind.format == Format::Webp) {
+        const WebpPixels webp = decode_webp(bytes, source);
+        return texture_from_pixels(webp.pixels.data(), false, webp.width, webp.height, webp.channels, encoding, source);
+    }
     return decode_stb(bytes, kind.format, kind.name, encoding, source);
 }
 
