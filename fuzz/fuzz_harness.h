@@ -158,7 +158,8 @@ inline std::string material_problem(const Material& m) {
     if (!in_unit_range(m.kr) || !in_unit_range(m.kt)) return "material '" + m.name + "': kr or kt outside [0, 1]";
     // A dielectric refracts (ior > 1); pbr's ior only sets f0, and glTF's 1 is valid.
     const bool ior_ok = m.type == MaterialType::Pbr ? m.ior >= 1 || m.ior == 0 : m.ior > 1;
-    if (!ior_ok || !std::isfinite(m.ior)) return "material '" + m.name + "': ior not finite and > 1 (>= 1 or 0 for pbr)";
+    if (!ior_ok || !std::isfinite(m.ior))
+        return "material '" + m.name + "': ior not finite and > 1 (>= 1 or 0 for pbr)";
     if (!(m.roughness >= 0 && m.roughness <= 1)) return "material '" + m.name + "': roughness outside [0, 1]";
     if (!in_unit_range(m.base_color) || !(m.metallic >= 0 && m.metallic <= 1))
         return "material '" + m.name + "': base_color or metallic outside [0, 1]";

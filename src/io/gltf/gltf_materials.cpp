@@ -188,7 +188,8 @@ Materials convert_materials(const tinygltf::Model& model, const std::string& fil
             if (std::isfinite(static_cast<float>(*ior)) && (*ior >= 1.0 || *ior == 0.0))
                 m.ior = static_cast<float>(*ior);
             else
-                diag.warn(file, c.what + ": " + kIor + " ior " + format_number(*ior) + " is below 1 and not 0: 1.5 used");
+                diag.warn(file,
+                          c.what + ": " + kIor + " ior " + format_number(*ior) + " is below 1 and not 0: 1.5 used");
         }
         const Vec3 emissive = read_colour(c, g.emissiveFactor, Vec3{0.0f}, "emissiveFactor");
         const float strength =
