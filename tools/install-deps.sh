@@ -27,17 +27,29 @@ packages=(
   lintian                # tools/package.sh: checks the .deb
   clang-14 libclang-rt-14-dev  # libFuzzer + sanitizer runtimes (tools/fuzz.sh)
   clang-tidy-14 clang-format-14  # tools/tidy.sh (CI: zero findings), .clang-format
+  chromium                     # the viewer's end-to-end test (tools/browser/viewer_e2e.mjs), headless
 )
+# Node.js for that test's driver (playwright-core, from npm below): the
+# machine's own when it has one, else Debian's.
+command -v node >/dev/null && command -v npm >/dev/null || packages+=(nodejs npm)
 
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
 done
-[ ${#missing[@]} -eq 0 ] && exit 0
+if [ ${#missing[@]} -gt 0 ]; then
+  echo "sombra: installing ${missing[*]}" >&2
+  sudo=""
+  [ "$(id -u)" -eq 0 ] || sudo="sudo"
+  export DEBIAN_FRONTEND=noninteractive
+  $sudo apt-get update -qq
+  $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
+fi
 
-echo "sombra: installing ${missing[*]}" >&2
-sudo=""
-[ "$(id -u)" -eq 0 ] || sudo="sudo"
-export DEBIAN_FRONTEND=noninteractive
-$sudo apt-get update -qq
-$sudo apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
+# playwright-core drives Debian's chromium (it downloads no browser of its
+# own), at the version package-lock.json pins, into tools/browser/node_modules.
+browser="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)/browser"
+if [ ! -f "$browser/node_modules/playwright-core/package.json" ]; then
+  echo "sombra: installing playwright-core (npm) in tools/browser" >&2
+  (cd "$browser" && npm ci --no-audit --no-fund --loglevel=error >/dev/null)
+fi

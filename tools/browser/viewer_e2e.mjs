@@ -1,0 +1,212 @@
+// The viewer end to end in a real browser (issue 23, spec §20): Debian's
+// chromium, headless, driven by playwright-core. It starts `sombra view`,
+// opens the URL it prints, and checks what a user sees:
+//   1. after the passes end, the page's image equals `sombra render` of the
+//      same scene at the same spp, up to 8-bit rounding (±1 per channel);
+//   2. a second tab sees the same render;
+//   3. a drag orbits the camera: the image changes and refines again;
+//   4. a click on a pixel shows explain's story in the side panel, with the
+//      pixel's value equal to what `sombra explain --json` gives for it at
+//      that camera;
+//   5. a signal ends the server at once and frees the port (SIGTERM: a
+//      process that a non-interactive shell starts in the background inherits
+//      SIGINT ignored, as CI's may; Ctrl-C itself is tested by interrupt_test).
+// Screenshots go to $SOMBRA_ARTIFACTS (CI keeps them).
+//
+//   SOMBRA_EXE=build/release/src/app/sombra node tools/browser/viewer_e2e.mjs
+//
+// Exit 0: passed; 1: failed; 77: skipped (no chromium or no playwright-core;
+// a failure instead when SOMBRA_REQUIRE_BROWSER is set, as in CI).
+import { spawn, spawnSync } from "node:child_process";
+import { existsSync, mkdirSync, mkdtempSync, readFileSync, rmSync, writeFileSync } from "node:fs";
+import { tmpdir } from "node:os";
+import path from "node:path";
+import { fileURLToPath } from "node:url";
+
+const here = path.dirname(fileURLToPath(import.meta.url));
+const repo = path.resolve(here, "../..");
+const exe = process.env.SOMBRA_EXE ?? path.join(repo, "build/release/src/app/sombra");
+const artifacts = process.env.SOMBRA_ARTIFACTS ?? path.join(repo, "build/release/viewer-e2e");
+const chromiumPaths = ["/usr/lib/chromium/chromium", "/usr/bin/chromium"];
+const WIDTH = 96, HEIGHT = 72, SPP = 8;
+
+function skip(why) {
+  if (process.env.SOMBRA_REQUIRE_BROWSER) fail(`${why} (SOMBRA_REQUIRE_BROWSER is set: tools/install-deps.sh installs it)`);
+  console.log(`SKIPPED: ${why}`);
+  process.exit(77);
+}
+function fail(why) {
+  console.error(`FAILED: ${why}`);
+  process.exitCode = 1;
+  throw new Error(why);
+}
+function check(condition, what) {
+  if (!condition) fail(what);
+  console.log(`ok: ${what}`);
+}
+
+let chromium;
+try {
+  ({ chromium } = await import("playwright-core"));
+} catch {
+  skip("playwright-core is not installed in tools/browser/node_modules");
+}
+const browserPath = chromiumPaths.find((p) => existsSync(p));
+if (!browserPath) skip("Debian's chromium is not installed");
+if (!existsSync(exe)) skip(`no sombra executable at ${exe} (set SOMBRA_EXE)`);
+mkdirSync(artifacts, { recursive: true });
+
+// A small scene of the repository's: the Cornell box under the direct
+// integrator (fast, and every pixel deterministic for a given spp).
+const work = mkdtempSync(path.join(tmpdir(), "sombra-viewer-e2e-"));
+const scene = path.join(repo, "scenes/cornell-box.json");
+const common = ["--width", String(WIDTH), "--height", String(HEIGHT), "--spp", String(SPP), "--threads", "2"];
+
+function runSombra(args) {
+  const r = spawnSync(exe, args, { encoding: "utf8", timeout: 60000 });
+  if (r.status !== 0) fail(`sombra ${args.join(" ")}: exit ${r.status}: ${r.stderr}`);
+  return r.stdout;
+}
+
+// The server: its URL is the first line on standard output.
+const server = spawn(exe, ["view", scene, ...common, "--port", "0", "--quiet"], { stdio: ["ignore", "pipe", "pipe"] });
+let serverErr = "";
+server.stderr.on("data", (d) => { serverErr += d; });
+const url = await new Promise((resolve, reject) => {
+  let out = "";
+  const timer = setTimeout(() => reject(new Error("sombra view printed no URL within 30 s: " + serverErr)), 30000);
+  server.stdout.on("data", (d) => {
+    out += d;
+    const line = out.split("\n").find((l) => l.startsWith("http://127.0.0.1:"));
+    if (line) { clearTimeout(timer); resolve(line.trim()); }
+  });
+  server.on("exit", (code) => reject(new Error(`sombra view exited (${code}): ${serverErr}`)));
+});
+const port = Number(new URL(url).port);
+console.log(`serving at ${url}`);
+
+const browser = await chromium.launch({
+  executablePath: browserPath,
+  headless: true,
+  args: ["--no-sandbox", "--disable-gpu", "--disable-dev-shm-usage", "--no-zygote"],
+});
+let passed = false;
+try {
+  const page = await browser.newPage({ viewport: { width: 1100, height: 700 } });
+  page.on("pageerror", (e) => fail(`the page threw: ${e.message}`));
+  await page.goto(url);
+
+  // The status line reads "pass N · S / T spp · … · done" once the passes end.
+  const waitDone = async (p, after = "") =>
+    p.waitForFunction((prev) => {
+      const t = document.getElementById("status").textContent;
+      return t.includes("done") && t !== prev;
+    }, after, { timeout: 60000 });
+  await waitDone(page);
+  // The image the page shows, as RGBA bytes (read back through a canvas).
+  const pixelsOf = (p) =>
+    p.evaluate(async () => {
+      const img = document.getElementById("view");
+      if (!img.complete) await new Promise((r) => img.addEventListener("load", r, { once: true }));
+      await img.decode();
+      const c = document.createElement("canvas");
+      c.width = img.naturalWidth; c.height = img.naturalHeight;
+      const g = c.getContext("2d");
+      g.drawImage(img, 0, 0);
+      return { width: c.width, height: c.height, data: Array.from(g.getImageData(0, 0, c.width, c.height).data) };
+    });
+  // Wait for the image of the last pass to be the one shown.
+  await page.waitForFunction(() => {
+    const img = document.getElementById("view");
+    return img.complete && img.naturalWidth > 0;
+  });
+  await page.waitForTimeout(300);
+  const shown = await pixelsOf(page);
+  await page.screenshot({ path: path.join(artifacts, "1-refined.png") });
+
+  // 1. The same image as `sombra render`, decoded by the same browser.
+  const reference = path.join(work, "reference.png");
+  runSombra(["render", scene, ...common, "-o", reference, "--quiet"]);
+  const refPixels = await page.evaluate(async (b64) => {
+    const img = new Image();
+    img.src = "data:image/png;base64," + b64;
+    await img.decode();
+    const c = document.createElement("canvas");
+    c.width = img.naturalWidth; c.height = img.naturalHeight;
+    const g = c.getContext("2d");
+    g.drawImage(img, 0, 0);
+    return { width: c.width, height: c.height, data: Array.from(g.getImageData(0, 0, c.width, c.height).data) };
+  }, readFileSync(reference).toString("base64"));
+  check(shown.width === WIDTH && shown.height === HEIGHT, `the page shows a ${WIDTH}×${HEIGHT} image`);
+  let worst = 0;
+  for (let i = 0; i < shown.data.length; ++i) worst = Math.max(worst, Math.abs(shown.data[i] - refPixels.data[i]));
+  check(worst <= 1, `the refined image equals sombra render at ${SPP} spp up to 8-bit rounding (largest difference ${worst})`);
+
+  // 2. A second tab sees the same render.
+  const second = await browser.newPage({ viewport: { width: 1100, height: 700 } });
+  await second.goto(url);
+  await waitDone(second);
+  await second.waitForFunction(() => document.getElementById("view").naturalWidth > 0);
+  await second.waitForTimeout(300);
+  const secondShown = await pixelsOf(second);
+  check(secondShown.data.every((v, i) => v === shown.data[i]), "a second tab shows the same image");
+  await second.close();
+
+  // 3. A drag orbits: the image changes, and the passes start again and end.
+  const box = await page.locator("#view").boundingBox();
+  const statusBefore = await page.locator("#status").textContent();
+  await page.mouse.move(box.x + box.width / 2, box.y + box.height / 2);
+  await page.mouse.down();
+  for (let k = 1; k <= 8; ++k) await page.mouse.move(box.x + box.width / 2 + 6 * k, box.y + box.height / 2 + k);
+  await page.mouse.up();
+  await page.waitForFunction(() => !document.getElementById("status").textContent.includes("done"), null,
+                             { timeout: 20000 }).catch(() => {});  // a fast machine may finish in between
+  await waitDone(page, statusBefore);
+  await page.waitForTimeout(300);
+  const orbited = await pixelsOf(page);
+  let changed = 0;
+  for (let i = 0; i < orbited.data.length; ++i) changed += orbited.data[i] !== shown.data[i] ? 1 : 0;
+  check(changed > orbited.data.length / 20, `the drag moved the camera (${changed} of ${orbited.data.length} bytes changed)`);
+  const state = await page.evaluate(async (u) => (await fetch(new URL("/state" + new URL(u).search, u))).json(), url);
+  check(state.frame.done && state.frame.spp === SPP, `the orbited view refined to ${SPP} spp again`);
+  await page.screenshot({ path: path.join(artifacts, "2-orbited.png") });
+
+  // 4. A click shows explain's story for that pixel at the current camera.
+  const px = 40, py = 30;
+  await page.mouse.click(box.x + (px + 0.5) * box.width / WIDTH, box.y + (py + 0.5) * box.height / HEIGHT);
+  await page.waitForFunction(() => document.querySelector("#stories .story h3") !== null, null, { timeout: 30000 });
+  const heading = await page.locator("#stories .story h3").first().textContent();
+  const story = await page.locator("#stories .story pre").first().textContent();
+  check(heading.startsWith(`1: pixel (${px}, ${py}) = [`), `the panel names the clicked pixel: ${heading}`);
+  check(story.length > 100 && (await page.locator("#stories .story img").count()) === 1,
+        "the panel shows the story's text and its SVG");
+  // The same pixel explained by the command line at the orbited camera.
+  const c = state.camera;
+  const sceneJson = JSON.parse(readFileSync(scene, "utf8"));
+  sceneJson.camera = { origin: c.origin, look_at: c.look_at, up: c.up, fov: c.fov };
+  for (const o of sceneJson.objects ?? []) if (o.file) o.file = path.resolve(path.dirname(scene), o.file);
+  const moved = path.join(work, "moved.json");
+  writeFileSync(moved, JSON.stringify(sceneJson));
+  const cli = JSON.parse(runSombra(["explain", moved, String(px), String(py), ...common, "--json"]));
+  const shownValue = heading.slice(heading.indexOf("[") + 1, heading.indexOf("]")).split(",").map(Number);
+  const close = cli.value.every((v, i) => Math.abs(v - shownValue[i]) <= 1e-5 * Math.max(1, Math.abs(v)));
+  check(close, `the panel's value [${shownValue}] is explain's [${cli.value.map((v) => v.toPrecision(6))}]`);
+  await page.screenshot({ path: path.join(artifacts, "3-explained.png") });
+  passed = true;
+} finally {
+  await browser.close();
+  // 5. A signal ends the server at once and frees the port.
+  const started = Date.now();
+  server.kill("SIGTERM");
+  const code = await new Promise((r) => (server.exitCode !== null ? r(server.exitCode) : server.on("exit", r)));
+  if (passed) {
+    check(code === 0 && Date.now() - started < 2000, `SIGTERM ended the server (status ${code}, ${Date.now() - started} ms)`);
+    // Freed as a user needs it: a new `sombra view --port P` serves there.
+    const again = spawnSync("timeout", ["-s", "TERM", "3", exe, "view", scene, ...common, "--port", String(port)],
+                            { encoding: "utf8" });
+    check(again.stdout.startsWith(`http://127.0.0.1:${port}/`),
+          `port ${port} is free again: a new server listens there (${again.stderr.trim() || "no error"})`);
+  }
+  rmSync(work, { recursive: true, force: true });
+}
+console.log("1 passed, 0 failed");
