@@ -177,7 +177,7 @@ try {
   await page.waitForFunction(() => document.querySelector("#stories .story h3") !== null, null, { timeout: 30000 });
   const heading = await page.locator("#stories .story h3").first().textContent();
   const story = await page.locator("#stories .story pre").first().textContent();
-  check(heading.startsWith(`1: pixel (${px}, ${py}) = [`), `the panel names the clicked pixel: ${heading}`);
+  check(heading.startsWith(`1: pixel (${px}, ${py}), sample 0: L = [`), `the panel names the clicked pixel: ${heading}`);
   check(story.length > 100 && (await page.locator("#stories .story img").count()) === 1,
         "the panel shows the story's text and its SVG");
   // The same pixel explained by the command line at the orbited camera.
