@@ -75,6 +75,17 @@ class Scene:
     def _changed(self) -> None:
         self._impl = None
 
+    def _checked(self, name: str, part: str, value: Any, mapping: bool = True) -> Any:
+        """``value`` (a scene from code's piece ``name``, the scene file's
+        section ``part``) as plain JSON data, after the reader's own check of
+        that section: what every setter stores."""
+        self._from_code(name)
+        if mapping and not isinstance(value, Mapping):
+            raise TypeError(f"Scene.{name}: expected a dict, not {type(value).__name__}")
+        plain = _plain(value)
+        _sombra.check_part(part, json.dumps(plain), "/" + part)
+        return plain
+
     def _assembled(self) -> Any:
         if self._impl is None:
             d: dict = {"render": self._render, "materials": self._materials, "lights": self._lights,
@@ -158,12 +169,7 @@ class Scene:
 
     @camera.setter
     def camera(self, camera: Mapping[str, Any]) -> None:
-        self._from_code("camera")
-        if not isinstance(camera, Mapping):
-            raise TypeError(f"Scene.camera: expected a dict, not {type(camera).__name__}")
-        value = _plain(camera)
-        _sombra.check_part("camera", json.dumps(value), "/camera")
-        self._camera = value
+        self._camera = self._checked("camera", "camera", camera)
         self._changed()
 
     @property
@@ -179,9 +185,7 @@ class Scene:
         self._from_code("background")
         if rgb is not None:
             self._only_one("background", "environment", self._environment)
-            value = _plain(rgb)
-            _sombra.check_part("background", json.dumps(value), "/background")
-        self._background = None if rgb is None else value
+        self._background = None if rgb is None else self._checked("background", "background", rgb, mapping=False)
         self._changed()
 
     @property
@@ -201,9 +205,7 @@ class Scene:
             if not isinstance(environment, Mapping):
                 raise TypeError(f"Scene.environment: expected a dict, not {type(environment).__name__}")
             self._only_one("environment", "background", self._background)
-            value = _plain(environment)
-            _sombra.check_part("environment", json.dumps(value), "/environment")
-        self._environment = None if environment is None else value
+        self._environment = None if environment is None else self._checked("environment", "environment", environment)
         self._changed()
 
     @staticmethod
@@ -224,12 +226,7 @@ class Scene:
 
     @render_settings.setter
     def render_settings(self, settings: Mapping[str, Any]) -> None:
-        self._from_code("render_settings")
-        if not isinstance(settings, Mapping):
-            raise TypeError(f"Scene.render_settings: expected a dict, not {type(settings).__name__}")
-        value = _plain(settings)
-        _sombra.check_part("render", json.dumps(value), "/render")
-        self._render = value
+        self._render = self._checked("render_settings", "render", settings)
         self._changed()
 
     @property
