@@ -3,7 +3,7 @@
 // opens the URL it prints, and checks what a user sees:
 //   1. after the passes end, the page's image equals `sombra render` of the
 //      same scene at the same spp, up to 8-bit rounding (±1 per channel);
-//   2. a second tab sees the same render;
+//   2. a second tab sees the same render, and follows the camera the first moves;
 //   3. a drag orbits the camera: the image changes and refines again;
 //   4. a click on a pixel shows explain's story in the side panel, with the
 //      pixel's value equal to what `sombra explain --json` gives for it at
@@ -150,7 +150,6 @@ try {
   await second.waitForTimeout(300);
   const secondShown = await pixelsOf(second);
   check(secondShown.data.every((v, i) => v === shown.data[i]), "a second tab shows the same image");
-  await second.close();
 
   // 3. A drag orbits: the image changes, and the passes start again and end.
   const box = await page.locator("#view").boundingBox();
@@ -170,6 +169,11 @@ try {
   const state = await page.evaluate(async (u) => (await fetch(new URL("/state" + new URL(u).search, u))).json(), url);
   check(state.frame.done && state.frame.spp === SPP, `the orbited view refined to ${SPP} spp again`);
   await page.screenshot({ path: path.join(artifacts, "2-orbited.png") });
+  // The second tab follows the camera moved in the first (its own moves start from there).
+  await second.waitForFunction((o) => camera.origin.every((v, i) => Math.abs(v - o[i]) < 1e-6), state.camera.origin,
+                               { timeout: 10000 });
+  console.log("ok: the second tab took the camera moved in the first");
+  await second.close();
 
   // 4. A click shows explain's story for that pixel at the current camera.
   const px = 40, py = 30;
