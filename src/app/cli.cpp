@@ -2,6 +2,7 @@
 
 #include <CLI/CLI.hpp>
 #include <cctype>
+#include <charconv>
 #include <filesystem>
 #include <iostream>
 #include <sstream>
@@ -14,6 +15,10 @@
 namespace sombra {
 
 namespace {
+
+// The most shards one render may be split into (spec §21): far more than a
+// cluster's nodes, far fewer than an image's blocks.
+constexpr int kMaxShards = 4096;
 
 // More workers than this is a typo, not a machine.
 constexpr int kMaxThreads = 4096;
@@ -121,6 +126,23 @@ void add_output_options(CLI::App& render, CliOptions& o) {
                 return parse_display_address(text) ? "" : "expected HOST:PORT (or [IPV6]:PORT), port 1-65535";
             },
             "HOST:PORT"));
+    render.add_option_function<std::string>(
+        "--shard",
+        [&o](const std::string& text) {
+            const auto slash = text.find('/');
+            int index = -1, count = 0;
+            const bool parsed = slash != std::string::npos &&
+                                std::from_chars(text.data(), text.data() + slash, index).ptr == text.data() + slash &&
+                                std::from_chars(text.data() + slash + 1, text.data() + text.size(), count).ptr ==
+                                    text.data() + text.size();
+            if (!parsed || count < 1 || count > kMaxShards || index < 0 || index >= count)
+                throw CLI::ValidationError("--shard", "expected I/N with 0 <= I < N <= " + std::to_string(kMaxShards) +
+                                                          ", not '" + text + "'");
+            o.shard_index = index;
+            o.shard_count = count;
+            o.sharded = true;
+        },
+        "Render share I of N of the pixels into an .exr that 'sombra merge' joins with the others");
 }
 
 }  // namespace
@@ -163,6 +185,16 @@ CliParse parse(int argc, const char* const* argv, std::ostream& out, std::ostrea
         ->capture_default_str();
     add_render_options(*view, o);
 
+    CLI::App* merge =
+        app.add_subcommand("merge", "Join the .exr shards of one render (sombra render --shard I/N) into its image");
+    merge->add_option("parts", o.parts, "The N shards, each an .exr written with --shard I/N")->required();
+    merge->add_option("-o,--output", o.output, "Image to write: .png (8-bit sRGB), .pfm or .exr (linear)")
+        ->capture_default_str();
+    merge->add_option("--exposure", o.exposure, "Multiply radiance by 2^E before PNG encoding")
+        ->check(CLI::Number)
+        ->capture_default_str();
+    merge->add_flag("-q,--quiet", o.quiet, "No summary line");
+
     try {
         app.parse(argc, argv);
     } catch (const CLI::CallForHelp&) {
@@ -177,12 +209,26 @@ CliParse parse(int argc, const char* const* argv, std::ostream& out, std::ostrea
     } catch (const CLI::ParseError& e) {
         const std::string_view sub = argc > 1 ? std::string_view(argv[1]) : std::string_view();
         err << "sombra: error: command line: " << one_line(e.what()) << " (see 'sombra "
-            << (sub == "explain" || sub == "view" ? sub : "render") << " --help')\n";
+            << (sub == "explain" || sub == "view" || sub == "merge" ? sub : "render") << " --help')\n";
         return {std::nullopt, 2};
     }
     o.command = app.got_subcommand(explain) ? Command::Explain
                 : app.got_subcommand(view)  ? Command::View
+                : app.got_subcommand(merge) ? Command::Merge
                                             : Command::Render;
+    if (o.sharded) {
+        const char* problem = nullptr;
+        if (std::filesystem::path(o.output).extension() != ".exr")
+            problem = "--shard writes an .exr (the shard's float pixels and what merging needs)";
+        else if (o.noise_threshold)
+            problem =
+                "--shard and --noise-threshold cannot go together: a pixel's stopping reads its neighbours, "
+                "which another shard renders";
+        if (problem) {
+            err << "sombra: error: command line: " << problem << " (see 'sombra render --help')\n";
+            return {std::nullopt, 2};
+        }
+    }
     if (o.aovs.any()) {
         std::string ext = std::filesystem::path(o.output).extension().string();
         for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));

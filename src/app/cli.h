@@ -15,6 +15,7 @@ enum class Command {
     Render,   // sombra render: the image
     Explain,  // sombra explain: the story of one pixel's sample (spec §14)
     View,     // sombra view: the render in a browser, refining live (spec §20)
+    Merge,    // sombra merge: the shards of one render joined into its image (spec §21)
 };
 
 struct CliOptions {
@@ -37,6 +38,11 @@ struct CliOptions {
     int min_spp = 16;
     AovSet aovs;
     std::string display_server;  // --display-server HOST:PORT (tev); empty = none
+    // --shard I/N (spec §21): render share I of N of the pixels; count 1 = all.
+    int shard_index = 0, shard_count = 1;
+    bool sharded = false;  // --shard given (0/1 included: a shard of one, for merge)
+    // sombra merge PART... -o OUT [--exposure E]
+    std::vector<std::string> parts;
     bool quiet = false;
 
     // sombra explain SCENE X Y [--sample K] [--json] [--svg FILE]

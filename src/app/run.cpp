@@ -16,6 +16,7 @@
 #include "app/interrupt.h"
 #include "app/prepare.h"
 #include "app/progress.h"
+#include "app/shards.h"
 #include "app/stats.h"
 #include "core/error.h"
 #include "core/peak_rss.h"
@@ -98,6 +99,10 @@ int run_render(const CliOptions& o) {
         RenderJob job = make_render_job(scene, accel, settings, o.threads, light_selection(o));
         job.limits = sampling_limits(o, start);
         job.aovs = o.aovs;
+        job.shard = ShardSpec{o.shard_index, o.shard_count};
+        // A shard's header says which share it is, of which render (spec §21).
+        const std::vector<ImageAttribute> shard_header =
+            o.sharded ? shard_attributes(o, settings) : std::vector<ImageAttribute>{};
         std::optional<DisplayConnection> display;
         if (!o.display_server.empty()) {
             display.emplace(*parse_display_address(o.display_server), output.filename().string(), settings.width,
@@ -111,7 +116,7 @@ int run_render(const CliOptions& o) {
         {
             const bool show = !o.quiet && isatty(STDERR_FILENO);
             ProgressBar bar(progress,
-                            static_cast<std::uint64_t>(settings.width) * static_cast<std::uint64_t>(settings.height) *
+                            shard_pixel_count(job.shard, settings.width, settings.height) *
                                 static_cast<std::uint64_t>(settings.spp),
                             show, job.limits.deadline);
             rendered = render_image(job, progress);
@@ -128,7 +133,7 @@ int run_render(const CliOptions& o) {
 
         const auto write_start = Clock::now();
         write_image(output, ImageView{rendered.film.width, rendered.film.height, rendered.film.rgb.data()}, o.exposure,
-                    aov_layers(rendered.aovs));
+                    aov_layers(rendered.aovs), shard_header);
         stats.write_seconds = seconds_since(write_start);
 
         stats.triangles = scene.geometry.triangle_count();
@@ -136,8 +141,8 @@ int run_render(const CliOptions& o) {
         stats.height = settings.height;
         stats.spp = o.time_budget && !o.spp ? static_cast<int>(rendered.max_pixel_spp) : settings.spp;
         stats.spp_uniform = rendered.min_pixel_spp == rendered.max_pixel_spp;
-        stats.spp_reached = static_cast<double>(rendered.samples) /
-                            (static_cast<double>(settings.width) * static_cast<double>(settings.height));
+        stats.spp_reached =
+            static_cast<double>(rendered.samples) / static_cast<double>(std::max<std::uint64_t>(rendered.pixels, 1));
         if (stats.spp_uniform) stats.spp_reached = rendered.max_pixel_spp;
         stats.passes = rendered.passes;
         stats.threads = o.threads > 0 ? o.threads : tbb::info::default_concurrency();
@@ -163,6 +168,7 @@ int run_sombra(int argc, const char* const* argv) {
     if (!parsed.options) return parsed.exit_code;
     if (parsed.options->command == Command::Explain) return run_explain(*parsed.options);
     if (parsed.options->command == Command::View) return run_view(*parsed.options);
+    if (parsed.options->command == Command::Merge) return run_merge(*parsed.options);
     return run_render(*parsed.options);
 }
 

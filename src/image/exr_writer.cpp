@@ -3,6 +3,7 @@
 #include <ImfHeader.h>
 #include <ImfIO.h>
 #include <ImfOutputFile.h>
+#include <ImfStringAttribute.h>
 
 #include <cerrno>
 #include <cstdio>
@@ -52,7 +53,8 @@ private:
 };
 
 // The EXR file of write_exr written to `out` (a file or a memory stream); throws on failure.
-void encode_exr(std::FILE* out, const char* name, ImageView image, std::span<const ImageChannel> layers) {
+void encode_exr(std::FILE* out, const char* name, ImageView image, std::span<const ImageChannel> layers,
+                std::span<const ImageAttribute> attributes) {
     const auto width = static_cast<std::size_t>(image.width);
     const auto height = static_cast<std::size_t>(image.height);
 
@@ -79,6 +81,8 @@ void encode_exr(std::FILE* out, const char* name, ImageView image, std::span<con
                                             stride, stride * width));
     }
 
+    for (const ImageAttribute& a : attributes) header.insert(a.name, Imf::StringAttribute(a.value));
+
     CheckedStream stream(out, name);
     {
         Imf::OutputFile exr(stream, header);  // single-threaded: the global OpenEXR thread count is 0
@@ -92,9 +96,10 @@ void encode_exr(std::FILE* out, const char* name, ImageView image, std::span<con
 
 // 32-bit float channels rather than half: the file holds exactly the radiance
 // the renderer computed (half would round to 11 bits and overflow above 65504).
-void write_exr(const std::filesystem::path& file, ImageView image, std::span<const ImageChannel> layers) {
+void write_exr(const std::filesystem::path& file, ImageView image, std::span<const ImageChannel> layers,
+               std::span<const ImageAttribute> attributes) {
     OutputFile out = open_for_writing(file);
-    encode_exr(out.get(), file.c_str(), image, layers);
+    encode_exr(out.get(), file.c_str(), image, layers, attributes);
     finish_writing(std::move(out));
 }
 
@@ -107,7 +112,7 @@ std::vector<std::uint8_t> encode_exr_bytes(ImageView image) {
     if (stream == nullptr) throw std::bad_alloc();
     bool ok = true;
     try {
-        encode_exr(stream, "exr", image, {});
+        encode_exr(stream, "exr", image, {}, {});
     } catch (...) {
         ok = false;
     }

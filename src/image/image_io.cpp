@@ -67,9 +67,10 @@ void check_output_path(const fs::path& path) {
         throw Error(path.string(), "folder '" + folder.string() + "' is not writable: " + errno_message(errno));
 }
 
-void write_image(const fs::path& path, ImageView image, float exposure, std::span<const ImageChannel> layers) {
+void write_image(const fs::path& path, ImageView image, float exposure, std::span<const ImageChannel> layers,
+                 std::span<const ImageAttribute> attributes) {
     const ImageFormat format = image_format_for(path);
-    if (!layers.empty() && format != ImageFormat::Exr)
+    if ((!layers.empty() || !attributes.empty()) && format != ImageFormat::Exr)
         throw Error(path.string(), "only an .exr file holds layers beside the image");
     if (image.width <= 0 || image.height <= 0)
         throw Error(path.string(), "cannot write an image of " + std::to_string(image.width) + "x" +
@@ -82,7 +83,7 @@ void write_image(const fs::path& path, ImageView image, float exposure, std::spa
             switch (format) {
                 case ImageFormat::Png: write_png(temp, image, exposure); break;
                 case ImageFormat::Pfm: write_pfm(temp, image); break;
-                case ImageFormat::Exr: write_exr(temp, image, layers); break;
+                case ImageFormat::Exr: write_exr(temp, image, layers, attributes); break;
             }
         });
     } catch (const Error& e) {

@@ -29,6 +29,12 @@ struct ImageChannel {
     int stride = 1;
 };
 
+// A text attribute of an OpenEXR file's header (a shard's identity, spec §21).
+struct ImageAttribute {
+    std::string name;
+    std::string value;
+};
+
 enum class ImageFormat { Png, Pfm, Exr };
 
 // The format named by the path's extension (case-insensitive .png, .pfm,
@@ -43,11 +49,23 @@ void check_output_path(const std::filesystem::path& path);
 // Writes the image in the format of the path's extension. `exposure` scales
 // radiance by 2^exposure for PNG only (PFM and EXR keep linear radiance).
 // Pixels with a non-finite channel are written as black in every format.
-// `layers` (EXR only; Error(path, ...) with another format) go into the file
-// beside R, G, B. Throws Error(path, ...) on failure, leaving any earlier
-// file at `path` untouched.
+// `layers` and `attributes` (EXR only; Error(path, ...) with another
+// format) go into the file beside R, G, B and into its header. Throws
+// Error(path, ...) on failure, leaving any earlier file at `path` untouched.
 void write_image(const std::filesystem::path& path, ImageView image, float exposure,
-                 std::span<const ImageChannel> layers = {});
+                 std::span<const ImageChannel> layers = {}, std::span<const ImageAttribute> attributes = {});
+
+// An OpenEXR file read back whole: every channel as 32-bit floats (row-major,
+// top row first) and the header's text attributes.
+struct ExrChannels {
+    int width = 0, height = 0;
+    std::vector<std::string> names;          // in the file's (alphabetical) order
+    std::vector<std::vector<float>> values;  // one per name, width × height
+    std::vector<ImageAttribute> attributes;  // the string attributes
+};
+// Reads `path`; throws Error(path, ...) for a file that is not a readable
+// single-part scanline or tiled EXR, or whose size passes the image limits.
+ExrChannels read_exr_channels(const std::filesystem::path& path);
 
 // The bytes of the PNG file write_image would write for `image` (for
 // embedding, e.g. in `sombra explain`'s SVG). Throws Error("png", ...) on failure.

@@ -29,7 +29,8 @@ void write_png(const std::filesystem::path& file, ImageView image, float exposur
 void write_pfm(const std::filesystem::path& file, ImageView image);
 
 // OpenEXR with 32-bit float R, G, B channels and `layers`, ZIP compressed. Linear radiance.
-void write_exr(const std::filesystem::path& file, ImageView image, std::span<const ImageChannel> layers);
+void write_exr(const std::filesystem::path& file, ImageView image, std::span<const ImageChannel> layers,
+               std::span<const ImageAttribute> attributes = {});
 
 // True when all three channels of pixel `index` are finite.
 inline bool pixel_is_finite(const float* rgb, std::size_t index) {

@@ -8,6 +8,7 @@
 #include <tbb/task_arena.h>
 
 #include <algorithm>
+#include <limits>
 #include <optional>
 
 #include "render/first_hit.h"
@@ -171,6 +172,10 @@ RenderOutput render_image(const RenderJob& job, RenderProgress& progress) {
         allow_more.emplace(tbb::global_control::max_allowed_parallelism, static_cast<std::size_t>(threads));
     tbb::task_arena arena(threads);
     RenderOutput out;
+    if (job.shard.count > 1)
+        for (int j = 0; j < rs.height; ++j)
+            for (int i = 0; i < rs.width; ++i)
+                if (!shard_owns(job.shard, rs.width, i, j)) acc.finish(acc.index(i, j));
     arena.execute([&] {
         const tbb::blocked_range2d<int> image(0, rs.height, kTileSize, 0, rs.width, kTileSize);
         for (std::uint32_t pass_end = std::min(step, spp);; pass_end = std::min(pass_end + step, spp)) {
@@ -214,15 +219,18 @@ RenderOutput render_image(const RenderJob& job, RenderProgress& progress) {
 
     out.aovs = acc.aov_images();
     out.film = acc.take_image();
-    if (acc.pixels() > 0) {
-        out.min_pixel_spp = acc.count(0);
-        out.max_pixel_spp = acc.count(0);
-    }
-    for (std::size_t p = 0; p < acc.pixels(); ++p) {
-        out.samples += acc.count(p);
-        out.min_pixel_spp = std::min(out.min_pixel_spp, acc.count(p));
-        out.max_pixel_spp = std::max(out.max_pixel_spp, acc.count(p));
-    }
+    // Over the pixels rendered: a shard's others have no samples by design.
+    out.min_pixel_spp = std::numeric_limits<std::uint32_t>::max();
+    for (int j = 0; j < rs.height; ++j)
+        for (int i = 0; i < rs.width; ++i) {
+            if (job.shard.count > 1 && !shard_owns(job.shard, rs.width, i, j)) continue;
+            const std::uint32_t n = acc.count(acc.index(i, j));
+            ++out.pixels;
+            out.samples += n;
+            out.min_pixel_spp = std::min(out.min_pixel_spp, n);
+            out.max_pixel_spp = std::max(out.max_pixel_spp, n);
+        }
+    if (out.pixels == 0) out.min_pixel_spp = 0;
     per_thread.combine_each([&](const RayCounters& c) { out.counters += c; });
     out.cancelled = progress.cancel.load();
     return out;

@@ -49,6 +49,30 @@ struct SamplingLimits {
 inline constexpr int kTimedPassSamples = 2;
 inline constexpr int kAdaptivePassSamples = 4;
 
+// Share `index` of `count` of an image's pixels (spec §21's shards): the
+// image in blocks of kShardBlock × kShardBlock pixels, numbered row by row,
+// block b going to share b mod count, so that every share gets some of each
+// part of the image. count 1: the whole image.
+struct ShardSpec {
+    int index = 0;
+    int count = 1;
+};
+inline constexpr int kShardBlock = 32;
+
+inline bool shard_owns(const ShardSpec& shard, int width, int i, int j) {
+    const int blocks_per_row = (width + kShardBlock - 1) / kShardBlock;
+    const std::int64_t block = std::int64_t{j / kShardBlock} * blocks_per_row + i / kShardBlock;
+    return block % shard.count == shard.index;
+}
+
+// How many of a width × height image's pixels `shard` renders.
+inline std::uint64_t shard_pixel_count(const ShardSpec& shard, int width, int height) {
+    std::uint64_t n = 0;
+    for (int j = 0; j < height; ++j)
+        for (int i = 0; i < width; ++i) n += shard_owns(shard, width, i, j) ? 1u : 0u;
+    return n;
+}
+
 struct RenderJob {
     const Scene* scene = nullptr;  // geometry must be the mesh `accel` was built over
     const Accel* accel = nullptr;
@@ -58,6 +82,7 @@ struct RenderJob {
     SamplingLimits limits;
     AovSet aovs;      // the AOVs to gather beside the image
     int threads = 0;  // worker threads; 0 = all hardware threads
+    ShardSpec shard;  // the pixels to render; the others stay black with no samples
     // Called on the render's thread after each pass that ran to its end (not
     // after a cancelled one) with what the passes have gathered and the
     // number of passes so far: the viewer publishes the image from here.
@@ -86,6 +111,7 @@ struct RenderOutput {
     std::uint64_t samples = 0;        // taken over all pixels
     std::uint32_t min_pixel_spp = 0;  // the fewest and most samples a pixel took
     std::uint32_t max_pixel_spp = 0;
+    std::uint64_t pixels = 0;  // rendered: the image's, or a shard's share of them
     int passes = 0;
     RayCounters counters;
     bool cancelled = false;  // true when progress.cancel stopped the loop: the film is incomplete
