@@ -43,13 +43,14 @@ struct GltfMaterialTextures {
     GltfTextureRef occlusion;           // ignored by the spec (§13), kept for completeness
     GltfTextureRef specular;            // KHR_materials_specular: A times specular
     GltfTextureRef specular_color;      // KHR_materials_specular: RGB (sRGB) times specular_color
+    GltfTextureRef transmission;        // KHR_materials_transmission: R times transmission
     AlphaMode alpha_mode = AlphaMode::Opaque;
     float alpha_cutoff = 0.5f;  // MASK: cut out where alpha < cutoff
     float base_alpha = 1.0f;    // baseColorFactor's A
 
     bool any() const {
         return base_color.present() || metallic_roughness.present() || normal.present() || emissive.present() ||
-               occlusion.present() || specular.present() || specular_color.present();
+               occlusion.present() || specular.present() || specular_color.present() || transmission.present();
     }
 };
 
