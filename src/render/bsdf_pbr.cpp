@@ -164,14 +164,14 @@ bool sample_delta_transmission(const Material& m, const BsdfPoint& p, Vec3 wo, f
 
 }  // namespace
 
-bool is_delta_pbr(const Material& m) { return smooth(m) && (m.metallic >= 1.0f || m.transmission >= 1.0f); }
+bool is_delta_pbr_base(const Material& m) { return smooth(m) && (m.metallic >= 1.0f || m.transmission >= 1.0f); }
 
 float pbr_transmission_eta_scale(const Material& m, bool outside) {
     if (!refracts(m)) return 1.0f;
     return outside ? m.ior * m.ior : 1.0f / (m.ior * m.ior);
 }
 
-BsdfTerms eval_pbr_terms(const Material& m, const BsdfPoint& p, Vec3 wo, Vec3 wi) {
+BsdfTerms eval_pbr_terms_base(const Material& m, const BsdfPoint& p, Vec3 wo, Vec3 wi) {
     const Vec3 wo_l = p.frame.to_local(wo), wi_l = p.frame.to_local(wi);
     if (wo_l.z <= 0.0f) return {Vec3{0.0f}, Vec3{0.0f}};
     if (dot(p.n_g, wi) <= 0.0f) {
@@ -183,7 +183,7 @@ BsdfTerms eval_pbr_terms(const Material& m, const BsdfPoint& p, Vec3 wo, Vec3 wi
     return {parts.diffuse, parts.specular};
 }
 
-Vec3 eval_pbr(const Material& m, const BsdfPoint& p, Vec3 wo, Vec3 wi) {
+Vec3 eval_pbr_base(const Material& m, const BsdfPoint& p, Vec3 wo, Vec3 wi) {
     const Vec3 wo_l = p.frame.to_local(wo), wi_l = p.frame.to_local(wi);
     if (dot(p.n_g, wi) <= 0.0f) {
         if (wo_l.z <= 0.0f || wi_l.z >= 0.0f || !transmits_diffusely(m)) return Vec3{0.0f};
@@ -194,7 +194,7 @@ Vec3 eval_pbr(const Material& m, const BsdfPoint& p, Vec3 wo, Vec3 wi) {
     return parts.diffuse + parts.specular;
 }
 
-float pdf_pbr(const Material& m, const BsdfPoint& p, Vec3 wo, Vec3 wi) {
+float pdf_pbr_base(const Material& m, const BsdfPoint& p, Vec3 wo, Vec3 wi) {
     const Vec3 wo_l = p.frame.to_local(wo), wi_l = p.frame.to_local(wi);
     if (wo_l.z <= 0.0f) return 0.0f;
     const float ps = specular_probability(m, !p.outside, wo_l.z);
@@ -209,7 +209,8 @@ float pdf_pbr(const Material& m, const BsdfPoint& p, Vec3 wo, Vec3 wi) {
     return ps * ggx_reflection_pdf(wo_l, wi_l, pbr_alpha(m)) + diffuse;
 }
 
-bool sample_pbr(const Material& m, const BsdfPoint& p, Vec3 wo, float u_lobe, float u1, float u2, BsdfSample& out) {
+bool sample_pbr_base(const Material& m, const BsdfPoint& p, Vec3 wo, float u_lobe, float u1, float u2,
+                     BsdfSample& out) {
     const Vec3 wo_l = p.frame.to_local(wo);
     if (wo_l.z <= 0.0f) return false;
     const bool inside = !p.outside;
@@ -232,9 +233,9 @@ bool sample_pbr(const Material& m, const BsdfPoint& p, Vec3 wo, float u_lobe, fl
     if ((dot(p.n_g, wi) <= 0.0f) != (wi_l.z < 0.0f)) return false;
     // The mixture's density of the world direction, exactly as pdf_bsdf
     // computes it; the weight is then f·cos/pdf with nothing cancelled.
-    const float pdf = pdf_pbr(m, p, wo, wi);
+    const float pdf = pdf_pbr_base(m, p, wo, wi);
     if (!(pdf > 0.0f)) return false;
-    out = BsdfSample{wi, eval_pbr(m, p, wo, wi) * (std::fabs(dot(p.n_s, wi)) / pdf), pdf, false, wi_l.z < 0.0f};
+    out = BsdfSample{wi, eval_pbr_base(m, p, wo, wi) * (std::fabs(dot(p.n_s, wi)) / pdf), pdf, false, wi_l.z < 0.0f};
     return max_component(out.weight) > 0.0f && is_finite(out.weight);
 }
 

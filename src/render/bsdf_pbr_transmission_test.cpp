@@ -41,7 +41,7 @@ Material glass(Vec3 base, float metallic, float roughness, float transmission, f
 }
 
 ref::Params params(const Material& m, int channel) {
-    return {m.base_color[channel], m.metallic, m.roughness, m.ior, m.specular, m.specular_color[channel],
+    return {m.base_color[channel],          m.metallic, m.roughness, m.ior, m.specular, m.specular_color[channel],
             max_component(m.specular_color)};
 }
 
@@ -82,9 +82,9 @@ TEST(PbrTransmission, ThinWallMatchesTheExtension) {
                     const Vec3 f = eval_bsdf(m, kFlat, wo, wi);
                     for (int c = 0; c < 3; ++c) {
                         const ref::Params p = params(m, c);
-                        const double expected =
-                            wi.z < 0 ? ref::thin_transmission(p, t, to_dir(wo), to_dir(wi))
-                                     : ref::brdf(p, to_dir(wo), to_dir(wi)) - t * ref::diffuse_part(p, to_dir(wo), to_dir(wi));
+                        const double expected = wi.z < 0 ? ref::thin_transmission(p, t, to_dir(wo), to_dir(wi))
+                                                         : ref::brdf(p, to_dir(wo), to_dir(wi)) -
+                                                               t * ref::diffuse_part(p, to_dir(wo), to_dir(wi));
                         ASSERT_NEAR(f[c], expected, 1e-3 * expected + 1e-6)
                             << "r " << r << " m " << metallic << " t " << t << " wo.z " << wo.z << " wi.z " << wi.z;
                     }
@@ -195,8 +195,7 @@ void expect_chi2(const Material& m, const BsdfPoint& p, Vec3 wo, std::uint64_t s
     o.test_count = kChi2Tests;
     o.cos_bins = 20;
     const chi2::Result r = chi2::run(p.frame, sample, pdf, o);
-    EXPECT_TRUE(r.passed) << "r " << m.roughness << " m " << m.metallic << " t " << m.transmission << ": "
-                          << r.message;
+    EXPECT_TRUE(r.passed) << "r " << m.roughness << " m " << m.metallic << " t " << m.transmission << ": " << r.message;
     if (std::getenv("SOMBRA_CHI2_VERBOSE")) std::printf("%s\n", r.message.c_str());
     const double f = r.success_fraction;
     EXPECT_NEAR(r.pdf_integral, f, 5 * std::sqrt(f * (1 - f) / o.samples) + 2e-3) << r.message;

@@ -97,6 +97,31 @@ inline double thin_transmission(const Params& p, double transmission, Dir v, Dir
     return (1 - p.metallic) * transmission * (1 - fresnel_max) * p.base * v_t * d_t;
 }
 
+// KHR_materials_clearcoat over the material `base` (its f(V, L), 1/sr) for
+// V and L above the surface (N = +z): fresnel_coat(ior 1.5, weight
+// clearcoat, base, specular_brdf(α = coat_roughness²)) =
+// mix(base, layer, clearcoat · F(0.04, |N·V|)), the layer Appendix B's
+// specular_brdf without Fresnel. coat_roughness 0: the delta mirror is left
+// out (its weight is clearcoat · F).
+inline double coated(double base, double clearcoat, double coat_roughness, Dir v, Dir l) {
+    if (v.z <= 0 || l.z <= 0) return 0;
+    constexpr double pi = std::numbers::pi;
+    const double blend = clearcoat * (0.04 + 0.96 * std::pow(1 - std::fabs(v.z), 5));
+    double layer = 0;
+    if (coat_roughness > 0) {
+        const double a = coat_roughness * coat_roughness, a2 = a * a;
+        Dir h{v.x + l.x, v.y + l.y, v.z + l.z};
+        const double len = std::sqrt(dot(h, h));
+        h = {h.x / len, h.y / len, h.z / len};
+        const double d_term = a2 * heaviside(h.z) / (pi * std::pow(h.z * h.z * (a2 - 1) + 1, 2));
+        const double vis =
+            heaviside(dot(l, h)) * heaviside(dot(v, h)) /
+            (2 * (v.z * std::sqrt(a2 + (1 - a2) * l.z * l.z) + l.z * std::sqrt(a2 + (1 - a2) * v.z * v.z)));
+        layer = vis * d_term;
+    }
+    return (1 - blend) * base + blend * layer;
+}
+
 // The directional albedo ∫ f(V, L) cos θ_L dL for V at theta_o (radians, in
 // the xz plane), by the midpoint rule over half vectors H (θ_h, φ) on an
 // n × 2n grid: dL = 4 (V·H) dH, so sharp lobes are resolved by a fine θ_h

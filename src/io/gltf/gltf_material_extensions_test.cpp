@@ -1,8 +1,9 @@
 // glTF's material extensions beyond the core model (spec §13, §24):
-// KHR_materials_transmission and KHR_materials_volume read into the pbr
-// material's transmission, thickness and attenuation, their textures into
+// KHR_materials_transmission, KHR_materials_volume and KHR_materials_clearcoat
+// read into the pbr material's transmission, thickness, attenuation and
+// coat, their textures into
 // the right slots and channels, broken values refused by name, and what is
-// not supported (thicknessTexture) named in one warning.
+// not supported (thicknessTexture, clearcoatNormalTexture) named in one warning.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -52,13 +53,12 @@ Material load(const TempFolder& dir, const GltfFile& f, Diagnostics& diag, Loade
 TEST(GltfMaterialExtensions, TransmissionAndVolumeAsBlenderWritesThem) {
     TempFolder dir;
     write_texture(dir);
-    GltfFile f = quad({{"extensions",
-                        {{"KHR_materials_transmission", {{"transmissionFactor", 0.75}, {"transmissionTexture", {{"index", 0}}}}},
-                         {"KHR_materials_volume",
-                          {{"thicknessFactor", 0.1},
-                           {"attenuationDistance", 2.5},
-                           {"attenuationColor", {0.5, 0.25, 1.0}}}},
-                         {"KHR_materials_ior", {{"ior", 1.45}}}}}});
+    GltfFile f =
+        quad({{"extensions",
+               {{"KHR_materials_transmission", {{"transmissionFactor", 0.75}, {"transmissionTexture", {{"index", 0}}}}},
+                {"KHR_materials_volume",
+                 {{"thicknessFactor", 0.1}, {"attenuationDistance", 2.5}, {"attenuationColor", {0.5, 0.25, 1.0}}}},
+                {"KHR_materials_ior", {{"ior", 1.45}}}}}});
     f.use_extension("KHR_materials_transmission");
     f.use_extension("KHR_materials_volume");
     f.use_extension("KHR_materials_ior");
@@ -108,6 +108,36 @@ TEST(GltfMaterialExtensions, UnsupportedVolumePartsAreNamedOnce) {
     EXPECT_EQ(volume_absorption(m), Vec3{0.0f});
 }
 
+TEST(GltfMaterialExtensions, ClearcoatAndItsTextures) {
+    TempFolder dir;
+    write_texture(dir);
+    GltfFile f = quad({{"extensions",
+                        {{"KHR_materials_clearcoat",
+                          {{"clearcoatFactor", 0.8},
+                           {"clearcoatRoughnessFactor", 0.25},
+                           {"clearcoatTexture", {{"index", 0}}},
+                           {"clearcoatRoughnessTexture", {{"index", 0}}},
+                           {"clearcoatNormalTexture", {{"index", 0}}}}}}}});
+    f.use_extension("KHR_materials_clearcoat");
+    Diagnostics diag;
+    LoadedMesh mesh;
+    const Material m = load(dir, f, diag, &mesh);
+    ASSERT_EQ(diag.warnings.size(), 1u);
+    EXPECT_NE(diag.warnings[0].find("clearcoatNormalTexture ignored"), std::string::npos) << diag.warnings[0];
+    EXPECT_FLOAT_EQ(m.clearcoat, 0.8f);
+    EXPECT_FLOAT_EQ(m.clearcoat_roughness, 0.25f);
+    ASSERT_TRUE(m.textures.clearcoat.is_set());
+    EXPECT_EQ(m.textures.clearcoat.channel, 0);  // R
+    ASSERT_TRUE(m.textures.clearcoat_roughness.is_set());
+    EXPECT_EQ(m.textures.clearcoat_roughness.channel, 1);  // G
+    EXPECT_EQ(mesh.textures[m.textures.clearcoat.texture].encoding, TextureEncoding::Data);
+
+    Diagnostics plain_diag;
+    const Material plain = load(dir, quad(nlohmann::json::object()), plain_diag);
+    EXPECT_EQ(plain.clearcoat, 0.0f);
+    EXPECT_FALSE(plain.textures.clearcoat.is_set());
+}
+
 TEST(GltfMaterialExtensions, BrokenValuesAreRefusedByName) {
     TempFolder dir;
     write_texture(dir);
@@ -117,7 +147,12 @@ TEST(GltfMaterialExtensions, BrokenValuesAreRefusedByName) {
           {"KHR_materials_transmission", "transmissionTexture", {{"index", 9}}, "transmissionTexture names texture 9"},
           {"KHR_materials_volume", "thicknessFactor", -1.0, "thicknessFactor must be a finite number >= 0"},
           {"KHR_materials_volume", "attenuationDistance", 0.0, "attenuationDistance must be a number > 0"},
-          {"KHR_materials_volume", "attenuationColor", {1, 1}, "attenuationColor must be 3 numbers"}}) {
+          {"KHR_materials_volume", "attenuationColor", {1, 1}, "attenuationColor must be 3 numbers"},
+          {"KHR_materials_clearcoat", "clearcoatFactor", true, "clearcoatFactor must be a number"},
+          {"KHR_materials_clearcoat",
+           "clearcoatRoughnessTexture",
+           {{"index", 3}},
+           "clearcoatRoughnessTexture names texture 3"}}) {
         GltfFile bad = quad({{"extensions", {{extension, {{member, value}}}}}});
         bad.use_extension(extension);
         Diagnostics diag;

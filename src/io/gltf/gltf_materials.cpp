@@ -219,6 +219,22 @@ void read_volume(const MaterialContext& c, const tinygltf::Material& g, Material
         c.diag.warn(c.file, where + "without transmission: the volume is never entered, and ignored");
 }
 
+// KHR_materials_clearcoat: the coat's strength (clearcoatTexture's R) and
+// roughness (clearcoatRoughnessTexture's G). clearcoatNormalTexture is not
+// read (the coat shares the base's shading normal), with a warning.
+void read_clearcoat(const MaterialContext& c, const tinygltf::Material& g, Material& m, GltfMaterialTextures& refs) {
+    const auto it = g.extensions.find(kClearcoat);
+    if (it == g.extensions.end() || !it->second.IsObject()) return;
+    const tinygltf::Value& x = it->second;
+    m.clearcoat = extension_factor(c, x, kClearcoat, "clearcoatFactor", 0.0f);
+    m.clearcoat_roughness = extension_factor(c, x, kClearcoat, "clearcoatRoughnessFactor", 0.0f);
+    refs.clearcoat = extension_texture_ref(c, x, "clearcoatTexture");
+    refs.clearcoat_roughness = extension_texture_ref(c, x, "clearcoatRoughnessTexture");
+    if (x.Has("clearcoatNormalTexture"))
+        c.diag.warn(c.file, c.what + ": " + kClearcoat +
+                                " clearcoatNormalTexture ignored (the coat uses the base's shading normal)");
+}
+
 }  // namespace
 
 Materials convert_materials(const tinygltf::Model& model, const std::string& file, Diagnostics& diag) {
@@ -275,6 +291,7 @@ Materials convert_materials(const tinygltf::Model& model, const std::string& fil
         read_specular(c, g, m, refs);
         read_transmission(c, g, m, refs);
         read_volume(c, g, m);
+        read_clearcoat(c, g, m, refs);
         refs.alpha_mode = g.alphaMode == "MASK"    ? AlphaMode::Mask
                           : g.alphaMode == "BLEND" ? AlphaMode::Blend
                                                    : AlphaMode::Opaque;
