@@ -40,7 +40,7 @@ Material coated(Vec3 base, float metallic, float roughness, float clearcoat, flo
 }
 
 ref::Params params(const Material& m, int channel) {
-    return {m.base_color[channel], m.metallic, m.roughness, m.ior, m.specular, m.specular_color[channel],
+    return {m.base_color[channel],          m.metallic, m.roughness, m.ior, m.specular, m.specular_color[channel],
             max_component(m.specular_color)};
 }
 
@@ -66,7 +66,8 @@ std::vector<Material> materials() {
     std::vector<Material> out;
     for (const float coat_r : {0.0f, 0.15f, 0.6f})
         for (const float r : {0.0f, 0.5f})
-            for (const float metallic : {0.0f, 1.0f}) out.push_back(coated({0.9f, 0.5f, 0.1f}, metallic, r, 1.0f, coat_r));
+            for (const float metallic : {0.0f, 1.0f})
+                out.push_back(coated({0.9f, 0.5f, 0.1f}, metallic, r, 1.0f, coat_r));
     out.push_back(coated({0.2f, 0.3f, 0.8f}, 0.3f, 0.3f, 0.4f, 0.3f));
     return out;
 }
@@ -126,8 +127,8 @@ TEST(PbrClearcoat, WeightIsFCosOverPdfAndTheSmoothCoatIsItsFresnel) {
                     std::fabs(s.weight.z * s.pdf - fc) < 1e-5)
                     ++coat_mirror;
             }
-            EXPECT_GT(rough + delta, 2000) << "r " << m.roughness << " m " << m.metallic << " coat r "
-                                           << m.clearcoat_roughness << " at " << theta;
+            EXPECT_GT(rough + delta, 2000)
+                << "r " << m.roughness << " m " << m.metallic << " coat r " << m.clearcoat_roughness << " at " << theta;
             if (m.clearcoat_roughness == 0) {
                 EXPECT_GT(coat_mirror, 200);
             }

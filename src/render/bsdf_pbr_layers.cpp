@@ -111,8 +111,7 @@ bool sample_pbr(const Material& m, const BsdfPoint& p, Vec3 wo, float u_lobe, fl
     // The whole mixture's density, and f·cos/pdf with nothing cancelled.
     const float pdf = pdf_pbr(m, p, wo, wi);
     if (!(pdf > 0.0f)) return false;
-    out = BsdfSample{wi, eval_pbr(m, p, wo, wi) * (std::fabs(dot(p.n_s, wi)) / pdf), pdf, false,
-                     dot(p.n_g, wi) < 0.0f};
+    out = BsdfSample{wi, eval_pbr(m, p, wo, wi) * (std::fabs(dot(p.n_s, wi)) / pdf), pdf, false, dot(p.n_g, wi) < 0.0f};
     return max_component(out.weight) > 0.0f && is_finite(out.weight);
 }
 

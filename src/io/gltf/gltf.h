@@ -46,6 +46,7 @@ inline constexpr const char* kSpecular = "KHR_materials_specular";
 inline constexpr const char* kTransmission = "KHR_materials_transmission";
 inline constexpr const char* kVolume = "KHR_materials_volume";
 inline constexpr const char* kClearcoat = "KHR_materials_clearcoat";
+inline constexpr const char* kUnlit = "KHR_materials_unlit";
 inline constexpr const char* kTextureTransform = "KHR_texture_transform";
 inline constexpr const char* kMeshopt = "EXT_meshopt_compression";
 inline constexpr const char* kWebp = "EXT_texture_webp";

@@ -138,6 +138,26 @@ TEST(GltfMaterialExtensions, ClearcoatAndItsTextures) {
     EXPECT_FALSE(plain.textures.clearcoat.is_set());
 }
 
+TEST(GltfMaterialExtensions, UnlitEmitsItsBaseColourOnly) {
+    TempFolder dir;
+    write_texture(dir);
+    GltfFile f = quad(
+        {{"pbrMetallicRoughness",
+          {{"baseColorFactor", {0.5, 0.25, 1.0, 1.0}}, {"baseColorTexture", {{"index", 0}}}, {"metallicFactor", 1.0}}},
+         {"extensions", {{"KHR_materials_unlit", nlohmann::json::object()}}}});
+    f.use_extension("KHR_materials_unlit");
+    Diagnostics diag;
+    LoadedMesh mesh;
+    const Material m = load(dir, f, diag, &mesh);
+    EXPECT_TRUE(diag.warnings.empty()) << diag.warnings[0];
+    EXPECT_EQ(m.type, MaterialType::Diffuse);
+    EXPECT_EQ(m.kd, Vec3{0.0f});
+    EXPECT_EQ(m.ke, (Vec3{0.5f, 0.25f, 1.0f}));
+    ASSERT_TRUE(m.textures.ke.is_set());
+    EXPECT_EQ(mesh.textures[m.textures.ke.texture].encoding, TextureEncoding::Color);  // sRGB, as the base colour
+    EXPECT_FALSE(m.textures.metallic.is_set());
+}
+
 TEST(GltfMaterialExtensions, BrokenValuesAreRefusedByName) {
     TempFolder dir;
     write_texture(dir);

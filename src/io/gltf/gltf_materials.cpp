@@ -292,6 +292,18 @@ Materials convert_materials(const tinygltf::Model& model, const std::string& fil
         read_transmission(c, g, m, refs);
         read_volume(c, g, m);
         read_clearcoat(c, g, m, refs);
+        // KHR_materials_unlit: emission only. The base colour (factor times
+        // texture) becomes the emitted radiance of a black diffuse surface,
+        // lit by nothing and, as any emitter in a path tracer, lighting
+        // what it faces; the other parameters and COLOR_0 do not apply.
+        if (g.extensions.count(kUnlit) > 0) {
+            m.type = MaterialType::Diffuse;
+            m.kd = Vec3{0.0f};
+            m.ke = m.base_color;
+            refs.emissive = refs.base_color;
+            refs.metallic_roughness = {};
+            refs.normal = {};
+        }
         refs.alpha_mode = g.alphaMode == "MASK"    ? AlphaMode::Mask
                           : g.alphaMode == "BLEND" ? AlphaMode::Blend
                                                    : AlphaMode::Opaque;
