@@ -261,6 +261,45 @@ TEST(ExplainRecord, NamesTheBlockerTheLightBehindAndEachFactorOfTheVisibleLight)
     EXPECT_TRUE(same_bits(value, r.value));
 }
 
+// A glTF pbr with a rough thin-wall transmission and a clearcoat: the light
+// below the ground now shines through it (the transmission term), the
+// visible light above shows the coat; text and JSON name both terms.
+TEST(ExplainRecord, NamesThePbrTransmissionAndCoatTerms) {
+    Scene scene = blocked_scene();
+    for (Material& m : scene.materials) {
+        m.type = MaterialType::Pbr;
+        m.base_color = Vec3{0.6f};
+        m.roughness = 0.5f;
+        m.transmission = 0.5f;
+        m.clearcoat = 1.0f;
+        m.clearcoat_roughness = 0.3f;
+    }
+    const BlockedStory story(std::move(scene));
+    const SampleRecord& r = story.record;
+    ASSERT_EQ(r.vertices.size(), 1u);
+    const VertexRecord& v = r.vertices[0];
+    ASSERT_EQ(v.delta_lights.size(), 3u);
+    const DeltaLightRecord& below = v.delta_lights[1];
+    EXPECT_EQ(below.outcome, LightOutcome::Visible);
+    EXPECT_GT(below.f_transmission.x, 0.0f);
+    EXPECT_EQ(below.f_coat, Vec3{0.0f});
+    EXPECT_EQ(below.f, below.f_transmission);
+    const DeltaLightRecord& side = v.delta_lights[2];
+    EXPECT_GT(side.f_coat.x, 0.0f);
+    EXPECT_EQ(side.f_transmission, Vec3{0.0f});
+    const Vec3 sum = side.f_diffuse + side.f_lobe + side.f_coat;
+    EXPECT_NEAR(side.f.x, sum.x, 1e-6f * sum.x);
+
+    const ExplainContext context{story.scene, story.job, "test.json"};
+    const std::string text = explain_text(context, r);
+    EXPECT_NE(text.find(" + transmission "), std::string::npos) << text;
+    EXPECT_NE(text.find(" + coat "), std::string::npos) << text;
+    const nlohmann::json j = nlohmann::json::parse(explain_json(context, r));
+    EXPECT_TRUE(j["lights"][1]["f_r"].contains("transmission")) << j["lights"][1];
+    EXPECT_FALSE(j["lights"][1]["f_r"].contains("coat")) << j["lights"][1];
+    EXPECT_TRUE(j["lights"][2]["f_r"].contains("coat")) << j["lights"][2];
+}
+
 // The text says where n_s came from: vertex normals even when they equal
 // n_g (a flat floor's, as the shared scenes' plane.obj has), or none.
 TEST(ExplainRecord, SaysWhetherTheShadingNormalCameFromVertexNormals) {

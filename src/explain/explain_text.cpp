@@ -9,6 +9,15 @@ namespace sombra {
 
 namespace {
 
+// " + transmission T + coat C" for the pbr terms that are not 0 (glTF's
+// KHR_materials_transmission and KHR_materials_clearcoat); "" otherwise.
+std::string extra_terms(Vec3 transmission, Vec3 coat) {
+    std::string s;
+    if (transmission != Vec3{0.0f}) s += " + transmission " + readable(transmission);
+    if (coat != Vec3{0.0f}) s += " + coat " + readable(coat);
+    return s;
+}
+
 class Story {
 public:
     Story(const ExplainContext& context, const SampleRecord& record) : c_(context), r_(record) {}
@@ -202,7 +211,7 @@ private:
         holes(l.holes, l.holes_crossed, "    the shadow ray went through ", "      ");
         out_ << "    " << incident << pad << "= " << readable(l.incident) << "\n";
         out_ << "    f_r        " << wide << "= " << readable(l.f) << " = diffuse " << readable(l.f_diffuse)
-             << " + lobe " << readable(l.f_lobe) << "\n";
+             << " + lobe " << readable(l.f_lobe) << extra_terms(l.f_transmission, l.f_coat) << "\n";
         out_ << "    |n_s·ω_i|  " << wide << "= " << readable(l.cos_s) << "\n";
         if (r_.path) out_ << "    β          " << wide << "= " << readable(beta) << "\n";
         out_ << "    product    " << wide << "= " << readable(l.contribution) << "\n";
@@ -236,7 +245,8 @@ private:
         }
         holes(l.holes, l.holes_crossed, "    the shadow ray went through ", "      ");
         out_ << "    f_r = " << readable(l.f) << " = diffuse " << readable(l.f_diffuse) << " + lobe "
-             << readable(l.f_lobe) << ", |n_s·ω_i| = " << readable(l.cos_s) << "\n";
+             << readable(l.f_lobe) << extra_terms(l.f_transmission, l.f_coat) << ", |n_s·ω_i| = " << readable(l.cos_s)
+             << "\n";
         out_ << "    MIS weight w = " << readable(l.mis_weight) << " (power heuristic)\n";
         out_ << "    adds β·f_r·|n_s·ω_i|·L_e·w/pdf = " << readable(l.contribution) << "\n";
     }

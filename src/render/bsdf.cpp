@@ -121,6 +121,12 @@ bool is_delta_bsdf(const Material& m) {
     return false;
 }
 
+float transmission_eta_scale(const Material& m, bool outside) {
+    if (m.type == MaterialType::Dielectric) return outside ? m.ior * m.ior : 1.0f / (m.ior * m.ior);
+    if (m.type == MaterialType::Pbr) return pbr_transmission_eta_scale(m, outside);
+    return 1.0f;
+}
+
 float fresnel_dielectric(float cos_i, float eta_i, float eta_t) {
     cos_i = std::clamp(cos_i, 0.0f, 1.0f);
     const float eta = eta_i / eta_t;
@@ -149,7 +155,8 @@ Vec3 eval_bsdf_other(const Material& m, const BsdfPoint& p, Vec3 wo, Vec3 wi) {
 }
 
 BsdfTerms eval_bsdf_terms(const Material& m, const BsdfPoint& p, Vec3 wo, Vec3 wi) {
-    if (dot(p.n_g, wi) <= 0.0f) return {Vec3{0.0f}, Vec3{0.0f}};
+    if (dot(p.n_g, wi) <= 0.0f)
+        return transmits_diffusely(m) ? eval_pbr_terms(m, p, wo, wi) : BsdfTerms{Vec3{0.0f}, Vec3{0.0f}};
     switch (m.type) {
         case MaterialType::Diffuse: return {eval_lambert(m.kd), Vec3{0.0f}};
         case MaterialType::Phong: return {eval_lambert(m.kd), m.ks * eval_phong_lobe(p.n_s, wi, wo, m.shininess)};
@@ -162,7 +169,7 @@ BsdfTerms eval_bsdf_terms(const Material& m, const BsdfPoint& p, Vec3 wo, Vec3 w
 }
 
 float pdf_bsdf(const Material& m, const BsdfPoint& p, Vec3 wo, Vec3 wi) {
-    if (dot(p.n_g, wi) <= 0.0f) return 0.0f;
+    if (dot(p.n_g, wi) <= 0.0f) return transmits_diffusely(m) ? pdf_pbr(m, p, wo, wi) : 0.0f;
     switch (m.type) {
         case MaterialType::Diffuse:
         case MaterialType::Phong: return pdf_phong(m, p, wo, wi);

@@ -85,8 +85,28 @@ struct BsdfSample {
     bool transmission = false;
 };
 
+// The roughness α below which a Conductor, or a Pbr's specular part, is a delta mirror.
+inline constexpr float kDeltaAlpha = 1e-3f;
+
+// True when m has a non-delta transmission lobe, so that eval_bsdf and
+// pdf_bsdf may be > 0 for wi on the other side of n_g: a rough pbr with
+// KHR_materials_transmission on a thin wall (thickness 0). Every other
+// transmission (Dielectric, a smooth or volume pbr's) is a delta.
+inline bool transmits_diffusely(const Material& m) {
+    return m.type == MaterialType::Pbr && m.transmission > 0.0f && m.metallic < 1.0f && !(m.thickness > 0.0f) &&
+           m.roughness * m.roughness >= kDeltaAlpha;
+}
+
+// The factor by which a transmission sampled by sample_bsdf at a point
+// whose wo is `outside` (BsdfPoint::outside) scales (η_i/η_t)²: what undoes
+// refraction's radiance scaling for Russian roulette. Dielectric and a
+// pbr bounding a volume of ior > 1 (KHR_materials_volume) refract: ior² from
+// outside, 1/ior² from inside; 1 for the thin walls, which do not.
+float transmission_eta_scale(const Material& m, bool outside);
+
 // eval_bsdf of the materials other than Diffuse and Phong, for wi on wo's
-// side of n_g (eval_bsdf has checked it).
+// side of n_g (eval_bsdf has checked it), or on the other side when
+// transmits_diffusely(m).
 Vec3 eval_bsdf_other(const Material& m, const BsdfPoint& p, Vec3 wo, Vec3 wi);
 
 // f(wo, wi) in 1/sr of the non-delta lobes (0 for Mirror, Dielectric and
@@ -95,7 +115,7 @@ Vec3 eval_bsdf_other(const Material& m, const BsdfPoint& p, Vec3 wo, Vec3 wi);
 // loops call this once per light, and an out-of-line call there costs as
 // much as the Lambert term itself (spills of the loop's registers around it).
 inline Vec3 eval_bsdf(const Material& m, const BsdfPoint& p, Vec3 wo, Vec3 wi) {
-    if (dot(p.n_g, wi) <= 0.0f) return Vec3{0.0f};  // no BSDF here transmits except delta glass
+    if (dot(p.n_g, wi) <= 0.0f) return transmits_diffusely(m) ? eval_bsdf_other(m, p, wo, wi) : Vec3{0.0f};
     if (m.type == MaterialType::Diffuse || m.type == MaterialType::Phong) return eval_brdf(m, p.n_s, wi, wo);
     return eval_bsdf_other(m, p, wo, wi);
 }
@@ -106,6 +126,10 @@ inline Vec3 eval_bsdf(const Material& m, const BsdfPoint& p, Vec3 wo, Vec3 wi) {
 // the integrators use eval_bsdf's.
 struct BsdfTerms {
     Vec3 diffuse, lobe;
+    // pbr's KHR_materials_transmission lobe through a rough thin wall (wi on
+    // the other side of n_g), and KHR_materials_clearcoat's coat; 0 elsewhere.
+    // The sum of all four is eval_bsdf's value up to float rounding.
+    Vec3 transmission{0.0f}, coat{0.0f};
 };
 BsdfTerms eval_bsdf_terms(const Material& m, const BsdfPoint& p, Vec3 wo, Vec3 wi);
 
@@ -122,9 +146,6 @@ bool sample_bsdf(const Material& m, const BsdfPoint& p, Vec3 wo, float u_lobe, f
 // True when every lobe of m is a delta (Mirror, Dielectric, Conductor with
 // α = roughness² < 1e-3, Pbr with that α and metallic 1): lights cannot be sampled for it.
 bool is_delta_bsdf(const Material& m);
-
-// The roughness α below which a Conductor, or a Pbr's specular part, is a delta mirror.
-inline constexpr float kDeltaAlpha = 1e-3f;
 
 // Exact unpolarised Fresnel reflectance of a smooth dielectric interface for
 // light arriving at cos_i (> 0) in a medium of index eta_i onto one of index

@@ -17,6 +17,22 @@
 // + |N·L|·√(α² + (1 − α²)(N·V)²))): exactly that, not the separable
 // G1·G1 of the conductor (which spec §11 fixes for that material alone).
 // Single scattering, no energy compensation, as Appendix B.
+//
+// glTF's KHR_materials_transmission replaces the diffuse base by
+// mix(diffuse, specular_btdf·c, t), t = transmission, under the same
+// Fresnel layer: the light that the layer lets in (1 − max(F_d)) goes
+// through the surface with probability t, tinted by c; metals transmit
+// nothing. On a thin wall (KHR_materials_volume's thickness 0) the surface
+// is two back-to-back interfaces that do not bend the ray: smooth, ωi = −ωo
+// (a delta); rough, the extension's microfacet BTDF V_T·D_T at the
+// transmission half vector H_T = normalize(ωo + ωi'), ωi' = ωi mirrored
+// through the surface plane, V_T the separable Smith form of its
+// implementation notes, i.e. the reflection lobe's geometry mirrored to the
+// back. With a volume (thickness > 0) the transmission is a delta
+// refraction by Snell's law at the material's ior (its roughness blurs the
+// reflection only), with the dielectric material's radiance scaling
+// (η_i/η_t)²; from inside, the layer's Fresnel is 1 beyond the critical
+// angle and Schlick's at the outer angle cos θ_t otherwise (layer_fresnel).
 #include "render/bsdf_pbr.h"
 
 #include <algorithm>
@@ -48,6 +64,25 @@ Vec3 dielectric_fresnel(const Material& m, float cos_theta) {
     return f0 + (Vec3{m.specular} - f0) * (c2 * c2 * c);
 }
 
+// The volume's interfaces refract: KHR_materials_volume's closed mesh of ior > 1.
+bool refracts(const Material& m) { return m.transmission > 0.0f && m.thickness > 0.0f && m.ior > 1.0f; }
+
+// The layer's Fresnel at cos θ (of ωo against n_s or h) for ωo on the side
+// `inside` (BsdfPoint::outside false): dielectric_fresnel, except inside a
+// refracting volume, where light meets the interface from the denser side:
+// 1 (total internal reflection) beyond the critical angle, else Schlick's
+// at the angle on the outer side, so that both sides of an interface agree
+// on how much of the light crosses it.
+Vec3 layer_fresnel(const Material& m, bool inside, float cos_theta) {
+    if (inside && refracts(m)) {
+        const float c = std::clamp(cos_theta, 0.0f, 1.0f);
+        const float sin2_t = m.ior * m.ior * (1.0f - c * c);
+        if (sin2_t >= 1.0f) return Vec3{1.0f};
+        cos_theta = std::sqrt(1.0f - sin2_t);
+    }
+    return dielectric_fresnel(m, cos_theta);
+}
+
 // The two parts of f (1/sr), both directions local with z > 0: the diffuse
 // base under the dielectric layer, and the specular lobe of layer and metal.
 // In the smooth case the specular part is a delta and `specular` is 0.
@@ -56,13 +91,15 @@ struct PbrParts {
     Vec3 specular;
 };
 
-PbrParts eval_parts(const Material& m, Vec3 wo, Vec3 wi) {
+PbrParts eval_parts(const Material& m, bool inside, Vec3 wo, Vec3 wi) {
     const Vec3 h = normalize(wi + wo);
     const float cos_oh = dot(wo, h);
-    const Vec3 fd = dielectric_fresnel(m, cos_oh);
+    const Vec3 fd = layer_fresnel(m, inside, cos_oh);
     // The base keeps what the layer's strongest channel leaves (the
-    // extension's max_value), so that a coloured layer adds no complementary colour.
-    PbrParts parts{m.base_color * ((1.0f - m.metallic) * (1.0f - max_component(fd)) * kInvPi), Vec3{0.0f}};
+    // extension's max_value), so that a coloured layer adds no complementary
+    // colour; the transmitted fraction of it is not diffuse.
+    PbrParts parts{m.base_color * ((1.0f - m.metallic) * (1.0f - max_component(fd)) * kInvPi * (1.0f - m.transmission)),
+                   Vec3{0.0f}};
     if (smooth(m)) return parts;
     const float alpha = pbr_alpha(m);
     const Vec3 fresnel = (1.0f - m.metallic) * fd + m.metallic * fresnel_schlick(m.base_color, cos_oh);
@@ -70,11 +107,22 @@ PbrParts eval_parts(const Material& m, Vec3 wo, Vec3 wi) {
     return parts;
 }
 
+// The thin wall's rough transmission f (1/sr), wo.z > 0 > wi.z, local:
+// (1 − m)·t·(1 − max(F_d))·c · V_T·D_T at H_T (the header above).
+Vec3 eval_thin_transmission(const Material& m, Vec3 wo, Vec3 wi) {
+    const Vec3 wr{wi.x, wi.y, -wi.z};
+    const Vec3 h = normalize(wo + wr);
+    const float alpha = pbr_alpha(m);
+    const float btdf = 0.25f * ggx_d(h, alpha) * ggx_g1_over_cos(wr, alpha) * ggx_g1_over_cos(wo, alpha);
+    const float fd = max_component(dielectric_fresnel(m, dot(wo, h)));
+    return m.base_color * ((1.0f - m.metallic) * m.transmission * (1.0f - fd) * btdf);
+}
+
 // The Fresnel factor of the specular part (layer and metal) at ωo·h = cos θ_o:
 // the smooth mirror's reflectance, and the rough lobe's albedo as lobe
 // selection estimates it.
-Vec3 specular_reflectance(const Material& m, float cos_o) {
-    return (1.0f - m.metallic) * dielectric_fresnel(m, cos_o) + m.metallic * fresnel_schlick(m.base_color, cos_o);
+Vec3 specular_reflectance(const Material& m, bool inside, float cos_o) {
+    return (1.0f - m.metallic) * layer_fresnel(m, inside, cos_o) + m.metallic * fresnel_schlick(m.base_color, cos_o);
 }
 
 // The probability of sampling the specular lobe rather than the cosine one:
@@ -82,59 +130,112 @@ Vec3 specular_reflectance(const Material& m, float cos_o) {
 // at cos θ_o and averaged over RGB, kept in [0.25, 0.9] so that neither lobe
 // is starved (a 4% highlight on plastic would otherwise be found by 4% of the
 // samples); 1 when the diffuse part is black (a metal), which needs no cosine lobe.
-float specular_probability(const Material& m, float cos_o) {
-    const float s = mean(specular_reflectance(m, cos_o));
-    const float d = (1.0f - m.metallic) * (1.0f - max_component(dielectric_fresnel(m, cos_o))) * mean(m.base_color);
+float specular_probability(const Material& m, bool inside, float cos_o) {
+    const float s = mean(specular_reflectance(m, inside, cos_o));
+    const float d = (1.0f - m.metallic) * (1.0f - max_component(layer_fresnel(m, inside, cos_o))) * mean(m.base_color);
     if (!(d > 0.0f)) return 1.0f;
     return std::clamp(s / (s + d), 0.25f, 0.9f);
 }
 
-}  // namespace
-
-bool is_delta_pbr(const Material& m) { return smooth(m) && m.metallic >= 1.0f; }
-
-Vec3 eval_pbr(const Material& m, const BsdfPoint& p, Vec3 wo, Vec3 wi) {
-    const Vec3 wo_l = p.frame.to_local(wo), wi_l = p.frame.to_local(wi);
-    if (wo_l.z <= 0.0f || wi_l.z <= 0.0f) return Vec3{0.0f};
-    const PbrParts parts = eval_parts(m, wo_l, wi_l);
-    return parts.diffuse + parts.specular;
+// The probability of the transmission lobe: its share t of the base's 1 − P_s.
+float transmission_probability(const Material& m, float ps) {
+    return m.transmission > 0.0f ? (1.0f - ps) * m.transmission : 0.0f;
 }
 
-BsdfTerms eval_pbr_terms(const Material& m, const BsdfPoint& p, Vec3 wo, Vec3 wi) {
+// The delta transmission (smooth thin wall, or a volume's refraction),
+// chosen with probability pt; cos_o = ωo·n_s > 0.
+bool sample_delta_transmission(const Material& m, const BsdfPoint& p, Vec3 wo, float cos_o, float pt, BsdfSample& out) {
+    const float fd = max_component(layer_fresnel(m, !p.outside, cos_o));
+    Vec3 weight = m.base_color * ((1.0f - m.metallic) * m.transmission * (1.0f - fd) / pt);
+    Vec3 wi = -wo;
+    if (refracts(m)) {
+        // Snell, as the dielectric material: ωt = −η ωo + (η cos_i − cos_t) n_s, η = η_i/η_t.
+        const float eta = p.outside ? 1.0f / m.ior : m.ior;
+        const float sin2_t = eta * eta * std::max(0.0f, 1.0f - cos_o * cos_o);
+        if (sin2_t >= 1.0f) return false;
+        const float cos_t = std::sqrt(1.0f - sin2_t);
+        wi = normalize(-eta * wo + (eta * cos_o - cos_t) * p.n_s);
+        weight = weight * (eta * eta);
+    }
+    if (dot(p.n_g, wi) >= 0.0f || !(max_component(weight) > 0.0f)) return false;
+    out = BsdfSample{wi, weight, pt, true, true};
+    return true;
+}
+
+}  // namespace
+
+bool is_delta_pbr_base(const Material& m) { return smooth(m) && (m.metallic >= 1.0f || m.transmission >= 1.0f); }
+
+float pbr_transmission_eta_scale(const Material& m, bool outside) {
+    if (!refracts(m)) return 1.0f;
+    return outside ? m.ior * m.ior : 1.0f / (m.ior * m.ior);
+}
+
+BsdfTerms eval_pbr_terms_base(const Material& m, const BsdfPoint& p, Vec3 wo, Vec3 wi) {
     const Vec3 wo_l = p.frame.to_local(wo), wi_l = p.frame.to_local(wi);
-    if (wo_l.z <= 0.0f || wi_l.z <= 0.0f) return {Vec3{0.0f}, Vec3{0.0f}};
-    const PbrParts parts = eval_parts(m, wo_l, wi_l);
+    if (wo_l.z <= 0.0f) return {Vec3{0.0f}, Vec3{0.0f}};
+    if (dot(p.n_g, wi) <= 0.0f) {
+        if (wi_l.z >= 0.0f || !transmits_diffusely(m)) return {Vec3{0.0f}, Vec3{0.0f}};
+        return {Vec3{0.0f}, Vec3{0.0f}, eval_thin_transmission(m, wo_l, wi_l)};
+    }
+    if (wi_l.z <= 0.0f) return {Vec3{0.0f}, Vec3{0.0f}};
+    const PbrParts parts = eval_parts(m, !p.outside, wo_l, wi_l);
     return {parts.diffuse, parts.specular};
 }
 
-float pdf_pbr(const Material& m, const BsdfPoint& p, Vec3 wo, Vec3 wi) {
+Vec3 eval_pbr_base(const Material& m, const BsdfPoint& p, Vec3 wo, Vec3 wi) {
     const Vec3 wo_l = p.frame.to_local(wo), wi_l = p.frame.to_local(wi);
-    if (wo_l.z <= 0.0f || wi_l.z <= 0.0f) return 0.0f;
-    const float ps = specular_probability(m, wo_l.z);
-    const float diffuse = (1.0f - ps) * wi_l.z * kInvPi;
+    if (dot(p.n_g, wi) <= 0.0f) {
+        if (wo_l.z <= 0.0f || wi_l.z >= 0.0f || !transmits_diffusely(m)) return Vec3{0.0f};
+        return eval_thin_transmission(m, wo_l, wi_l);
+    }
+    if (wo_l.z <= 0.0f || wi_l.z <= 0.0f) return Vec3{0.0f};
+    const PbrParts parts = eval_parts(m, !p.outside, wo_l, wi_l);
+    return parts.diffuse + parts.specular;
+}
+
+float pdf_pbr_base(const Material& m, const BsdfPoint& p, Vec3 wo, Vec3 wi) {
+    const Vec3 wo_l = p.frame.to_local(wo), wi_l = p.frame.to_local(wi);
+    if (wo_l.z <= 0.0f) return 0.0f;
+    const float ps = specular_probability(m, !p.outside, wo_l.z);
+    if (dot(p.n_g, wi) <= 0.0f) {
+        if (wi_l.z >= 0.0f || !transmits_diffusely(m)) return 0.0f;
+        const Vec3 wr{wi_l.x, wi_l.y, -wi_l.z};
+        return transmission_probability(m, ps) * ggx_reflection_pdf(wo_l, wr, pbr_alpha(m));
+    }
+    if (wi_l.z <= 0.0f) return 0.0f;
+    const float diffuse = (1.0f - ps) * (1.0f - m.transmission) * wi_l.z * kInvPi;
     if (smooth(m)) return diffuse;
     return ps * ggx_reflection_pdf(wo_l, wi_l, pbr_alpha(m)) + diffuse;
 }
 
-bool sample_pbr(const Material& m, const BsdfPoint& p, Vec3 wo, float u_lobe, float u1, float u2, BsdfSample& out) {
+bool sample_pbr_base(const Material& m, const BsdfPoint& p, Vec3 wo, float u_lobe, float u1, float u2,
+                     BsdfSample& out) {
     const Vec3 wo_l = p.frame.to_local(wo);
     if (wo_l.z <= 0.0f) return false;
-    const float ps = specular_probability(m, wo_l.z);
+    const bool inside = !p.outside;
+    const float ps = specular_probability(m, inside, wo_l.z);
+    const float pt = transmission_probability(m, ps);
     Vec3 wi_l;
     if (u_lobe < ps) {
-        if (smooth(m)) return sample_specular_reflection(p, wo, specular_reflectance(m, wo_l.z) / ps, ps, out);
+        if (smooth(m)) return sample_specular_reflection(p, wo, specular_reflectance(m, inside, wo_l.z) / ps, ps, out);
         wi_l = reflect(wo_l, sample_ggx_vndf(wo_l, pbr_alpha(m), u1, u2));
         if (wi_l.z <= 0.0f) return false;
+    } else if (u_lobe >= 1.0f - pt) {
+        if (!transmits_diffusely(m)) return sample_delta_transmission(m, p, wo, wo_l.z, pt, out);
+        const Vec3 wr = reflect(wo_l, sample_ggx_vndf(wo_l, pbr_alpha(m), u1, u2));
+        if (wr.z <= 0.0f) return false;
+        wi_l = Vec3{wr.x, wr.y, -wr.z};
     } else {
         wi_l = sample_cosine_hemisphere(u1, u2);
     }
     const Vec3 wi = p.frame.to_world(wi_l);
-    if (dot(p.n_g, wi) <= 0.0f) return false;
+    if ((dot(p.n_g, wi) <= 0.0f) != (wi_l.z < 0.0f)) return false;
     // The mixture's density of the world direction, exactly as pdf_bsdf
     // computes it; the weight is then f·cos/pdf with nothing cancelled.
-    const float pdf = pdf_pbr(m, p, wo, wi);
+    const float pdf = pdf_pbr_base(m, p, wo, wi);
     if (!(pdf > 0.0f)) return false;
-    out = BsdfSample{wi, eval_pbr(m, p, wo, wi) * (std::fabs(dot(p.n_s, wi)) / pdf), pdf, false, false};
+    out = BsdfSample{wi, eval_pbr_base(m, p, wo, wi) * (std::fabs(dot(p.n_s, wi)) / pdf), pdf, false, wi_l.z < 0.0f};
     return max_component(out.weight) > 0.0f && is_finite(out.weight);
 }
 

@@ -64,8 +64,11 @@ void add_delta_lights(const LightSet& lights, const Accel& accel, const SurfaceI
             wi = to_light / std::sqrt(distance_squared);
             divisor = distance_squared;
         }
-        // A light behind the surface (as seen from the viewer's side) adds nothing.
-        if (dot(si.n_g, wi) <= 0.0f) {
+        // A light behind the surface (as seen from the viewer's side) adds
+        // nothing, unless the material lets light through (a rough thin
+        // transmissive pbr): its shadow ray then leaves from the back.
+        const bool behind = dot(si.n_g, wi) <= 0.0f;
+        if (behind && !transmits_diffusely(material)) {
             recorder.delta_light(index, LightOutcome::Behind, view, wi, distance_squared, nullptr, Vec3{0.0f});
             continue;
         }
@@ -85,8 +88,8 @@ void add_delta_lights(const LightSet& lights, const Accel& accel, const SurfaceI
         // the offset origin to the light: t = 1 reaches it, and the bound
         // just short of it keeps the light's own position (possibly on a
         // surface) from counting as an occluder.
-        const Ray shadow =
-            directional ? Ray{shadow_origin, wi} : Ray{shadow_origin, light.position - shadow_origin, 1.0f - 1e-5f};
+        const Vec3 origin = behind ? offset_ray_origin(si.position, si.position_error, -si.n_g) : shadow_origin;
+        const Ray shadow = directional ? Ray{origin, wi} : Ray{origin, light.position - origin, 1.0f - 1e-5f};
         ++counters.shadow_rays;
         if (occluded(accel, shadow)) {
             recorder.delta_light(index, LightOutcome::Blocked, view, wi, distance_squared, &shadow, Vec3{0.0f});

@@ -23,6 +23,13 @@ namespace {
 // Russian roulette may end a path only after this many scattering events.
 constexpr int kRouletteStart = 3;
 
+// The normal that light selection (the light tree's cosine bound) sees at
+// si: n_s, or none (zero) where the BSDF also transmits, so that emitters
+// behind the surface keep their chance.
+Vec3 light_normal(const Material& m, const SurfaceInteraction& si) {
+    return transmits_diffusely(m) ? Vec3{0.0f} : si.n_s;
+}
+
 // One sampled emitter or environment direction, MIS-weighted against the
 // BSDF's density for the same direction (spec §10's next-event estimation).
 template <class Recorder>
@@ -30,7 +37,8 @@ Vec3 sample_one_light(const IntegratorContext& ctx, const ShadingView& view, flo
                       RayCounters& counters, Recorder& recorder) {
     const SurfaceInteraction& si = view.si;
     LightSample ls;
-    if (!sample_light(*ctx.lights, *ctx.scene, si.position, si.n_s, u_choice, u.u1, u.u2, ls)) {
+    if (!sample_light(*ctx.lights, *ctx.scene, si.position, light_normal(view.material, si), u_choice, u.u1, u.u2,
+                      ls)) {
         recorder.sampled_light(nullptr, view, nullptr, false, 0.0f, 0.0f, Vec3{0.0f});
         return Vec3{0.0f};
     }
@@ -109,6 +117,10 @@ Vec3 trace_path_recorded(const IntegratorContext& ctx, const Ray& camera_ray, Sa
         const Material& material =
             resolve_material(scene, si, textured, surface_footprint(cone, hit_distance, ray.dir, si.n_g));
         const Vec3 wo = -normalize(ray.dir);
+        // The segment just travelled ran inside the volume that the hit
+        // surface bounds (KHR_materials_volume): Beer–Lambert along its length.
+        if (!si.outside && material.type == MaterialType::Pbr && material.thickness > 0.0f)
+            beta = beta * volume_transmittance(material, hit.t * length(ray.dir));
         recorder.surface(ray, hit, si, material, beta);
 
         const Vec3 le = emitted_radiance(material, si);
@@ -155,12 +167,11 @@ Vec3 trace_path_recorded(const IntegratorContext& ctx, const Ray& camera_ray, Sa
             recorder.end("the throughput became zero");
             break;
         }
-        if (bs.transmission && material.type == MaterialType::Dielectric)
-            eta_scale *= si.outside ? material.ior * material.ior : 1.0f / (material.ior * material.ior);
+        if (bs.transmission) eta_scale *= transmission_eta_scale(material, si.outside);
         previous_delta = bs.delta;
         previous_pdf = bs.pdf;
         previous_position = si.position;
-        previous_normal = si.n_s;
+        previous_normal = light_normal(material, si);
         ray = Ray{spawn_origin(si, bs.wi), bs.wi};
         cone = scattered_cone(cone, hit_distance, bs.delta);
         ++counters.bounce_rays;

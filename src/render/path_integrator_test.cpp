@@ -11,6 +11,7 @@
 
 #include "io/scene_json/scene_file.h"
 #include "render/integrator.h"
+#include "render/path_test_util.h"
 #include "render/pbr_test_util.h"
 #include "render/render.h"
 #include "render/test_meshes.h"
@@ -21,66 +22,12 @@ namespace {
 using testing::add_quad;
 using testing::add_triangle;
 using testing::add_world_mesh;
+using testing::Estimate;
+using testing::expect_agrees;
+using testing::kZ;
+using testing::PathRun;
 
 constexpr double kPi = std::numbers::pi;
-// |z| beyond this fails: about 1 in 10^6 for a correct estimator, so the
-// whole file (a few dozen z-tests) passes by chance failure ~never.
-constexpr double kZ = 5.0;
-
-// Mean and standard error of a stream of per-sample estimates.
-struct Estimate {
-    double sum = 0, sum2 = 0;
-    long n = 0;
-    void add(double x) {
-        sum += x;
-        sum2 += x * x;
-        ++n;
-    }
-    double mean() const { return sum / static_cast<double>(n); }
-    double standard_error() const {
-        const double m = mean();
-        const double var =
-            std::max(0.0, sum2 / static_cast<double>(n) - m * m) * static_cast<double>(n) / static_cast<double>(n - 1);
-        return std::sqrt(var / static_cast<double>(n));
-    }
-};
-
-// z of `e` against `expected`; a zero-variance estimate must equal it to float rounding.
-void expect_agrees(const Estimate& e, double expected, const char* what) {
-    const double se = e.standard_error();
-    if (se < 1e-9) {
-        EXPECT_NEAR(e.mean(), expected, 1e-5 * std::max(1.0, std::fabs(expected))) << what;
-        return;
-    }
-    const double z = (e.mean() - expected) / se;
-    EXPECT_LT(std::fabs(z), kZ) << what << ": mean " << e.mean() << " ± " << se << ", expected " << expected;
-}
-
-// A flat-shaded sphere (subdivided octahedron, corners pushed onto the
-// sphere), wound counter-clockwise seen from outside.
-void add_sphere(TriangleMesh& mesh, Vec3 centre, float radius, int levels, std::uint32_t material) {
-    struct Tri {
-        Vec3 a, b, c;
-    };
-    std::vector<Tri> tris;
-    const Vec3 px{1, 0, 0}, nx{-1, 0, 0}, py{0, 1, 0}, ny{0, -1, 0}, pz{0, 0, 1}, nz{0, 0, -1};
-    tris = {{px, py, pz}, {py, nx, pz}, {nx, ny, pz}, {ny, px, pz},
-            {py, px, nz}, {nx, py, nz}, {ny, nx, nz}, {px, ny, nz}};
-    for (int l = 0; l < levels; ++l) {
-        std::vector<Tri> finer;
-        for (const Tri& t : tris) {
-            const Vec3 ab = normalize(t.a + t.b), bc = normalize(t.b + t.c), ca = normalize(t.c + t.a);
-            finer.push_back({t.a, ab, ca});
-            finer.push_back({ab, t.b, bc});
-            finer.push_back({ca, bc, t.c});
-            finer.push_back({ab, bc, ca});
-        }
-        tris = std::move(finer);
-    }
-    for (const Tri& t : tris)
-        add_triangle(mesh, centre + radius * t.a, centre + radius * t.b, centre + radius * t.c, material);
-}
-
 Material diffuse(Vec3 kd) {
     Material m;
     m.type = MaterialType::Diffuse;
@@ -88,45 +35,13 @@ Material diffuse(Vec3 kd) {
     return m;
 }
 
-// Samples of trace_path for rays from `origin` towards random points of
-// the unit square around `target` (a small pixel footprint), red channel.
-// With `pixel_samples` 1 every sample has a pixel key of its own (version
-// 1's hashed draws); with more, the samples come `pixel_samples` to a key,
-// as a pixel's progressive Owen-scrambled Sobol draws. Their standard error
-// from the sample variance then over-estimates the true one (stratified
-// samples within a pixel correlate negatively for these smooth
-// integrands), so the z-test stays a test of bias.
-struct PathRun {
-    const Scene& scene;
-    int max_depth = 8;
-    LightStrategy strategy = LightStrategy::Mis;
-    std::uint32_t pixel_samples = 1;
-
-    Estimate estimate(Vec3 origin, Vec3 target, int samples, std::uint64_t seed, int channel = 0) const {
-        const Accel accel = make_accel(scene, AccelKind::Bvh);
-        const bool path = true;
-        const LightSet lights = make_light_set(scene, make_constant_environment(scene.background), path);
-        const IntegratorContext ctx{&scene, &accel, &lights, max_depth, strategy};
-        Estimate e;
-        RayCounters counters;
-        for (int k = 0; k < samples; ++k) {
-            const auto n = static_cast<std::uint32_t>(k);
-            SampleStream stream{mix64(seed + n / pixel_samples), n % pixel_samples, pixel_samples};
-            const Vec3 l = trace_path(ctx, Ray{origin, target - origin}, stream, counters);
-            e.add(l[channel]);
-        }
-        EXPECT_EQ(counters.nonfinite_samples, 0u);
-        return e;
-    }
-};
-
 TEST(PathIntegrator, WhiteFurnaceDiffuseSphere) {
     // Albedo 1 inside a uniform environment of radiance 1: every path
     // carries 1, so every pixel is 1 (up to MIS noise).
     SceneBuilder b;
     b.set_background(Vec3{1.0f});
     TriangleMesh sphere;
-    add_sphere(sphere, {0, 0, 0}, 1.0f, 3, 0);
+    testing::add_sphere(sphere, {0, 0, 0}, 1.0f, 3, 0);
     add_world_mesh(b, sphere, {diffuse(Vec3{1.0f})});
     const Scene scene = b.finish();
     const PathRun run{scene, 64};
@@ -146,7 +61,7 @@ TEST(PathIntegrator, WhiteFurnaceMirrorAndGlassSpheres) {
         m.kt = Vec3{1.0f};
         m.ior = 1.5f;
         TriangleMesh sphere;
-        add_sphere(sphere, {0, 0, 0}, 1.0f, 3, 0);
+        testing::add_sphere(sphere, {0, 0, 0}, 1.0f, 3, 0);
         add_world_mesh(b, sphere, {m});
         const Scene scene = b.finish();
         const PathRun run{scene, 1024};
@@ -313,7 +228,7 @@ TEST(PathIntegrator, PointLightInsideADiffuseSphereAtDepthOne) {
     // at the hit point of a flat facet (no randomness, no tolerance but rounding).
     SceneBuilder b;
     TriangleMesh sphere;
-    add_sphere(sphere, {0, 0, 0}, 2.0f, 4, 0);
+    testing::add_sphere(sphere, {0, 0, 0}, 2.0f, 4, 0);
     add_world_mesh(b, sphere, {diffuse(Vec3{0.5f})});
     b.add_light(make_point_light({0, 0, 0}, {3, 3, 3}));
     const Scene scene = b.finish();
@@ -350,7 +265,7 @@ TEST(PathIntegrator, StrategiesAgreeUnderAnEnvironment) {
     phong.shininess = 20;
     TriangleMesh mesh;
     add_quad(mesh, {-20, 0, -20}, {-20, 0, 20}, {20, 0, 20}, {20, 0, -20}, 0);
-    add_sphere(mesh, {0, 1, 0}, 1.0f, 3, 1);
+    testing::add_sphere(mesh, {0, 1, 0}, 1.0f, 3, 1);
     add_world_mesh(b, mesh, {diffuse(Vec3{0.7f}), phong});
     const Scene scene = b.finish();
     double means[3];
@@ -408,7 +323,7 @@ TEST(PathIntegrator, SameImageForAnyThreadCount) {
     light.ke = Vec3{8.0f};
     TriangleMesh mesh;
     add_quad(mesh, {-5, 0, -5}, {-5, 0, 5}, {5, 0, 5}, {5, 0, -5}, 0);
-    add_sphere(mesh, {0, 1, 0}, 1.0f, 2, 1);
+    testing::add_sphere(mesh, {0, 1, 0}, 1.0f, 2, 1);
     add_quad(mesh, {-1, 4, -1}, {1, 4, -1}, {1, 4, 1}, {-1, 4, 1}, 2);
     add_world_mesh(b, mesh, {diffuse(Vec3{0.6f, 0.5f, 0.4f}), glass, light});
     b.add_light(make_point_light({2, 3, 2}, {5, 5, 5}));

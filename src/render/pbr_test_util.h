@@ -75,6 +75,53 @@ inline double diffuse_part(const Params& p, Dir v, Dir l) {
     return (1 - p.metallic) * (1 - fresnel_max) * p.base / std::numbers::pi;
 }
 
+// KHR_materials_transmission's thin-wall transmission for V above and L
+// below the surface (N = +z), as the extension writes it:
+// (1 − metallic) · transmission · (1 − F_max) · base · V_T · D_T with the
+// transmission half vector H_T = normalize(V − 2(N·L)N + L), V_T the
+// separable Smith form of its implementation notes, F at |V·H_T|.
+// Roughness must be > 0.
+inline double thin_transmission(const Params& p, double transmission, Dir v, Dir l) {
+    if (v.z <= 0 || l.z >= 0) return 0;
+    constexpr double pi = std::numbers::pi;
+    const double a = p.roughness * p.roughness, a2 = a * a;
+    Dir h{v.x + l.x, v.y + l.y, v.z - l.z};
+    const double len = std::sqrt(dot(h, h));
+    h = {h.x / len, h.y / len, h.z / len};
+    const double n_h = h.z, n_l = l.z, n_v = v.z;
+    const double d_t = a2 * heaviside(n_h) / (pi * std::pow(n_h * n_h * (a2 - 1) + 1, 2));
+    const Dir l_mirrored{l.x, l.y, -l.z};
+    const double v_t = heaviside(dot(h, l_mirrored)) / (std::fabs(n_l) + std::sqrt(a2 + (1 - a2) * n_l * n_l)) *
+                       heaviside(dot(h, v)) / (std::fabs(n_v) + std::sqrt(a2 + (1 - a2) * n_v * n_v));
+    const double fresnel_max = dielectric_fresnel(p, p.specular_color_max, std::pow(1 - std::fabs(dot(v, h)), 5));
+    return (1 - p.metallic) * transmission * (1 - fresnel_max) * p.base * v_t * d_t;
+}
+
+// KHR_materials_clearcoat over the material `base` (its f(V, L), 1/sr) for
+// V and L above the surface (N = +z): fresnel_coat(ior 1.5, weight
+// clearcoat, base, specular_brdf(α = coat_roughness²)) =
+// mix(base, layer, clearcoat · F(0.04, |N·V|)), the layer Appendix B's
+// specular_brdf without Fresnel. coat_roughness 0: the delta mirror is left
+// out (its weight is clearcoat · F).
+inline double coated(double base, double clearcoat, double coat_roughness, Dir v, Dir l) {
+    if (v.z <= 0 || l.z <= 0) return 0;
+    constexpr double pi = std::numbers::pi;
+    const double blend = clearcoat * (0.04 + 0.96 * std::pow(1 - std::fabs(v.z), 5));
+    double layer = 0;
+    if (coat_roughness > 0) {
+        const double a = coat_roughness * coat_roughness, a2 = a * a;
+        Dir h{v.x + l.x, v.y + l.y, v.z + l.z};
+        const double len = std::sqrt(dot(h, h));
+        h = {h.x / len, h.y / len, h.z / len};
+        const double d_term = a2 * heaviside(h.z) / (pi * std::pow(h.z * h.z * (a2 - 1) + 1, 2));
+        const double vis =
+            heaviside(dot(l, h)) * heaviside(dot(v, h)) /
+            (2 * (v.z * std::sqrt(a2 + (1 - a2) * l.z * l.z) + l.z * std::sqrt(a2 + (1 - a2) * v.z * v.z)));
+        layer = vis * d_term;
+    }
+    return (1 - blend) * base + blend * layer;
+}
+
 // The directional albedo ∫ f(V, L) cos θ_L dL for V at theta_o (radians, in
 // the xz plane), by the midpoint rule over half vectors H (θ_h, φ) on an
 // n × 2n grid: dL = 4 (V·H) dH, so sharp lobes are resolved by a fine θ_h

@@ -73,6 +73,7 @@ struct DeltaLightRecord {
     float spot_factor = 1;          // a spot's falloff s² at ω_i (1 for other kinds)
     Vec3 incident;                  // point: I/|c − x|²; spot: I·s²/|c − x|²; directional: E
     Vec3 f_diffuse, f_lobe;         // f_r split into its diffuse term and its lobe (specular) term
+    Vec3 f_transmission, f_coat;    // pbr's transmission (through the surface) and clearcoat terms; 0 elsewhere
     Vec3 f;                         // f_r as the integrator evaluated it
     BlockerRecord blocker;          // when Blocked
     std::vector<HoleRecord> holes;  // when Visible: the cut-outs the shadow ray went through
@@ -97,6 +98,7 @@ struct SampledLightRecord {
     float cos_s = 0;            // |n_s·ω_i|
     float cos_light = 0;        // |n_light·ω_i| at the sampled point of an emitting triangle (0 for the environment)
     Vec3 f_diffuse, f_lobe, f;  // f_r split and whole
+    Vec3 f_transmission, f_coat;                   // pbr's transmission and clearcoat terms of f_r; 0 elsewhere
     LightOutcome outcome = LightOutcome::Visible;  // Behind (f_r = 0, no shadow ray), Blocked, or Visible
     BlockerRecord blocker;
     std::vector<HoleRecord> holes;  // when Visible: the cut-outs the shadow ray went through

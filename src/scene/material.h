@@ -3,8 +3,10 @@
 // version-1 BRDF terms that the direct integrator evaluates).
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -61,7 +63,8 @@ struct TextureRef {
 // texel's RGB; a textured scalar's is the constant times the chosen channel.
 struct MaterialTextures {
     TextureRef kd, ks, kr, kt, ke, base_color, specular_color;  // RGB parameters (see kRgbTextureSlots)
-    TextureRef roughness, metallic, specular;                   // scalar parameters (see kScalarTextureSlots)
+    TextureRef roughness, metallic, specular, transmission, clearcoat,
+        clearcoat_roughness;  // scalar parameters (see kScalarTextureSlots)
     // Tangent-space normal map (OpenGL convention, +y toward increasing v):
     // data, n = normalize((2·texel − 1) ⊙ (normal_scale, normal_scale, 1))
     // (glTF normalTexture.scale; 1 elsewhere). Wins over the bump map.
@@ -102,6 +105,25 @@ struct Material {
     // ≥ 0 (it may exceed 1). The defaults leave glTF's core model unchanged.
     float specular = 1.0f;
     Vec3 specular_color{1.0f};
+    // Pbr, glTF's KHR_materials_transmission: the fraction in [0, 1] of the
+    // light that enters the dielectric base (what its Fresnel layer does not
+    // reflect) and goes through the surface, tinted by base_color, rather
+    // than being reflected diffusely. 0 (the default) is glTF's core model.
+    float transmission = 0.0f;
+    // Pbr, glTF's KHR_materials_volume: thickness > 0 says the mesh bounds a
+    // volume of index `ior`, so transmission refracts at each interface and
+    // light travelling inside is attenuated as exp(−σ_a·d), σ_a =
+    // −ln(attenuation_color)/attenuation_distance (Beer–Lambert). 0 (the
+    // default): a thin wall, which transmission passes straight through.
+    // Only sombra's glTF reader sets these (scene files have no keys for them).
+    float thickness = 0.0f;
+    Vec3 attenuation_color{1.0f};                                         // each channel in (0, 1]
+    float attenuation_distance = std::numeric_limits<float>::infinity();  // > 0; infinite: no attenuation
+    // Pbr, glTF's KHR_materials_clearcoat: a GGX dielectric coat (ior 1.5)
+    // of strength `clearcoat` in [0, 1] and roughness in [0, 1] (α = r²)
+    // over the whole material. 0 (the default): no coat. glTF only.
+    float clearcoat = 0.0f;
+    float clearcoat_roughness = 0.0f;
     // Quad lights (§10) emit only toward the side their winding normal
     // (v1 − v0) × (v2 − v0) points to, and are black from behind.
     bool emits_front_only = false;
@@ -141,6 +163,9 @@ inline constexpr ScalarTextureSlot kScalarTextureSlots[] = {
     {"roughness", &Material::roughness, &MaterialTextures::roughness},
     {"metallic", &Material::metallic, &MaterialTextures::metallic},
     {"specular", &Material::specular, &MaterialTextures::specular},
+    {"transmission", &Material::transmission, &MaterialTextures::transmission},
+    {"clearcoat", &Material::clearcoat, &MaterialTextures::clearcoat},
+    {"clearcoat_roughness", &Material::clearcoat_roughness, &MaterialTextures::clearcoat_roughness},
 };
 
 // The image of `ref` (set) in `table` at the hit's uv, moved by the
@@ -185,7 +210,8 @@ inline bool any_texture(const MaterialTextures& t) {
 // field added to Material fails to compile here until it is copied too.
 inline void copy_parameters(const Material& from, Material& to) {
     const auto& [name, type, kd, ks, shininess, ke, kr, kt, ior, roughness, base_color, metallic, specular,
-                 specular_color, emits_front_only, textures, textured] = from;
+                 specular_color, transmission, thickness, attenuation_color, attenuation_distance, clearcoat,
+                 clearcoat_roughness, emits_front_only, textures, textured] = from;
     static_cast<void>(name);
     to.type = type;
     to.kd = kd;
@@ -200,6 +226,12 @@ inline void copy_parameters(const Material& from, Material& to) {
     to.metallic = metallic;
     to.specular = specular;
     to.specular_color = specular_color;
+    to.transmission = transmission;
+    to.thickness = thickness;
+    to.attenuation_color = attenuation_color;
+    to.attenuation_distance = attenuation_distance;
+    to.clearcoat = clearcoat;
+    to.clearcoat_roughness = clearcoat_roughness;
     to.emits_front_only = emits_front_only;
     to.textures = textures;
     to.textured = textured;
@@ -219,6 +251,25 @@ void for_each_texture_ref(MaterialTextures& t, F&& f) {
 // exceeds 1 in some channel (spec §5 asks for a warning, from scenes and MTL alike).
 inline bool breaks_energy_conservation(const Material& m) {
     return m.type == MaterialType::Phong && max_component(m.kd + m.ks) > 1;
+}
+
+// The absorption coefficient σ_a (1/world unit, per channel) of the volume
+// a pbr material bounds (KHR_materials_volume): −ln(attenuation_color) /
+// attenuation_distance; 0 for a thin-walled material (thickness 0), an
+// infinite distance or a white colour.
+inline Vec3 volume_absorption(const Material& m) {
+    if (!(m.thickness > 0.0f) || !(m.attenuation_distance < std::numeric_limits<float>::infinity())) return Vec3{0.0f};
+    const auto sigma = [&m](float c) {
+        return c >= 1.0f ? 0.0f : -std::log(std::max(c, 1e-30f)) / m.attenuation_distance;
+    };
+    return {sigma(m.attenuation_color.x), sigma(m.attenuation_color.y), sigma(m.attenuation_color.z)};
+}
+
+// exp(−σ_a·d): the fraction of light that crosses `distance` (world units)
+// inside the volume of m (volume_absorption), per channel.
+inline Vec3 volume_transmittance(const Material& m, float distance) {
+    const Vec3 sigma = volume_absorption(m);
+    return {std::exp(-sigma.x * distance), std::exp(-sigma.y * distance), std::exp(-sigma.z * distance)};
 }
 
 // True when the material emits light (some ke component > 0).

@@ -215,8 +215,19 @@ std::string rebuild_glb(const std::string& bytes, std::string_view json_chunk, s
 }
 
 bool supported_extension(const std::string& name) {
-    static const std::set<std::string> supported{
-        kDraco, kQuantization, kLights, kIor, kEmissiveStrength, kTextureTransform, kSpecular, kMeshopt, kWebp};
+    static const std::set<std::string> supported{kDraco,
+                                                 kQuantization,
+                                                 kLights,
+                                                 kIor,
+                                                 kEmissiveStrength,
+                                                 kTextureTransform,
+                                                 kSpecular,
+                                                 kTransmission,
+                                                 kVolume,
+                                                 kClearcoat,
+                                                 kUnlit,
+                                                 kMeshopt,
+                                                 kWebp};
     return supported.count(name) > 0;
 }
 

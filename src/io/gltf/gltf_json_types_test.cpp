@@ -248,11 +248,11 @@ TEST(GltfJsonTypes, IorOfOneIsValid) {
 TEST(GltfJsonTypes, RequiredExtensionsAndTheVersionComeFirst) {
     TempFolder dir;
     GltfFile f = typed_quad();
-    f.use_extension("KHR_materials_volume", true);
+    f.use_extension("KHR_materials_anisotropy", true);
     f.doc["nodes"][0]["scale"] = "big";
     Error e = load_error(f, "required.gltf", dir);
     EXPECT_EQ(e.where(), (dir.path / "required.gltf").string());
-    EXPECT_EQ(e.message(), "requires the unsupported glTF extension KHR_materials_volume");
+    EXPECT_EQ(e.message(), "requires the unsupported glTF extension KHR_materials_anisotropy");
 
     GltfFile old = typed_quad();
     old.doc["asset"]["version"] = "1.0";

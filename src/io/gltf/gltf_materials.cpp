@@ -160,6 +160,81 @@ void read_specular(const MaterialContext& c, const tinygltf::Material& g, Materi
     refs.specular_color = extension_texture_ref(c, x, "specularColorTexture");
 }
 
+// The number `name` of extension object x, in [lo, hi], or `fallback` when
+// absent; an error when it is not a number, a warning and the clamped value
+// when outside.
+float extension_factor(const MaterialContext& c, const tinygltf::Value& x, const char* extension, const char* name,
+                       float fallback) {
+    if (!x.Has(name)) return fallback;
+    if (!x.Get(name).IsNumber()) throw Error(c.file, c.what + ": " + extension + " " + name + " must be a number");
+    return clamped(c, x.Get(name).GetNumberAsDouble(), name);
+}
+
+// KHR_materials_transmission (Blender writes it for glass): the fraction of
+// the light entering the base that goes through, and its texture (R).
+void read_transmission(const MaterialContext& c, const tinygltf::Material& g, Material& m, GltfMaterialTextures& refs) {
+    const auto it = g.extensions.find(kTransmission);
+    if (it == g.extensions.end() || !it->second.IsObject()) return;
+    m.transmission = extension_factor(c, it->second, kTransmission, "transmissionFactor", 0.0f);
+    refs.transmission = extension_texture_ref(c, it->second, "transmissionTexture");
+}
+
+// KHR_materials_volume: thicknessFactor > 0 makes the mesh a closed volume
+// of the material's ior, with Beer–Lambert attenuation inside
+// (attenuationColor, attenuationDistance). thicknessTexture is ignored
+// (sombra traces the real path length inside; the texture only approximates
+// it for rasterisers), with a warning.
+void read_volume(const MaterialContext& c, const tinygltf::Material& g, Material& m) {
+    const auto it = g.extensions.find(kVolume);
+    if (it == g.extensions.end() || !it->second.IsObject()) return;
+    const tinygltf::Value& x = it->second;
+    const std::string where = c.what + ": " + kVolume + " ";
+    if (x.Has("thicknessFactor")) {
+        const tinygltf::Value& v = x.Get("thicknessFactor");
+        const float thickness = v.IsNumber() ? static_cast<float>(v.GetNumberAsDouble()) : -1.0f;
+        if (!std::isfinite(thickness) || thickness < 0.0f)
+            throw Error(c.file, where + "thicknessFactor must be a finite number >= 0");
+        m.thickness = thickness;
+    }
+    if (x.Has("attenuationDistance")) {
+        const tinygltf::Value& v = x.Get("attenuationDistance");
+        const float distance = v.IsNumber() ? static_cast<float>(v.GetNumberAsDouble()) : -1.0f;
+        if (!(distance > 0.0f)) throw Error(c.file, where + "attenuationDistance must be a number > 0");
+        m.attenuation_distance = distance;
+    }
+    if (x.Has("attenuationColor")) {
+        const tinygltf::Value& v = x.Get("attenuationColor");
+        std::vector<double> rgb;
+        for (int k = 0; v.IsArray() && k < static_cast<int>(v.ArrayLen()) && k < 3; ++k)
+            if (v.Get(k).IsNumber()) rgb.push_back(v.Get(k).GetNumberAsDouble());
+        if (!v.IsArray() || v.ArrayLen() != 3 || rgb.size() != 3)
+            throw Error(c.file, where + "attenuationColor must be 3 numbers");
+        const Vec3 colour = read_colour(c, rgb, Vec3{1.0f}, "attenuationColor");
+        m.attenuation_color = {clamped(c, colour.x, "attenuationColor"), clamped(c, colour.y, "attenuationColor"),
+                               clamped(c, colour.z, "attenuationColor")};
+    }
+    if (x.Has("thicknessTexture"))
+        c.diag.warn(c.file, where + "thicknessTexture ignored (the path length inside the mesh is traced)");
+    if (m.thickness > 0.0f && !(m.transmission > 0.0f))
+        c.diag.warn(c.file, where + "without transmission: the volume is never entered, and ignored");
+}
+
+// KHR_materials_clearcoat: the coat's strength (clearcoatTexture's R) and
+// roughness (clearcoatRoughnessTexture's G). clearcoatNormalTexture is not
+// read (the coat shares the base's shading normal), with a warning.
+void read_clearcoat(const MaterialContext& c, const tinygltf::Material& g, Material& m, GltfMaterialTextures& refs) {
+    const auto it = g.extensions.find(kClearcoat);
+    if (it == g.extensions.end() || !it->second.IsObject()) return;
+    const tinygltf::Value& x = it->second;
+    m.clearcoat = extension_factor(c, x, kClearcoat, "clearcoatFactor", 0.0f);
+    m.clearcoat_roughness = extension_factor(c, x, kClearcoat, "clearcoatRoughnessFactor", 0.0f);
+    refs.clearcoat = extension_texture_ref(c, x, "clearcoatTexture");
+    refs.clearcoat_roughness = extension_texture_ref(c, x, "clearcoatRoughnessTexture");
+    if (x.Has("clearcoatNormalTexture"))
+        c.diag.warn(c.file, c.what + ": " + kClearcoat +
+                                " clearcoatNormalTexture ignored (the coat uses the base's shading normal)");
+}
+
 }  // namespace
 
 Materials convert_materials(const tinygltf::Model& model, const std::string& file, Diagnostics& diag) {
@@ -214,6 +289,21 @@ Materials convert_materials(const tinygltf::Model& model, const std::string& fil
                                      g.occlusionTexture.extensions, "occlusionTexture");
         refs.occlusion.strength = finite_number(tinygltf::Value(g.occlusionTexture.strength), 1);
         read_specular(c, g, m, refs);
+        read_transmission(c, g, m, refs);
+        read_volume(c, g, m);
+        read_clearcoat(c, g, m, refs);
+        // KHR_materials_unlit: emission only. The base colour (factor times
+        // texture) becomes the emitted radiance of a black diffuse surface,
+        // lit by nothing and, as any emitter in a path tracer, lighting
+        // what it faces; the other parameters and COLOR_0 do not apply.
+        if (g.extensions.count(kUnlit) > 0) {
+            m.type = MaterialType::Diffuse;
+            m.kd = Vec3{0.0f};
+            m.ke = m.base_color;
+            refs.emissive = refs.base_color;
+            refs.metallic_roughness = {};
+            refs.normal = {};
+        }
         refs.alpha_mode = g.alphaMode == "MASK"    ? AlphaMode::Mask
                           : g.alphaMode == "BLEND" ? AlphaMode::Blend
                                                    : AlphaMode::Opaque;

@@ -173,6 +173,9 @@ void apply_textures(const tinygltf::Model& model, const std::filesystem::path& p
         t.ke = slot(r.emissive, TextureEncoding::Color);
         t.specular = slot(r.specular, TextureEncoding::Data, 3);
         t.specular_color = slot(r.specular_color, TextureEncoding::Color);
+        t.transmission = slot(r.transmission, TextureEncoding::Data, 0);
+        t.clearcoat = slot(r.clearcoat, TextureEncoding::Data, 0);
+        t.clearcoat_roughness = slot(r.clearcoat_roughness, TextureEncoding::Data, 1);
         if (r.alpha_mode != AlphaMode::Opaque) {
             // Alpha is baseColorFactor's A times the base colour image's A
             // (never sRGB-decoded, so the colour image serves as it is).

@@ -36,20 +36,24 @@ enum class AlphaMode { Opaque, Mask, Blend };
 // Per material: every texture slot of glTF 2.0's metallic-roughness model and
 // what alpha needs besides the textures.
 struct GltfMaterialTextures {
-    GltfTextureRef base_color;          // RGB times base_color; A is alpha
-    GltfTextureRef metallic_roughness;  // roughness from G, metallic from B
-    GltfTextureRef normal;              // tangent space
-    GltfTextureRef emissive;            // times ke
-    GltfTextureRef occlusion;           // ignored by the spec (§13), kept for completeness
-    GltfTextureRef specular;            // KHR_materials_specular: A times specular
-    GltfTextureRef specular_color;      // KHR_materials_specular: RGB (sRGB) times specular_color
+    GltfTextureRef base_color;           // RGB times base_color; A is alpha
+    GltfTextureRef metallic_roughness;   // roughness from G, metallic from B
+    GltfTextureRef normal;               // tangent space
+    GltfTextureRef emissive;             // times ke
+    GltfTextureRef occlusion;            // ignored by the spec (§13), kept for completeness
+    GltfTextureRef specular;             // KHR_materials_specular: A times specular
+    GltfTextureRef specular_color;       // KHR_materials_specular: RGB (sRGB) times specular_color
+    GltfTextureRef transmission;         // KHR_materials_transmission: R times transmission
+    GltfTextureRef clearcoat;            // KHR_materials_clearcoat: R times clearcoat
+    GltfTextureRef clearcoat_roughness;  // KHR_materials_clearcoat: G times clearcoat_roughness
     AlphaMode alpha_mode = AlphaMode::Opaque;
     float alpha_cutoff = 0.5f;  // MASK: cut out where alpha < cutoff
     float base_alpha = 1.0f;    // baseColorFactor's A
 
     bool any() const {
         return base_color.present() || metallic_roughness.present() || normal.present() || emissive.present() ||
-               occlusion.present() || specular.present() || specular_color.present();
+               occlusion.present() || specular.present() || specular_color.present() || transmission.present() ||
+               clearcoat.present() || clearcoat_roughness.present();
     }
 };
 
