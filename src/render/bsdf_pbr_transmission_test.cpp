@@ -177,7 +177,9 @@ TEST(PbrTransmission, TotalInternalReflectionInsideAVolume) {
     const Material metal = glass(Vec3{1.0f}, 1.0f, 0.0f, 1.0f);
     for (std::uint32_t i = 0; i < 200; ++i) {
         BsdfSample s;
-        if (sample_bsdf(metal, kFlat, polar(30, 0.2), rnd(i, 8), 0.5f, 0.5f, s)) EXPECT_FALSE(s.transmission);
+        if (sample_bsdf(metal, kFlat, polar(30, 0.2), rnd(i, 8), 0.5f, 0.5f, s)) {
+            EXPECT_FALSE(s.transmission);
+        }
     }
 }
 
