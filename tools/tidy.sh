@@ -19,6 +19,9 @@ db=build/release/compile_commands.json
 if [ ! -f "$db" ]; then
   cmake --preset release >/dev/null
 fi
+# Headers the build generates (the viewer's embedded page), which some
+# sources include: made here too, so that a fresh clone needs no build first.
+cmake --build build/release --target sombra_view_page >/dev/null
 
 # The translation units: src/'s .cpp files in the database (optional backends
 # the build did not find are not compiled, so not checked), narrowed by any
