@@ -2,7 +2,7 @@
 # Builds the libFuzzer targets (CMake preset "fuzz", clang) and runs each for
 # a given time, one after the other, with its seed corpus.
 #
-#   tools/fuzz.sh [SECONDS_PER_TARGET] [TARGET...]     (default: 60 s; obj ply scene gltf texture view)
+#   tools/fuzz.sh [SECONDS_PER_TARGET] [TARGET...]     (default: 60 s; obj ply scene gltf texture view shard)
 #
 # Targets: obj (OBJ + MTL), ply, scene (scene JSON down to loaded meshes),
 # gltf (.gltf / .glb through tinygltf and Draco), texture (an image file
@@ -22,12 +22,12 @@ root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 seconds="${1:-60}"
 [ $# -gt 0 ] && shift
 targets=("$@")
-[ ${#targets[@]} -gt 0 ] || targets=(obj ply scene gltf texture view)
+[ ${#targets[@]} -gt 0 ] || targets=(obj ply scene gltf texture view shard)
 case "$seconds" in
-  '' | *[!0-9]*) echo "usage: tools/fuzz.sh [SECONDS_PER_TARGET] [obj|ply|scene|gltf|texture|view ...]" >&2; exit 2 ;;
+  '' | *[!0-9]*) echo "usage: tools/fuzz.sh [SECONDS_PER_TARGET] [obj|ply|scene|gltf|texture|view|shard ...]" >&2; exit 2 ;;
 esac
 for t in "${targets[@]}"; do
-  case "$t" in obj | ply | scene | gltf | texture | view) ;; *) echo "fuzz.sh: unknown target '$t' (obj, ply, scene, gltf, texture, view)" >&2; exit 2 ;; esac
+  case "$t" in obj | ply | scene | gltf | texture | view | shard) ;; *) echo "fuzz.sh: unknown target '$t' (obj, ply, scene, gltf, texture, view, shard)" >&2; exit 2 ;; esac
 done
 
 shared="${SOMBRA_SHARED_DIR:-$root/../shared}"
@@ -156,6 +156,12 @@ seed_view() {
     add_seed "$corpus" allowed
   printf 'evil.example:8765\x00http://evil.example\x00wrong\x0016' | add_seed "$corpus" foreign
   printf 'localhost:8765\x00\x00\x001e39' | add_seed "$corpus" no-token
+}
+
+# Shard seeds: EXR files sombra render --shard wrote (fuzz/seeds/shard).
+seed_shard() {
+  local corpus="$1" f
+  for f in "$root"/fuzz/seeds/shard/*.exr; do add_seed "$corpus" "$(basename "$f")" <"$f"; done
 }
 
 status=0

@@ -14,11 +14,11 @@ using namespace sombra::cli_test;
 
 class Shards : public CliFixture {
 protected:
-    // A scene of 70 × 50 pixels (3 × 2 blocks of 32), so that every shard of
-    // three owns blocks cut by the image's edge too.
+    // A scene of 71 × 49 pixels (3 × 2 blocks of 32, odd sizes), so that
+    // shards own blocks cut by the image's edge too.
     void SetUp() override {
         CliFixture::SetUp();
-        write_text(dir_ / "s.json", scene(R"({"width": 70, "height": 50, "spp": 4})"));
+        write_text(dir_ / "s.json", scene(R"({"width": 71, "height": 49, "spp": 4})"));
     }
     // Renders shard I/N of the scene with `options` into sI.exr.
     void shard(int i, int n, const std::string& options) {
@@ -45,11 +45,18 @@ TEST_F(Shards, MergedShardsAreTheWholeRenderBitForBit) {
         // A shard alone is part of the image: black where the others render.
         EXPECT_NE(read_text(dir_ / "s0.exr"), read_text(dir_ / "whole.exr"));
     }
-    // One shard of one is the whole image.
-    shard(0, 1, "--integrator path");
-    ASSERT_EQ(run("merge s0.exr -o one.pfm").status, 0);
-    ASSERT_EQ(run("render s.json -q --integrator path -o whole1.pfm").status, 0);
-    EXPECT_EQ(read_text(dir_ / "one.pfm"), read_text(dir_ / "whole1.pfm"));
+    // 1, 2 and 7 shards too (7 is more than the image's 6 blocks: one shard has none).
+    ASSERT_EQ(run("render s.json -q --integrator path -o whole.pfm").status, 0);
+    for (const int n : {1, 2, 7}) {
+        std::string parts;
+        for (int i = 0; i < n; ++i) {
+            shard(i, n, "--integrator path");
+            parts += " s" + std::to_string(i) + ".exr";
+        }
+        const RunResult merged = run("merge -q" + parts + " -o merged.pfm");
+        ASSERT_EQ(merged.status, 0) << merged.err;
+        EXPECT_EQ(read_text(dir_ / "merged.pfm"), read_text(dir_ / "whole.pfm")) << n << " shards";
+    }
 }
 
 TEST_F(Shards, MergeRefusesAnythingButTheSharesOfOneRender) {
@@ -57,7 +64,9 @@ TEST_F(Shards, MergeRefusesAnythingButTheSharesOfOneRender) {
     ASSERT_EQ(run("render s.json -q --shard 1/2 -o half1.exr").status, 0);
     ASSERT_EQ(run("render s.json -q --seed 9 --shard 2/3 -o seed9.exr").status, 0);
     ASSERT_EQ(run("render s.json -q -o plain.exr").status, 0);
-    write_text(dir_ / "cut.exr", read_text(dir_ / "s0.exr").substr(0, 400));
+    const std::string whole = read_text(dir_ / "s0.exr");
+    write_text(dir_ / "cut.exr", whole.substr(0, 400));                  // inside the header
+    write_text(dir_ / "short.exr", whole.substr(0, whole.size() - 40));  // inside the pixels
 
     expect_input_error(run("merge s0.exr s1.exr -o out.png"), "shard 2/3 of this render is missing (2 of 3 given)");
     expect_input_error(run("merge s0.exr s2.exr s2.exr -o out.png"), "shard 2/3 given twice");
@@ -65,7 +74,8 @@ TEST_F(Shards, MergeRefusesAnythingButTheSharesOfOneRender) {
     expect_input_error(run("merge s0.exr s1.exr seed9.exr -o out.png"),
                        "another render than s0.exr's (seed 9 against seed 0)");
     expect_input_error(run("merge s0.exr plain.exr s2.exr -o out.png"), "plain.exr: not a shard");
-    expect_input_error(run("merge cut.exr s1.exr s2.exr -o out.png"), "cut.exr: not a readable EXR file");
+    expect_input_error(run("merge cut.exr s1.exr s2.exr -o out.png"), "cut.exr: damaged EXR header");
+    expect_input_error(run("merge short.exr s1.exr s2.exr -o out.png"), "short.exr: not a readable EXR file");
     expect_input_error(run("merge s0.exr missing.exr s2.exr -o out.png"), "missing.exr");
 }
 

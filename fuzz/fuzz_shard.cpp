@@ -1,0 +1,48 @@
+// libFuzzer target for the shard files `sombra merge` reads (spec §21): they
+// come from other machines. The input is written as an .exr and read back
+// with read_exr_channels (image/image_io.h), as merge reads each part:
+// anything may be refused with an Error, nothing may crash, hang or
+// allocate past the image limits, and what is read must be consistent.
+#include <unistd.h>
+
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include "core/error.h"
+#include "core/image_limits.h"
+#include "image/image_io.h"
+
+namespace {
+
+[[noreturn]] void broken(const char* what) {
+    std::fprintf(stderr, "fuzz_shard: %s\n", what);
+    std::abort();
+}
+
+}  // namespace
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+    static const std::filesystem::path file =
+        std::filesystem::temp_directory_path() / ("sombra-fuzz-shard-" + std::to_string(::getpid()) + ".exr");
+    {
+        std::ofstream out(file, std::ios::binary | std::ios::trunc);
+        out.write(reinterpret_cast<const char*>(data), static_cast<std::streamsize>(size));
+    }
+    try {
+        const sombra::ExrChannels exr = sombra::read_exr_channels(file);
+        if (exr.width <= 0 || exr.height <= 0 || exr.width > sombra::kMaxImageSide ||
+            exr.height > sombra::kMaxImageSide)
+            broken("a size outside the limits was accepted");
+        if (exr.names.size() != exr.values.size()) broken("names and channels disagree");
+        for (const auto& channel : exr.values)
+            if (channel.size() != static_cast<std::size_t>(exr.width) * static_cast<std::size_t>(exr.height))
+                broken("a channel of the wrong length");
+    } catch (const sombra::Error&) {
+        // Refused with a message: what merge prints.
+    }
+    return 0;
+}
