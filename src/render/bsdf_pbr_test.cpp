@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "render/bsdf.h"
+#include "render/bsdf_test_util.h"
 #include "render/chi2_test_util.h"
 #include "render/pbr_test_util.h"
 #include "render/sampler.h"
@@ -22,6 +23,12 @@ namespace sombra {
 namespace {
 
 namespace ref = pbr_reference;
+using bsdf_testing::kFlat;
+using bsdf_testing::params;
+using bsdf_testing::polar;
+using bsdf_testing::random_upper;
+using bsdf_testing::rnd;
+using bsdf_testing::to_dir;
 
 constexpr double kPi = 3.14159265358979323846;
 // |z| beyond this fails: ~1 in 10^6 for a correct estimator.
@@ -39,11 +46,6 @@ Material pbr(Vec3 base_color, float metallic, float roughness, float ior = 1.5f)
     return m;
 }
 
-ref::Params params(const Material& m, int channel) {
-    return {m.base_color[channel],          m.metallic, m.roughness, m.ior, m.specular, m.specular_color[channel],
-            max_component(m.specular_color)};
-}
-
 // A pbr material with glTF's KHR_materials_specular.
 Material with_specular(Material m, float specular, Vec3 specular_color) {
     m.specular = specular;
@@ -51,24 +53,6 @@ Material with_specular(Material m, float specular, Vec3 specular_color) {
     return m;
 }
 
-Vec3 polar(double theta_deg, double phi) {
-    const double t = theta_deg * kPi / 180.0;
-    return {static_cast<float>(std::sin(t) * std::cos(phi)), static_cast<float>(std::sin(t) * std::sin(phi)),
-            static_cast<float>(std::cos(t))};
-}
-
-float rnd(std::uint32_t i, std::uint64_t key) { return hash_to_unit(i, key); }
-
-// A unit direction uniformly over n_g's hemisphere (n_g = +z).
-Vec3 random_upper(std::uint32_t i, std::uint64_t key) {
-    const float z = rnd(2 * i, key), phi = 2.0f * static_cast<float>(kPi) * rnd(2 * i + 1, key);
-    const float r = std::sqrt(std::max(0.0f, 1.0f - z * z));
-    return {r * std::cos(phi), r * std::sin(phi), z};
-}
-
-ref::Dir to_dir(Vec3 v) { return {v.x, v.y, v.z}; }
-
-const BsdfPoint kFlat = make_bsdf_point({0, 0, 1}, {0, 0, 1}, true);
 // A shading normal tilted 25° away from the geometric one.
 const BsdfPoint kTilted = make_bsdf_point({0, 0, 1}, polar(25, 1.0), true);
 

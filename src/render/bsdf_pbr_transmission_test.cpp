@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "render/bsdf.h"
+#include "render/bsdf_test_util.h"
 #include "render/chi2_test_util.h"
 #include "render/pbr_test_util.h"
 #include "render/sampler.h"
@@ -22,6 +23,12 @@ namespace sombra {
 namespace {
 
 namespace ref = pbr_reference;
+using bsdf_testing::kFlat;
+using bsdf_testing::params;
+using bsdf_testing::polar;
+using bsdf_testing::random_sphere;
+using bsdf_testing::rnd;
+using bsdf_testing::to_dir;
 
 constexpr double kPi = 3.14159265358979323846;
 // Every χ² test in this file, for the Šidák correction of the suite's α = 0.01.
@@ -40,29 +47,6 @@ Material glass(Vec3 base, float metallic, float roughness, float transmission, f
     return m;
 }
 
-ref::Params params(const Material& m, int channel) {
-    return {m.base_color[channel],          m.metallic, m.roughness, m.ior, m.specular, m.specular_color[channel],
-            max_component(m.specular_color)};
-}
-
-Vec3 polar(double theta_deg, double phi) {
-    const double t = theta_deg * kPi / 180.0;
-    return {static_cast<float>(std::sin(t) * std::cos(phi)), static_cast<float>(std::sin(t) * std::sin(phi)),
-            static_cast<float>(std::cos(t))};
-}
-
-float rnd(std::uint32_t i, std::uint64_t key) { return hash_to_unit(i, key); }
-
-// A unit direction uniformly over the sphere.
-Vec3 random_sphere(std::uint32_t i, std::uint64_t key) {
-    const float z = 2.0f * rnd(2 * i, key) - 1.0f, phi = 2.0f * static_cast<float>(kPi) * rnd(2 * i + 1, key);
-    const float r = std::sqrt(std::max(0.0f, 1.0f - z * z));
-    return {r * std::cos(phi), r * std::sin(phi), z};
-}
-
-ref::Dir to_dir(Vec3 v) { return {v.x, v.y, v.z}; }
-
-const BsdfPoint kFlat = make_bsdf_point({0, 0, 1}, {0, 0, 1}, true);
 const BsdfPoint kFlatInside = make_bsdf_point({0, 0, 1}, {0, 0, 1}, false);
 // The same surface seen from below.
 const BsdfPoint kBelow = make_bsdf_point({0, 0, -1}, {0, 0, -1}, false);
