@@ -103,18 +103,20 @@ try {
       return t.includes("done") && t !== prev;
     }, after, { timeout: 60000 });
   await waitDone(page);
-  // The image the page shows, as RGBA bytes (read back through a canvas).
-  const pixelsOf = (p) =>
-    p.evaluate(async () => {
-      const img = document.getElementById("view");
-      if (!img.complete) await new Promise((r) => img.addEventListener("load", r, { once: true }));
+  // The image the page shows, or the image at URL `src` decoded by the same
+  // page, as RGBA bytes (read back through a canvas).
+  const pixelsOf = (p, src = null) =>
+    p.evaluate(async (url) => {
+      const img = url ? new Image() : document.getElementById("view");
+      if (url) img.src = url;
+      else if (!img.complete) await new Promise((r) => img.addEventListener("load", r, { once: true }));
       await img.decode();
       const c = document.createElement("canvas");
       c.width = img.naturalWidth; c.height = img.naturalHeight;
       const g = c.getContext("2d");
       g.drawImage(img, 0, 0);
       return { width: c.width, height: c.height, data: Array.from(g.getImageData(0, 0, c.width, c.height).data) };
-    });
+    }, src);
   // Wait for the image of the last pass to be the one shown.
   await page.waitForFunction(() => {
     const img = document.getElementById("view");
@@ -127,16 +129,7 @@ try {
   // 1. The same image as `sombra render`, decoded by the same browser.
   const reference = path.join(work, "reference.png");
   runSombra(["render", scene, ...common, "-o", reference, "--quiet"]);
-  const refPixels = await page.evaluate(async (b64) => {
-    const img = new Image();
-    img.src = "data:image/png;base64," + b64;
-    await img.decode();
-    const c = document.createElement("canvas");
-    c.width = img.naturalWidth; c.height = img.naturalHeight;
-    const g = c.getContext("2d");
-    g.drawImage(img, 0, 0);
-    return { width: c.width, height: c.height, data: Array.from(g.getImageData(0, 0, c.width, c.height).data) };
-  }, readFileSync(reference).toString("base64"));
+  const refPixels = await pixelsOf(page, "data:image/png;base64," + readFileSync(reference).toString("base64"));
   check(shown.width === WIDTH && shown.height === HEIGHT, `the page shows a ${WIDTH}×${HEIGHT} image`);
   let worst = 0;
   for (let i = 0; i < shown.data.length; ++i) worst = Math.max(worst, Math.abs(shown.data[i] - refPixels.data[i]));
