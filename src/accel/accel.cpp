@@ -4,6 +4,7 @@
 #include <cassert>
 
 #include "accel/embree_backend.h"
+#include "accel/instance_level.h"
 #include "accel/triangle.h"
 
 namespace sombra {
@@ -85,7 +86,9 @@ Accel make_accel(const TriangleMesh& mesh, AccelKind kind, Cutouts cutouts) {
 }
 
 Accel make_accel(const Scene& scene, AccelKind kind) {
-    return make_accel(scene.geometry, kind, make_cutouts(scene.geometry, scene.materials, scene.textures));
+    Accel accel = make_accel(scene.geometry, kind, make_cutouts(scene.geometry, scene.materials, scene.textures));
+    accel.instances = make_instance_level(scene, kind);
+    return accel;
 }
 
 namespace {
@@ -113,8 +116,10 @@ namespace {
 
 }  // namespace
 
-bool intersect(const Accel& accel, const Ray& ray, Hit& hit) {
-    if (accel.mesh == nullptr) return false;
+namespace {
+
+// The world geometry's part of intersect() and occluded().
+bool intersect_world(const Accel& accel, const Ray& ray, Hit& hit) {
     // intersect_bvh and occluded_bvh check the ray themselves (is_traceable).
     if (accel.kind == AccelKind::Bvh)
         return accel.cutouts.active() ? intersect_bvh(accel.bvh, accel.cutouts, ray, hit)
@@ -122,18 +127,47 @@ bool intersect(const Accel& accel, const Ray& ray, Hit& hit) {
     return intersect_other(accel, ray, hit);
 }
 
-bool occluded(const Accel& accel, const Ray& ray) {
-    if (accel.mesh == nullptr) return false;
+bool occluded_world(const Accel& accel, const Ray& ray) {
     if (accel.kind == AccelKind::Bvh)
         return accel.cutouts.active() ? occluded_bvh(accel.bvh, accel.cutouts, ray) : occluded_bvh(accel.bvh, ray);
     return occluded_other(accel, ray);
 }
 
+// The instances' part, out of line: scenes without instances pay one test.
+[[gnu::noinline]] bool intersect_with_instances(const Accel& accel, const Ray& ray, Hit& hit) {
+    if (!is_traceable(ray)) return false;
+    Ray rest = ray;
+    const bool world = intersect_world(accel, ray, hit);
+    if (world) rest.tmax = hit.t;
+    return intersect_instances(*accel.instances, rest, hit) || world;
+}
+
+[[gnu::noinline]] bool occluded_with_instances(const Accel& accel, const Ray& ray) {
+    if (!is_traceable(ray)) return false;
+    return occluded_world(accel, ray) || occluded_instances(*accel.instances, ray);
+}
+
+}  // namespace
+
+bool intersect(const Accel& accel, const Ray& ray, Hit& hit) {
+    if (accel.mesh == nullptr) return false;
+    if (accel.instances != nullptr) return intersect_with_instances(accel, ray, hit);
+    return intersect_world(accel, ray, hit);
+}
+
+bool occluded(const Accel& accel, const Ray& ray) {
+    if (accel.mesh == nullptr) return false;
+    if (accel.instances != nullptr) return occluded_with_instances(accel, ray);
+    return occluded_world(accel, ray);
+}
+
 std::size_t accel_memory_bytes(const Accel& accel) {
+    const std::size_t instances = accel.instances != nullptr ? instance_level_memory_bytes(*accel.instances) : 0;
 #ifdef SOMBRA_HAVE_EMBREE
-    if (accel.kind == AccelKind::Embree) return accel.embree != nullptr ? embree_memory_bytes(*accel.embree) : 0;
+    if (accel.kind == AccelKind::Embree)
+        return instances + (accel.embree != nullptr ? embree_memory_bytes(*accel.embree) : 0);
 #endif
-    return accel.kind == AccelKind::Bvh ? bvh_memory_bytes(accel.bvh) : 0;
+    return instances + (accel.kind == AccelKind::Bvh ? bvh_memory_bytes(accel.bvh) : 0);
 }
 
 }  // namespace sombra

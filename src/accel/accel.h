@@ -27,7 +27,11 @@ inline constexpr std::uint32_t kNoHit = 0xffffffffu;
 struct Hit {
     float t = 0;
     float b1 = 0, b2 = 0;
-    std::uint32_t triangle = kNoHit;  // index into TriangleMesh::triangles
+    std::uint32_t triangle = kNoHit;  // index into TriangleMesh::triangles of surface_mesh(scene, instance)
+    // The instance hit (index into Scene::instances), or kNoInstance for the
+    // world geometry. In an instance, t is the world ray's parameter as
+    // everywhere, while b1, b2 and the corners are the mesh's own.
+    std::uint32_t instance = kNoInstance;
     // The triangle's corners, triangle_corners(mesh, triangle), when the
     // backend has them at hand: the BVH copies them from the leaf it has just
     // tested, which saves shading four reads at random places in the mesh
@@ -52,7 +56,8 @@ std::string_view accel_name(AccelKind kind);
 // Names accepted by parse_accel_kind, in the order to list them to users.
 std::vector<std::string_view> available_accels();
 
-struct EmbreeScene;  // accel/embree_backend.h
+struct EmbreeScene;    // accel/embree_backend.h
+struct InstanceLevel;  // accel/instance_level.h
 
 struct Accel {
     AccelKind kind = AccelKind::Bvh;
@@ -64,6 +69,9 @@ struct Accel {
 #ifdef SOMBRA_HAVE_EMBREE
     std::shared_ptr<const EmbreeScene> embree;  // null unless kind == Embree
 #endif
+    // The scene's instances (spec §23): one structure per instanced mesh and
+    // a tree over the instances' world bounds; null when there are none.
+    std::shared_ptr<const InstanceLevel> instances;
 };
 
 // Builds the structure for `mesh` (world space). The mesh must stay alive and
@@ -75,7 +83,9 @@ struct Accel {
 Accel make_accel(const TriangleMesh& mesh, AccelKind kind, Cutouts cutouts = {});
 
 // The structure for a loaded scene: its world geometry with its materials'
-// cut-outs. The scene must outlive the Accel.
+// cut-outs, and its instances: one structure of `kind` per instanced mesh
+// (built in parallel), under a tree over the instances. The scene must
+// outlive the Accel.
 Accel make_accel(const Scene& scene, AccelKind kind);
 
 // Closest hit with 0 < t < ray.tmax (tmax itself excluded). Returns false and
@@ -93,6 +103,13 @@ Accel make_accel(const Scene& scene, AccelKind kind);
 // with a non-finite corner or an out-of-range index, and the cut-out parts of
 // surfaces (Accel::cutouts): a hit there is skipped and the ray goes on. Rays with a non-finite
 // origin or direction, or a zero direction, hit nothing.
+//
+// Through instances (spec §23), the world ray is carried into each
+// instance's coordinates and the same test runs there: hits within an
+// instance are as bit-identical across sombra's backends as those of the
+// world geometry. A world triangle wins a tie at equal t against an
+// instance; between instances at equal t (coincident copies) the winner
+// may differ between backends.
 //
 // A hit triangle always has a usable geometric normal:
 // normalize(cross(p1 - p0, p2 - p0)) is a unit vector, never NaN.

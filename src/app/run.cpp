@@ -136,7 +136,8 @@ int run_render(const CliOptions& o) {
                     aov_layers(rendered.aovs), shard_header);
         stats.write_seconds = seconds_since(write_start);
 
-        stats.triangles = scene.geometry.triangle_count();
+        stats.triangles = stored_triangle_count(scene);
+        stats.instanced_triangles = drawn_triangle_count(scene);
         stats.width = settings.width;
         stats.height = settings.height;
         stats.spp = o.time_budget && !o.spp ? static_cast<int>(rendered.max_pixel_spp) : settings.spp;

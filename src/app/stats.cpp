@@ -14,6 +14,7 @@ namespace sombra {
 void write_stats_json(const std::filesystem::path& path, const RunStats& s) {
     const nlohmann::ordered_json j = {
         {"triangles", s.triangles},
+        {"instanced_triangles", s.instanced_triangles},
         {"width", s.width},
         {"height", s.height},
         {"spp", s.spp},

@@ -38,10 +38,21 @@ std::vector<MaterialParameter> material_parameters(const Material& m) {
     return p;
 }
 
-TriangleOrigin triangle_origin(const Scene& scene, std::uint32_t triangle) {
+TriangleOrigin triangle_origin(const Scene& scene, std::uint32_t triangle, std::uint32_t instance) {
+    const TriangleMesh& mesh = surface_mesh(scene, instance);
+    const std::string material =
+        triangle < mesh.material_ids.size() ? scene.materials[mesh.material_ids[triangle]].name : std::string("?");
+    if (instance != kNoInstance) {
+        const SceneObject& object = scene.objects[scene.instances[instance].object];
+        return {object.name, object.file, triangle, instance - object.first_instance, material};
+    }
     const SceneObject* object = object_of_triangle(scene, triangle);
-    if (!object) return {"?", "", triangle};
-    return {object->name, object->file, triangle - object->first_triangle};
+    if (!object) return {"?", "", triangle, std::nullopt, material};
+    return {object->name, object->file, triangle - object->first_triangle, std::nullopt, material};
+}
+
+std::string instance_words(const TriangleOrigin& origin) {
+    return origin.instance ? ", instance " + std::to_string(*origin.instance) : std::string();
 }
 
 const char* light_type_name(LightType type) {

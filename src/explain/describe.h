@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -22,13 +23,17 @@ struct MaterialParameter {
 };
 std::vector<MaterialParameter> material_parameters(const Material& m);
 
-// Where scene triangle `triangle` came from.
+// Where triangle `triangle` of surface_mesh(scene, instance) came from.
 struct TriangleOrigin {
-    std::string object;          // "/objects/2", "/lights/0", or "?" when unknown
-    std::string file;            // the mesh file ("" for a quad light)
-    std::uint32_t triangle = 0;  // index among that object's triangles
+    std::string object;                     // "/objects/2", "/lights/0", or "?" when unknown
+    std::string file;                       // the mesh file ("" for a quad light)
+    std::uint32_t triangle = 0;             // index among that object's triangles (its mesh's, in an instance)
+    std::optional<std::uint32_t> instance;  // in an instanced object: which of its instances (from 0)
+    std::string material;                   // the triangle's material's name
 };
-TriangleOrigin triangle_origin(const Scene& scene, std::uint32_t triangle);
+TriangleOrigin triangle_origin(const Scene& scene, std::uint32_t triangle, std::uint32_t instance = kNoInstance);
+// "…, instance 3" for a triangle in an instance; "" otherwise.
+std::string instance_words(const TriangleOrigin& origin);
 
 // "behind", "on_surface", "outside_cone", "blocked", "visible".
 const char* outcome_name(LightOutcome outcome);

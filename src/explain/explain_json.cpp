@@ -59,9 +59,15 @@ public:
     }
 
 private:
-    Json where(std::uint32_t triangle) const {
-        const TriangleOrigin o = triangle_origin(c_.scene, triangle);
-        return {{"object", o.object}, {"file", o.file}, {"triangle", o.triangle}, {"scene_triangle", triangle}};
+    Json where(std::uint32_t triangle, std::uint32_t instance = kNoInstance) const {
+        const TriangleOrigin o = triangle_origin(c_.scene, triangle, instance);
+        Json j{{"object", o.object}, {"file", o.file}, {"triangle", o.triangle}};
+        // In an instance the triangle is its mesh's; "scene_triangle" indexes the world geometry only.
+        if (o.instance)
+            j["instance"] = *o.instance;
+        else
+            j["scene_triangle"] = triangle;
+        return j;
     }
 
     // The material's name and type, and its parameters as the BSDF saw them at the hit.
@@ -78,7 +84,7 @@ private:
     }
 
     Json hit(const HitRecord& h) const {
-        Json j = where(h.triangle);
+        Json j = where(h.triangle, h.instance);
         j["t"] = number(h.t);
         j["distance"] = number(h.distance);
         j["barycentric"] = {number(h.b1), number(h.b2)};
@@ -115,7 +121,7 @@ private:
     }
 
     Json blocker(const BlockerRecord& b) const {
-        Json j = where(b.triangle);
+        Json j = where(b.triangle, b.instance);
         j["distance"] = number(b.distance);
         return j;
     }

@@ -237,11 +237,10 @@ private:
         }
     }
 
-    std::string object_name(std::uint32_t triangle) const {
-        const TriangleOrigin o = triangle_origin(c_.scene, triangle);
+    std::string object_name(std::uint32_t triangle, std::uint32_t instance = kNoInstance) const {
+        const TriangleOrigin o = triangle_origin(c_.scene, triangle, instance);
         std::string name = o.file.empty() ? o.object : o.file.substr(o.file.find_last_of('/') + 1);
-        const Material& m = c_.scene.materials[c_.scene.geometry.material_ids[triangle]];
-        return name + " triangle " + std::to_string(o.triangle) + " (" + m.name + ")";
+        return name + instance_words(o) + " triangle " + std::to_string(o.triangle) + " (" + o.material + ")";
     }
 
     // A shadow ray from x towards `target`: solid to the light when it gets
@@ -256,7 +255,8 @@ private:
             line(at, target, kBlockedColour, 1, "4 4");
             cross_at(at, kBlockedColour);
             // Named in the view when the story is short; a long path's caption names each blocker instead.
-            if (r_.vertices.size() <= 2) label(at, "blocked by " + object_name(blocker.triangle), kBlockedColour);
+            if (r_.vertices.size() <= 2)
+                label(at, "blocked by " + object_name(blocker.triangle, blocker.instance), kBlockedColour);
         } else if (outcome == LightOutcome::Behind || outcome == LightOutcome::OutsideCone) {
             line(x, target, kBehindColour, 1, "2 4");
         }
@@ -326,7 +326,7 @@ private:
             case LightOutcome::Visible:
                 return {name + ": reaches the light, adds " + readable(contribution), kVisibleColour};
             case LightOutcome::Blocked:
-                return {name + ": blocked by " + object_name(blocker.triangle) + " at distance " +
+                return {name + ": blocked by " + object_name(blocker.triangle, blocker.instance) + " at distance " +
                             readable(blocker.distance),
                         kBlockedColour};
             case LightOutcome::Behind: return {name + ": behind the surface, adds nothing", kBehindColour};
@@ -352,7 +352,7 @@ private:
                 continue;
             }
             if (r_.path)
-                lines.push_back({at + "on " + object_name(v.surface.triangle) + ", throughput " +
+                lines.push_back({at + "on " + object_name(v.surface.triangle, v.surface.instance) + ", throughput " +
                                      readable(v.throughput) +
                                      (v.emission.present ? ", emission adds " + readable(v.emission.contribution) : ""),
                                  kPathColour});

@@ -67,12 +67,11 @@ private:
              << ", f = " << readable(cam.forward) << "\n";
     }
 
-    std::string where(std::uint32_t triangle) const {
-        const TriangleOrigin o = triangle_origin(c_.scene, triangle);
+    std::string where(std::uint32_t triangle, std::uint32_t instance = kNoInstance) const {
+        const TriangleOrigin o = triangle_origin(c_.scene, triangle, instance);
         std::string s = o.object;
         if (!o.file.empty()) s += " (" + o.file + ")";
-        const Material& m = c_.scene.materials[c_.scene.geometry.material_ids[triangle]];
-        return s + ", triangle " + std::to_string(o.triangle) + ", material \"" + m.name + "\"";
+        return s + instance_words(o) + ", triangle " + std::to_string(o.triangle) + ", material \"" + o.material + "\"";
     }
 
     // The material's name and type, and its parameters as the BSDF saw them at the hit.
@@ -110,13 +109,13 @@ private:
             return;
         }
         const HitRecord& h = v.surface;
-        out_ << "  object   " << where(h.triangle) << "\n";
+        out_ << "  object   " << where(h.triangle, h.instance) << "\n";
         out_ << "  t        " << readable(h.t) << " (distance " << readable(h.distance) << ")\n";
         out_ << "  x        " << readable(h.position) << "\n";
         out_ << "  n_g      " << readable(h.n_g) << "  (geometric normal, turned to face the ray)\n";
         const MaterialTextures& maps = c_.scene.materials[h.material].textures;
         const bool mapped = h.has_uv && (maps.normal_map.is_set() || maps.bump_map.is_set());
-        const bool smooth = has_vertex_normals(c_.scene.geometry, h.triangle);
+        const bool smooth = has_vertex_normals(surface_mesh(c_.scene, h.instance), h.triangle);
         out_ << "  n_s      " << readable(h.n_s)
              << (mapped           ? "  (shading normal: after the material's normal or bump map)"
                  : !smooth        ? "  (shading normal: the same, no vertex normals)"
@@ -163,8 +162,8 @@ private:
     }
 
     void blocked(const BlockerRecord& b, const char* tail) {
-        out_ << "    BLOCKED: the shadow ray meets " << where(b.triangle) << " at distance " << readable(b.distance)
-             << tail << "\n";
+        out_ << "    BLOCKED: the shadow ray meets " << where(b.triangle, b.instance) << " at distance "
+             << readable(b.distance) << tail << "\n";
     }
 
     void delta_light(const DeltaLightRecord& l, Vec3 beta) {

@@ -54,7 +54,7 @@ Vec3 trace_direct_recorded(const IntegratorContext& ctx, const Ray& ray, RayCoun
         recorder.escaped(ray, Vec3{1.0f}, radiance, 1.0f, 0.0f, 0.0f);
         recorder.end("the camera ray left the scene");
     } else {
-        SurfaceInteraction si = make_surface_interaction(scene.geometry, ray, hit);
+        SurfaceInteraction si = make_surface_interaction(scene, ray, hit);
         if (needs_resolved_material(scene, si)) {
             // Textures are read at the hit, filtered over the ray cone's
             // footprint when mip-mapping (render/ray_cone.h).

@@ -32,12 +32,26 @@ struct SurfaceInteraction {
     // 1 − b1 − b2), for the vertex attributes read only while shading
     // (tangents, colours).
     float b1 = 0, b2 = 0;
-    std::uint32_t triangle = 0;
+    std::uint32_t triangle = 0;  // in surface_mesh(scene, instance)
+    std::uint32_t instance = kNoInstance;
     std::uint32_t material = 0;
 };
 
-// The interaction for `hit` (from intersect()) of `ray` on `mesh`.
+// The interaction for `hit` (from intersect()) of `ray` on `mesh`, the world
+// geometry (hit.instance is kNoInstance).
 SurfaceInteraction make_surface_interaction(const TriangleMesh& mesh, const Ray& ray, const Hit& hit);
+
+// The interaction for any hit of `ray` in `scene`: in an instance, the hit
+// triangle's corners and vertex normals are carried to world space as the
+// builder carries a flattened copy's (scene/scene_builder.h), so both shade
+// alike up to the rounding of the hit itself.
+SurfaceInteraction make_surface_interaction(const Scene& scene, const Ray& ray, const Hit& hit);
+
+// Directions in the instance's coordinates (a tangent, a position
+// derivative) carried to world space; unchanged for kNoInstance.
+inline Vec3 vector_to_world(const Scene& scene, std::uint32_t instance, Vec3 v) {
+    return instance == kNoInstance ? v : transform_vector(scene.instances[instance].object_to_world, v);
+}
 
 // Where a ray leaving surface point x should start so that it cannot hit the
 // surface it leaves: x moved along the geometric normal n_g (pointing to the

@@ -112,7 +112,7 @@ Vec3 trace_path_recorded(const IntegratorContext& ctx, const Ray& camera_ray, Sa
             break;
         }
 
-        SurfaceInteraction si = make_surface_interaction(scene.geometry, ray, hit);
+        SurfaceInteraction si = make_surface_interaction(scene, ray, hit);
         const float hit_distance = cone.active() ? hit.t * length(ray.dir) : 0.0f;
         const Material& material =
             resolve_material(scene, si, textured, surface_footprint(cone, hit_distance, ray.dir, si.n_g));
@@ -125,9 +125,12 @@ Vec3 trace_path_recorded(const IntegratorContext& ctx, const Ray& camera_ray, Sa
 
         const Vec3 le = emitted_radiance(material, si);
         if (max_component(le) > 0.0f) {
-            const float light_pdf = previous_delta ? 0.0f
-                                                   : pdf_light_triangle(lights, scene, si.triangle, previous_position,
-                                                                        previous_normal, si.position);
+            // Emitters in instances are not among the sampled lights yet:
+            // only BSDF sampling finds them, at full weight.
+            const float light_pdf =
+                previous_delta || si.instance != kNoInstance
+                    ? 0.0f
+                    : pdf_light_triangle(lights, scene, si.triangle, previous_position, previous_normal, si.position);
             const float w = previous_delta ? 1.0f : bounce_weight(previous_pdf, light_pdf);
             radiance += beta * le * w;
             recorder.emission(le, w, previous_delta ? 0.0f : previous_pdf, light_pdf, beta * le * w);

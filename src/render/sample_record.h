@@ -13,6 +13,7 @@
 #include "core/vec2.h"
 #include "core/vec3.h"
 #include "scene/material.h"
+#include "scene/scene.h"
 
 namespace sombra {
 
@@ -20,13 +21,15 @@ inline constexpr std::uint32_t kNoTriangle = 0xffffffffu;
 
 // What a shadow ray met first, when something blocked it.
 struct BlockerRecord {
-    std::uint32_t triangle = kNoTriangle;  // index into Scene::geometry
+    std::uint32_t triangle = kNoTriangle;  // index into surface_mesh(scene, instance)
+    std::uint32_t instance = kNoInstance;  // index into Scene::instances, or kNoInstance
     float distance = 0;                    // from the shadow ray's origin
 };
 
 // The surface a ray hit.
 struct HitRecord {
-    std::uint32_t triangle = kNoTriangle;  // index into Scene::geometry
+    std::uint32_t triangle = kNoTriangle;  // index into surface_mesh(scene, instance)
+    std::uint32_t instance = kNoInstance;  // index into Scene::instances, or kNoInstance
     std::uint32_t material = 0;            // index into Scene::materials
     float t = 0;                           // ray parameter (the ray's direction is not unit length for camera rays)
     float distance = 0;                    // |x − ray origin|

@@ -20,6 +20,7 @@ BlockerRecord SampleRecorder::find_blocker(const Ray& shadow) const {
     BlockerRecord blocker;
     if (intersect(accel_, shadow, hit)) {
         blocker.triangle = hit.triangle;
+        blocker.instance = hit.instance;
         blocker.distance = hit.t * length(shadow.dir);
     }
     return blocker;
@@ -67,6 +68,7 @@ void SampleRecorder::surface(const Ray& ray, const Hit& hit, const SurfaceIntera
     v.ray_dir = normalize(ray.dir);
     v.hit = true;
     v.surface.triangle = si.triangle;
+    v.surface.instance = si.instance;
     v.surface.material = si.material;
     v.surface.t = hit.t;
     v.surface.distance = length(si.position - ray.origin);

@@ -16,13 +16,15 @@ Rgba lookup(const Scene& scene, const TextureRef& ref, Vec2 uv, float uv_footpri
     return eval_texture_ref_filtered(scene.textures, ref, uv, uv_footprint);
 }
 
-// How many uv units one world unit is on the triangle (√ of its uv area over
-// its world area), or 0 when either is degenerate.
-float uv_per_world(const TriangleMesh& mesh, std::uint32_t triangle) {
-    const Index3& p = mesh.triangles[triangle];
-    const Index3& t = mesh.uv_indices[triangle];
-    const float world =
-        length(cross(mesh.positions[p[1]] - mesh.positions[p[0]], mesh.positions[p[2]] - mesh.positions[p[0]]));
+// How many uv units one world unit is on si's triangle (√ of its uv area
+// over its world area), or 0 when either is degenerate.
+float uv_per_world(const Scene& scene, const SurfaceInteraction& si) {
+    const TriangleMesh& mesh = surface_mesh(scene, si.instance);
+    const Index3& p = mesh.triangles[si.triangle];
+    const Index3& t = mesh.uv_indices[si.triangle];
+    const Vec3 e1 = vector_to_world(scene, si.instance, mesh.positions[p[1]] - mesh.positions[p[0]]);
+    const Vec3 e2 = vector_to_world(scene, si.instance, mesh.positions[p[2]] - mesh.positions[p[0]]);
+    const float world = length(cross(e1, e2));
     const Vec2 t0 = mesh.uvs[t[0]], t1 = mesh.uvs[t[1]], t2 = mesh.uvs[t[2]];
     const float uv = std::fabs((t1.x - t0.x) * (t2.y - t0.y) - (t1.y - t0.y) * (t2.x - t0.x));
     const float scale = std::sqrt(uv / world);
@@ -59,15 +61,29 @@ Vec3 keep_above(Vec3 n, Vec3 n_g) {
     return tangent * (std::sqrt(1.0f - kMinShadingCos * kMinShadingCos) / len) + kMinShadingCos * n_g;
 }
 
+// position_derivatives at si's triangle, in world space.
+bool world_position_derivatives(const Scene& scene, const SurfaceInteraction& si, Vec3& dpdu, Vec3& dpdv) {
+    if (!position_derivatives(surface_mesh(scene, si.instance), si.triangle, dpdu, dpdv)) return false;
+    dpdu = vector_to_world(scene, si.instance, dpdu);
+    dpdv = vector_to_world(scene, si.instance, dpdv);
+    return true;
+}
+
 // The two directions of the tangent frame at si around the unit normal n,
 // as apply_normal_map takes them: the vertex tangent t and
 // handedness·(n × t) where the triangle's corners all have one (glTF
 // TANGENT, spec §12) and it is not along n, else the triangle's uv
-// derivatives dpdu, dpdv. False when neither exists.
-bool tangent_frame(const TriangleMesh& mesh, const SurfaceInteraction& si, Vec3 n, Vec3& along_u, Vec3& along_v) {
+// derivatives dpdu, dpdv. False when neither exists. In an instance the
+// tangent is carried to world space and a mirror flips its handedness, as
+// for a flattened copy (scene/corner_attributes.h).
+bool tangent_frame(const Scene& scene, const SurfaceInteraction& si, Vec3 n, Vec3& along_u, Vec3& along_v) {
     Vec3 t;
     float handedness = 1;
-    if (interpolate_tangent(mesh, si.triangle, si.b1, si.b2, t, handedness)) {
+    if (interpolate_tangent(surface_mesh(scene, si.instance), si.triangle, si.b1, si.b2, t, handedness)) {
+        if (si.instance != kNoInstance) {
+            t = vector_to_world(scene, si.instance, t);
+            if (scene.instances[si.instance].mirrored) handedness = -handedness;
+        }
         const float in_plane = length(t - dot(n, t) * n);
         if (in_plane > 1e-6f * length(t) && std::isfinite(in_plane)) {
             along_u = t;
@@ -75,7 +91,7 @@ bool tangent_frame(const TriangleMesh& mesh, const SurfaceInteraction& si, Vec3 
             return true;
         }
     }
-    return position_derivatives(mesh, si.triangle, along_u, along_v);
+    return world_position_derivatives(scene, si, along_u, along_v);
 }
 
 // The unit tangent-space normal a normal map's texel encodes, its x and y
@@ -98,12 +114,12 @@ Vec3 mapped_normal(const Scene& scene, const MaterialTextures& t, const SurfaceI
     Vec3 n = front;
     if (t.normal_map.is_set()) {
         Vec3 along_u, along_v, n_map;
-        if (!tangent_frame(scene.geometry, si, front, along_u, along_v)) return si.n_s;
+        if (!tangent_frame(scene, si, front, along_u, along_v)) return si.n_s;
         if (normal_map_value(lookup(scene, t.normal_map, si.uv, si.uv_footprint), t.normal_scale, n_map))
             n = apply_normal_map(front, along_u, along_v, n_map);
     } else {
         Vec3 dpdu, dpdv;
-        if (!position_derivatives(scene.geometry, si.triangle, dpdu, dpdv)) return si.n_s;
+        if (!world_position_derivatives(scene, si, dpdu, dpdv)) return si.n_s;
         const Texture& h = scene.textures[t.bump_map.texture];
         // Central differences one texel apart around the hit.
         const float du = 1.0f / static_cast<float>(h.width), dv = 1.0f / static_cast<float>(h.height);
@@ -147,12 +163,11 @@ const Material& resolve_material(const Scene& scene, SurfaceInteraction& si, Mat
     // Vertex colours (glTF COLOR_0) tint a pbr material's base colour, so
     // such a hit resolves even without textures; other types ignore them.
     Rgba vertex_color;
-    const bool colored =
-        m.type == MaterialType::Pbr && interpolate_color(scene.geometry, si.triangle, si.b1, si.b2, vertex_color);
+    const bool colored = m.type == MaterialType::Pbr &&
+                         interpolate_color(surface_mesh(scene, si.instance), si.triangle, si.b1, si.b2, vertex_color);
     if (!m.textured && !colored) return m;
     copy_parameters(m, scratch);
-    if (surface_footprint > 0.0f && si.has_uv)
-        si.uv_footprint = surface_footprint * uv_per_world(scene.geometry, si.triangle);
+    if (surface_footprint > 0.0f && si.has_uv) si.uv_footprint = surface_footprint * uv_per_world(scene, si);
     if (colored) scratch.base_color = m.base_color * rgb_of(vertex_color);
     const MaterialTextures& t = m.textures;
     for (const RgbTextureSlot& slot : kRgbTextureSlots) {

@@ -37,7 +37,8 @@ const Material& resolve_material(const Scene& scene, SurfaceInteraction& si, Mat
 // the direct integrator would do it once per camera ray).
 inline bool needs_resolved_material(const Scene& scene, const SurfaceInteraction& si) {
     const Material& m = scene.materials[si.material];
-    return m.textured || (m.type == MaterialType::Pbr && has_vertex_colors(scene.geometry, si.triangle));
+    return m.textured ||
+           (m.type == MaterialType::Pbr && has_vertex_colors(surface_mesh(scene, si.instance), si.triangle));
 }
 
 // The radiance `material` emits at point y of `triangle` (towards a side

@@ -14,6 +14,7 @@
 #include "scene/material.h"
 #include "scene/mesh.h"
 #include "scene/texture.h"
+#include "scene/transform.h"
 
 namespace sombra {
 
@@ -47,13 +48,35 @@ struct EnvironmentMap {
     float rotate_y_degrees = 0;
 };
 
-// Where a range of the world's triangles came from: one entry of the scene
-// file's "objects" or one quad light (for messages and `sombra explain`).
+// Where a range of the world's triangles, or of the instances, came from:
+// one entry of the scene file's "objects" or one quad light (for messages
+// and `sombra explain`).
 struct SceneObject {
     std::string name;  // the scene file's JSON pointer ("/objects/2", "/lights/1"), or the model's file name
     std::string file;  // the mesh file (empty for a quad light)
     std::uint32_t first_triangle = 0;  // its triangles are first_triangle … first_triangle + triangle_count − 1
     std::uint32_t triangle_count = 0;
+    // An instanced object (spec §23) draws its meshes as instances
+    // first_instance … first_instance + instance_count − 1 instead.
+    std::uint32_t first_instance = 0;
+    std::uint32_t instance_count = 0;
+};
+
+// Marks "not in an instance": a triangle of Scene::geometry.
+inline constexpr std::uint32_t kNoInstance = 0xffffffffu;
+
+// One drawing of an instanced mesh (spec §23): the mesh stays in its own
+// coordinates, stored once however often it is drawn. The builder derives
+// the inverse, the normals' matrix and the mirroring from object_to_world.
+struct Instance {
+    std::uint32_t mesh = 0;    // index into Scene::instanced_meshes
+    std::uint32_t object = 0;  // index into Scene::objects
+    Transform object_to_world;
+    Transform world_to_object;
+    Transform normal_to_world;  // the inverse transpose of object_to_world's linear part
+    // A negative determinant: the winding flips (spec §11), as the builder's
+    // flattened copies swap two corners.
+    bool mirrored = false;
 };
 
 struct Scene {
@@ -63,9 +86,24 @@ struct Scene {
     std::vector<Material> materials;
     std::vector<Texture> textures;  // the materials' TextureRefs index this table (spec §12)
     std::vector<PunctualLight> lights;
-    TriangleMesh geometry;             // all objects, world space; material_ids index materials
+    TriangleMesh geometry;             // all objects drawn once, world space; material_ids index materials
     std::vector<SceneObject> objects;  // in triangle order, covering geometry's triangles
+    // Meshes drawn several times (spec §23), each in its own coordinates
+    // with material_ids into materials, and their drawings.
+    std::vector<TriangleMesh> instanced_meshes;
+    std::vector<Instance> instances;
 };
+
+// The mesh a triangle index belongs to: Scene::geometry for kNoInstance,
+// else the instance's mesh.
+inline const TriangleMesh& surface_mesh(const Scene& scene, std::uint32_t instance) {
+    return instance == kNoInstance ? scene.geometry : scene.instanced_meshes[scene.instances[instance].mesh];
+}
+
+// Triangles stored (the world geometry and each instanced mesh once) and
+// drawn (each instance's mesh once per instance): spec §23's statistics.
+std::uint64_t stored_triangle_count(const Scene& scene);
+std::uint64_t drawn_triangle_count(const Scene& scene);
 
 // The object triangle `triangle` of scene.geometry belongs to (nullptr if none does).
 const SceneObject* object_of_triangle(const Scene& scene, std::uint32_t triangle);

@@ -1,5 +1,7 @@
 #include "scene/scene_builder.h"
 
+#include <cmath>
+#include <limits>
 #include <optional>
 #include <utility>
 
@@ -111,14 +113,18 @@ void SceneBuilder::reserve(const MeshSizes& s) {
 
 MeshProblem SceneBuilder::add_mesh(const TriangleMesh& in, std::span<const Material> materials,
                                    std::span<const Texture> textures, const MeshPlacement& placement) {
-    TriangleMesh& out = scene_.geometry;
     scene_.objects.push_back(
-        SceneObject{placement.name, placement.file, u32(out.triangles.size()), u32(in.triangles.size())});
+        SceneObject{placement.name, placement.file, u32(scene_.geometry.triangles.size()), u32(in.triangles.size())});
+    return append_mesh(scene_.geometry, in, materials, textures, placement.transform, placement.material);
+}
 
+MeshProblem SceneBuilder::append_mesh(TriangleMesh& out, const TriangleMesh& in, std::span<const Material> materials,
+                                      std::span<const Texture> textures, const std::optional<Transform>& transform,
+                                      std::optional<std::uint32_t> material) {
     const auto position_base = u32(out.positions.size());
-    if (placement.transform) {
+    if (transform) {
         for (const Vec3 p : in.positions) {
-            const Vec3 q = transform_point(*placement.transform, p);
+            const Vec3 q = transform_point(*transform, p);
             // Non-finite input positions are the reader's to drop (their
             // triangles are gone); finite ones must stay finite.
             if (is_finite(p) && !is_finite(q)) return MeshProblem::NonFinitePlacement;
@@ -132,26 +138,70 @@ MeshProblem SceneBuilder::add_mesh(const TriangleMesh& in, std::span<const Mater
     // winding; swapping two corners restores it, so the winding normal keeps
     // its side of the surface (spec §11, "sides for glass"). The normal, uv,
     // tangent and colour corners swap with them (append_corner_attributes).
-    const bool mirrored = placement.transform && determinant3(*placement.transform) < 0;
+    const bool mirrored = transform && determinant3(*transform) < 0;
     const auto vertex_count = u32(in.positions.size());
     for (Index3 t : in.triangles) {
         if (t[0] >= vertex_count || t[1] >= vertex_count || t[2] >= vertex_count) return MeshProblem::BadVertexIndex;
         if (mirrored) std::swap(t[1], t[2]);
         out.triangles.push_back({t[0] + position_base, t[1] + position_base, t[2] + position_base});
     }
-    if (placement.transform)
-        append_corner_attributes(out, in, *placement.transform);
+    if (transform)
+        append_corner_attributes(out, in, *transform);
     else
         append_corner_attributes(out, in);
 
-    if (placement.material) {
-        out.material_ids.insert(out.material_ids.end(), in.triangles.size(), *placement.material);
+    if (material) {
+        out.material_ids.insert(out.material_ids.end(), in.triangles.size(), *material);
         return MeshProblem::None;
     }
     MaterialJoin join{add_materials(materials, textures), materials.size(), std::nullopt};
     for (std::size_t i = 0; i < in.triangles.size(); ++i)
         out.material_ids.push_back(
             scene_material(i < in.material_ids.size() ? in.material_ids[i] : kNoMaterialId, join));
+    return MeshProblem::None;
+}
+
+MeshProblem SceneBuilder::add_instanced_mesh(const TriangleMesh& in, std::span<const Material> materials,
+                                             std::span<const Texture> textures, const MeshPlacement& placement,
+                                             std::span<const Transform> instances, std::size_t* bad_instance) {
+    if (scene_.instances.size() + instances.size() > kMaxInstances) return MeshProblem::TooManyInstances;
+    const auto mesh_index = u32(scene_.instanced_meshes.size());
+    const auto object_index = u32(scene_.objects.size());
+    scene_.objects.push_back(SceneObject{placement.name, placement.file, u32(scene_.geometry.triangles.size()), 0,
+                                         u32(scene_.instances.size()), u32(instances.size())});
+    TriangleMesh& mesh = scene_.instanced_meshes.emplace_back();
+    if (const MeshProblem p = append_mesh(mesh, in, materials, textures, std::nullopt, placement.material);
+        p != MeshProblem::None)
+        return p;
+
+    // The mesh's bounds: an affine map keeps every vertex inside the placed
+    // box's corners, so finite corners mean finite vertices.
+    Vec3 lo{std::numeric_limits<float>::infinity()}, hi{-std::numeric_limits<float>::infinity()};
+    for (const Vec3 p : mesh.positions) {
+        if (!is_finite(p)) continue;
+        lo = min(lo, p);
+        hi = max(hi, p);
+    }
+    scene_.instances.reserve(scene_.instances.size() + instances.size());
+    for (std::size_t k = 0; k < instances.size(); ++k) {
+        const Transform to_world = placement.transform ? compose(*placement.transform, instances[k]) : instances[k];
+        const float det = determinant3(to_world);
+        const auto fail = [&](MeshProblem p) {
+            if (bad_instance) *bad_instance = k;
+            return p;
+        };
+        if (!(det != 0.0f) || !std::isfinite(det)) return fail(MeshProblem::SingularInstance);
+        if (lo.x <= hi.x)
+            for (int corner = 0; corner < 8; ++corner) {
+                const Vec3 c{corner & 1 ? hi.x : lo.x, corner & 2 ? hi.y : lo.y, corner & 4 ? hi.z : lo.z};
+                if (!is_finite(transform_point(to_world, c))) return fail(MeshProblem::NonFinitePlacement);
+            }
+        const Transform to_object = inverse_affine(to_world);
+        for (const float v : to_object.m)
+            if (!std::isfinite(v)) return fail(MeshProblem::SingularInstance);
+        scene_.instances.push_back(
+            Instance{mesh_index, object_index, to_world, to_object, normal_transform(to_world), det < 0.0f});
+    }
     return MeshProblem::None;
 }
 
@@ -187,6 +237,7 @@ MeshProblem SceneBuilder::add_mesh(TriangleMesh&& mesh, std::vector<Material>&& 
 
 Scene SceneBuilder::finish() {
     mark_complete_corners(scene_.geometry);
+    for (TriangleMesh& mesh : scene_.instanced_meshes) mark_complete_corners(mesh);
     Scene scene = std::move(scene_);
     scene_ = Scene{};
     return scene;

@@ -53,7 +53,13 @@ enum class MeshProblem {
     None,
     NonFinitePlacement,  // a finite vertex is infinite or NaN once transformed
     BadVertexIndex,      // a triangle names a vertex the mesh does not have
+    SingularInstance,    // an instance's whole transform is not invertible (zero scale, non-finite)
+    TooManyInstances,    // the scene would hold more than kMaxInstances instances
 };
+
+// Instances a scene may hold: each costs about 200 bytes, so a file's claim
+// is bounded (1.7 GB) before anything is allocated for it.
+inline constexpr std::size_t kMaxInstances = std::size_t{1} << 23;
 
 // The array sizes of meshes still to come, summed with +=, for reserve().
 struct MeshSizes {
@@ -105,6 +111,19 @@ public:
     [[nodiscard]] MeshProblem add_mesh(TriangleMesh&& mesh, std::vector<Material>&& materials,
                                        std::vector<Texture>&& textures, const MeshPlacement& placement);
 
+    // Adds a mesh drawn once per entry of `instances` (spec §23), stored once
+    // in its own coordinates (materials and textures join as add_mesh's).
+    // Instance k's object-to-world matrix is instances[k] applied after
+    // placement.transform (when set). Appends one SceneObject naming the
+    // instances. Checks the triangles' indices, then each instance in
+    // order: its matrix invertible and the mesh's vertices finite once
+    // placed; on a problem with instance k, `bad_instance` (when given)
+    // receives k. At most kMaxInstances in a scene.
+    [[nodiscard]] MeshProblem add_instanced_mesh(const TriangleMesh& mesh, std::span<const Material> materials,
+                                                 std::span<const Texture> textures, const MeshPlacement& placement,
+                                                 std::span<const Transform> instances,
+                                                 std::size_t* bad_instance = nullptr);
+
     // The scene so far (the readers look up what they added).
     const Scene& scene() const { return scene_; }
 
@@ -124,6 +143,10 @@ private:
         std::optional<std::uint32_t> fallback;
     };
     std::uint32_t scene_material(std::uint32_t id, MaterialJoin& join);
+    // add_mesh's work, into `out` (the world geometry or an instanced mesh).
+    MeshProblem append_mesh(TriangleMesh& out, const TriangleMesh& in, std::span<const Material> materials,
+                            std::span<const Texture> textures, const std::optional<Transform>& transform,
+                            std::optional<std::uint32_t> material);
 
     Scene scene_;
 };

@@ -11,6 +11,9 @@ bool needs_path_integrator(const Scene& scene) {
     std::vector<bool> used(scene.materials.size(), false);
     for (const std::uint32_t id : scene.geometry.material_ids)
         if (id < used.size()) used[id] = true;
+    for (const TriangleMesh& mesh : scene.instanced_meshes)
+        for (const std::uint32_t id : mesh.material_ids)
+            if (id < used.size()) used[id] = true;
     for (std::size_t i = 0; i < scene.materials.size(); ++i) {
         const Material& m = scene.materials[i];
         if (!used[i]) continue;
@@ -26,6 +29,18 @@ const SceneObject* object_of_triangle(const Scene& scene, std::uint32_t triangle
     if (it == scene.objects.begin()) return nullptr;
     const SceneObject& object = *(it - 1);
     return triangle - object.first_triangle < object.triangle_count ? &object : nullptr;
+}
+
+std::uint64_t stored_triangle_count(const Scene& scene) {
+    std::uint64_t count = scene.geometry.triangle_count();
+    for (const TriangleMesh& mesh : scene.instanced_meshes) count += mesh.triangle_count();
+    return count;
+}
+
+std::uint64_t drawn_triangle_count(const Scene& scene) {
+    std::uint64_t count = scene.geometry.triangle_count();
+    for (const Instance& instance : scene.instances) count += scene.instanced_meshes[instance.mesh].triangle_count();
+    return count;
 }
 
 }  // namespace sombra

@@ -130,6 +130,23 @@ Transform normal_transform(const Transform& t) {
     return from_linear(cof);
 }
 
+Transform inverse_affine(const Transform& t) {
+    const Mat3d a = linear_part(t);
+    const Mat3d cof = cofactors(a);
+    const double det = det3(a);
+    // inverse = cofactorsᵀ / det; the translation is −inverse · t.
+    Mat3d inv{};
+    for (int r = 0; r < 3; ++r)
+        for (int c = 0; c < 3; ++c) inv[r][c] = cof[c][r] / det;
+    Transform out = from_linear(inv);
+    for (int r = 0; r < 3; ++r) {
+        double sum = 0;
+        for (int k = 0; k < 3; ++k) sum -= inv[r][k] * static_cast<double>(t.m[k * 4 + 3]);
+        out.m[r * 4 + 3] = static_cast<float>(sum);
+    }
+    return out;
+}
+
 float determinant3(const Transform& t) { return static_cast<float>(det3(linear_part(t))); }
 
 }  // namespace sombra

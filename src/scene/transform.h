@@ -24,6 +24,8 @@ Vec3 transform_vector(const Transform& t, Vec3 v);
 // The matrix that carries normals: the inverse transpose of t's linear part
 // (use with transform_vector, then normalise). t must be invertible.
 Transform normal_transform(const Transform& t);
+// The inverse of an invertible affine t (computed in double, rounded once).
+Transform inverse_affine(const Transform& t);
 // Determinant of the linear 3x3 part; 0 means not invertible.
 float determinant3(const Transform& t);
 

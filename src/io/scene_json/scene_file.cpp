@@ -32,6 +32,8 @@ struct ObjectSpec {
     fs::path path;                          // the mesh file, relative to the working directory
     std::optional<std::uint32_t> material;  // override: index into Scene::materials
     Transform transform;
+    // Spec §23: each entry applied after `transform`; empty: drawn once.
+    std::vector<Transform> instances;
     bool is_quad_light = false;         // a quad light: no file behind it
     const LoadedMesh* given = nullptr;  // a mesh made from arrays ("mesh": i), no file behind it
 };
@@ -61,10 +63,10 @@ ObjectSpec read_object(const SceneJson& s, const Json& v, std::string_view point
     ObjectSpec spec;
     spec.pointer = std::string(pointer);
     if (given_meshes.empty()) {
-        expect_keys(s, v, pointer, {"file", "material", "transform"});
+        expect_keys(s, v, pointer, {"file", "material", "transform", "instances"});
         read_object_file(s, v, pointer, scene_path, spec);
     } else {
-        expect_keys(s, v, pointer, {"file", "mesh", "material", "transform"});
+        expect_keys(s, v, pointer, {"file", "mesh", "material", "transform", "instances"});
         if (const Json* m = find_member(v, "mesh")) {
             if (find_member(v, "file")) json_fail(s, pointer, "give either 'file' or 'mesh', not both");
             const std::int64_t i =
@@ -85,21 +87,50 @@ ObjectSpec read_object(const SceneJson& s, const Json& v, std::string_view point
     }
     if (const Json* t = find_member(v, "transform"))
         spec.transform = read_transform(s, *t, json_child(pointer, "transform"));
+    if (const Json* list = find_member(v, "instances")) {
+        const std::string list_pointer = json_child(pointer, "instances");
+        expect_array(s, *list, list_pointer);
+        if (list->empty()) json_fail(s, list_pointer, "expected at least one instance (each a transform list)");
+        if (list->size() > kMaxInstances)
+            json_fail(s, list_pointer, "more than " + std::to_string(kMaxInstances) + " instances");
+        spec.instances.reserve(list->size());
+        for (std::size_t k = 0; k < list->size(); ++k)
+            spec.instances.push_back(read_transform(s, (*list)[k], json_child(list_pointer, k)));
+    }
     return spec;
 }
 
 // One object joins the scene: placed by its transform, with the scene's
 // material when it names one, else its file's own. The builder's problems
 // become errors naming the object's transform or its file.
+// An object with instances is stored once and drawn per instance, unless
+// it has just one: a copy placed in the world geometry is as small and
+// saves the instance's ray transform (spec §23; docs/performance.md).
 void add_object(SceneBuilder& builder, const LoadedMesh& loaded, const ObjectSpec& spec, const SceneJson& s) {
     const std::string mesh_name = spec.path.string();
-    const MeshPlacement placement{spec.pointer, spec.is_quad_light ? std::string{} : mesh_name, spec.transform,
-                                  spec.material};
-    switch (builder.add_mesh(loaded.mesh, loaded.materials, loaded.textures, placement)) {
+    MeshPlacement placement{spec.pointer, spec.is_quad_light ? std::string{} : mesh_name, spec.transform,
+                            spec.material};
+    std::size_t bad = 0;
+    MeshProblem problem = MeshProblem::None;
+    if (spec.instances.size() == 1) placement.transform = compose(spec.transform, spec.instances[0]);
+    if (spec.instances.size() <= 1)
+        problem = builder.add_mesh(loaded.mesh, loaded.materials, loaded.textures, placement);
+    else
+        problem =
+            builder.add_instanced_mesh(loaded.mesh, loaded.materials, loaded.textures, placement, spec.instances, &bad);
+    const std::string where = spec.instances.size() == 1 ? json_child(json_child(spec.pointer, "instances"), 0)
+                                                         : json_child(spec.pointer, "transform");
+    const std::string instance = json_child(json_child(spec.pointer, "instances"), bad);
+    switch (problem) {
         case MeshProblem::None: return;
         case MeshProblem::NonFinitePlacement:
-            json_fail(s, json_child(spec.pointer, "transform"), "a transformed vertex is not finite");
+            json_fail(s, spec.instances.size() > 1 ? instance : where, "a transformed vertex is not finite");
         case MeshProblem::BadVertexIndex: throw Error(mesh_name, "a triangle refers to a vertex that does not exist");
+        case MeshProblem::SingularInstance:
+            json_fail(s, instance, "the object's transform and this instance together are not invertible");
+        case MeshProblem::TooManyInstances:
+            json_fail(s, json_child(spec.pointer, "instances"),
+                      "the scene would hold more than " + std::to_string(kMaxInstances) + " instances");
     }
 }
 
@@ -185,7 +216,7 @@ LoadedScene load_scene_text(const std::string& text, const fs::path& path, Diagn
     std::vector<ObjectSpec> quad_specs;
     for (const QuadLight& q : lights.quads) {
         quad_meshes.push_back(make_quad_light_mesh(q));
-        quad_specs.push_back(ObjectSpec{q.pointer, "quad light " + q.pointer, std::nullopt, Transform{}, true});
+        quad_specs.push_back(ObjectSpec{q.pointer, "quad light " + q.pointer, std::nullopt, Transform{}, {}, true});
     }
 
     // Load everything first so the world arrays are sized once, exactly. A
@@ -197,8 +228,10 @@ LoadedScene load_scene_text(const std::string& text, const fs::path& path, Diagn
     MeshSizes sizes;
     for (std::size_t i = 0; i < specs.size(); ++i) {
         const ObjectSpec& spec = specs[i];
+        // Instanced objects keep their own arrays: no room in the world's.
+        const bool flattened = spec.instances.size() <= 1;
         if (spec.given) {
-            sizes += sizes_of(spec.given->mesh);
+            if (flattened) sizes += sizes_of(spec.given->mesh);
             continue;
         }
         std::error_code ec;
@@ -213,7 +246,7 @@ LoadedScene load_scene_text(const std::string& text, const fs::path& path, Diagn
         last_use[it->second] = i;
         const TriangleMesh& m = meshes[it->second].mesh;
         if (m.triangles.empty()) json_warn(s, json_child(spec.pointer, "file"), "the mesh has no triangles");
-        sizes += sizes_of(m);
+        if (flattened) sizes += sizes_of(m);
     }
     for (const LoadedMesh& q : quad_meshes) sizes += sizes_of(q.mesh);
     // Indices are 32-bit; kNoNormal is reserved.
@@ -229,8 +262,12 @@ LoadedScene load_scene_text(const std::string& text, const fs::path& path, Diagn
             continue;
         }
         // Lights a glTF file places move with its object (§13, §16).
-        for (const PunctualLight& light : meshes[mesh_of[i]].lights)
-            builder.add_light(placed_light(light, specs[i].transform, s, specs[i].pointer));
+        for (const PunctualLight& light : meshes[mesh_of[i]].lights) {
+            if (specs[i].instances.empty())
+                builder.add_light(placed_light(light, specs[i].transform, s, specs[i].pointer));
+            for (const Transform& instance : specs[i].instances)
+                builder.add_light(placed_light(light, compose(specs[i].transform, instance), s, specs[i].pointer));
+        }
         add_object(builder, meshes[mesh_of[i]], specs[i], s);
         // Free each file's mesh after its last object: peak memory stays near two copies.
         if (last_use[mesh_of[i]] == i) meshes[mesh_of[i]] = LoadedMesh{};
