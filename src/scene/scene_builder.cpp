@@ -190,12 +190,12 @@ MeshProblem SceneBuilder::add_instanced_mesh(const TriangleMesh& in, std::span<c
             if (bad_instance) *bad_instance = k;
             return p;
         };
-        if (!(det != 0.0f) || !std::isfinite(det)) return fail(MeshProblem::SingularInstance);
         if (lo.x <= hi.x)
             for (int corner = 0; corner < 8; ++corner) {
                 const Vec3 c{corner & 1 ? hi.x : lo.x, corner & 2 ? hi.y : lo.y, corner & 4 ? hi.z : lo.z};
                 if (!is_finite(transform_point(to_world, c))) return fail(MeshProblem::NonFinitePlacement);
             }
+        if (!(det != 0.0f) || !std::isfinite(det)) return fail(MeshProblem::SingularInstance);
         const Transform to_object = inverse_affine(to_world);
         for (const float v : to_object.m)
             if (!std::isfinite(v)) return fail(MeshProblem::SingularInstance);

@@ -53,7 +53,7 @@ enum class MeshProblem {
     None,
     NonFinitePlacement,  // a finite vertex is infinite or NaN once transformed
     BadVertexIndex,      // a triangle names a vertex the mesh does not have
-    SingularInstance,    // an instance's whole transform is not invertible (zero scale, non-finite)
+    SingularInstance,    // an instance's whole transform is not invertible in float (determinant 0 or overflowing)
     TooManyInstances,    // the scene would hold more than kMaxInstances instances
 };
 

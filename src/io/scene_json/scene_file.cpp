@@ -127,7 +127,9 @@ void add_object(SceneBuilder& builder, const LoadedMesh& loaded, const ObjectSpe
             json_fail(s, spec.instances.size() > 1 ? instance : where, "a transformed vertex is not finite");
         case MeshProblem::BadVertexIndex: throw Error(mesh_name, "a triangle refers to a vertex that does not exist");
         case MeshProblem::SingularInstance:
-            json_fail(s, instance, "the object's transform and this instance together are not invertible");
+            json_fail(s, instance,
+                      "the object's transform and this instance together are not invertible in float (determinant 0 or "
+                      "overflowing)");
         case MeshProblem::TooManyInstances:
             json_fail(s, json_child(spec.pointer, "instances"),
                       "the scene would hold more than " + std::to_string(kMaxInstances) + " instances");
