@@ -100,8 +100,9 @@ void bind_scene(py::module_& m) {
         .def_property_readonly("camera", [](const PyScene& s) { return camera_dict(s.loaded.scene.camera); })
         .def_readonly("source", &PyScene::source)
         .def_readonly("warnings", &PyScene::warnings)
-        .def_property_readonly("triangle_count",
-                               [](const PyScene& s) { return s.loaded.scene.geometry.triangle_count(); });
+        .def_property_readonly("triangle_count", [](const PyScene& s) { return stored_triangle_count(s.loaded.scene); })
+        .def_property_readonly("instanced_triangle_count",
+                               [](const PyScene& s) { return drawn_triangle_count(s.loaded.scene); });
     m.def("load", &load, py::arg("path"), py::arg("words"));
     m.def("load_text", &load_text, py::arg("text"), py::arg("name"), py::arg("words"),
           py::arg("meshes") = std::vector<std::shared_ptr<LoadedMesh>>{});

@@ -127,14 +127,17 @@ class Scene:
 
     def add_mesh(self, positions: np.ndarray, indices: np.ndarray, normals: Optional[np.ndarray] = None,
                  uvs: Optional[np.ndarray] = None, material: Optional[str] = None,
-                 transform: Optional[Sequence[Mapping[str, Any]]] = None) -> None:
+                 transform: Optional[Sequence[Mapping[str, Any]]] = None,
+                 instances: Optional[Sequence[Sequence[Mapping[str, Any]]]] = None) -> None:
         """Adds a triangle mesh from numpy arrays (copied): positions float
         (N, 3), indices integer (M, 3) into positions, optional per-vertex
         normals float (N, 3) and uvs float (N, 2). ``material`` names one
         added with add_material (else the default diffuse grey);
         ``transform`` is a scene file's transform list
         (``[{"scale": 2}, {"translate": [0, 1, 0]}]``). It renders exactly
-        as the same mesh read from an OBJ file."""
+        as the same mesh read from an OBJ file. ``instances``, a list of
+        transform lists, draws the mesh once per entry (each applied after
+        ``transform``) and stores it once (spec §23)."""
         self._from_code("add_mesh")
         i = len(self._objects)
         obj: dict = {"mesh": len(self._meshes)}
@@ -149,6 +152,12 @@ class Scene:
                 raise TypeError(f"add_mesh: transform must be a list of steps, not {type(transform).__name__}")
             obj["transform"] = _plain(transform)
             _sombra.check_part("transform", json.dumps(obj["transform"]), f"/objects/{i}/transform")
+        if instances is not None:
+            if not isinstance(instances, (list, tuple)) or not instances:
+                raise TypeError("add_mesh: instances must be a non-empty list of transform lists")
+            obj["instances"] = _plain(instances)
+            for k, steps in enumerate(obj["instances"]):
+                _sombra.check_part("transform", json.dumps(steps), f"/objects/{i}/instances/{k}")
         mesh = _sombra.make_mesh(positions, indices, normals, uvs, f"<scene>: mesh {obj['mesh']}")
         self._meshes.append(mesh)
         self._objects.append(obj)
@@ -235,6 +244,15 @@ class Scene:
         if self._meshes is not None:
             return sum(m.triangle_count for m in self._meshes)
         return self._impl.triangle_count
+
+    @property
+    def instanced_triangle_count(self) -> int:
+        """Triangles drawn: an instanced mesh counts once per instance
+        (``triangle_count`` counts it once)."""
+        if self._meshes is not None:
+            return sum(m.triangle_count * len(o.get("instances", [None]))
+                       for m, o in zip(self._meshes, self._objects))
+        return self._impl.instanced_triangle_count
 
     @property
     def source(self) -> str:

@@ -78,6 +78,36 @@ def test_a_mesh_from_arrays_renders_as_the_same_mesh_from_an_obj_file(tmp_path):
     assert sombra.render(s).tobytes() == from_file.tobytes()
 
 
+def test_instances_render_as_the_same_instances_from_a_file_and_count_once(tmp_path):
+    positions, indices, normals, uvs = wavy_grid()
+    placed = [[{"translate": [-0.6, 0.2, 0]}], [{"scale": [-1, 1, 1]}, {"translate": [0.6, 0.2, 0]}]]
+    write_obj(tmp_path / "grid.obj", positions, indices, normals, uvs)
+    write_obj(tmp_path / "small.obj", positions * 0.3, indices, normals, np.zeros((0, 2)))
+    scene_file = {"render": RENDER, "camera": CAMERA, "materials": MATERIALS, "lights": LIGHTS,
+                  "objects": [{"file": "grid.obj", "material": "floor"},
+                              {"file": "small.obj", "material": "gold", "transform": TRANSFORM,
+                               "instances": placed}]}
+    (tmp_path / "scene.json").write_text(json.dumps(scene_file))
+    from_file = sombra.load(tmp_path / "scene.json")
+    s = sombra.Scene()
+    for name, m in MATERIALS.items():
+        s.add_material(name, m)
+    for light in LIGHTS:
+        s.add_light(light)
+    s.camera = CAMERA
+    s.render_settings = RENDER
+    s.add_mesh(positions, indices, normals=normals, uvs=uvs, material="floor")
+    s.add_mesh(positions * 0.3, indices, normals=normals, material="gold", transform=TRANSFORM, instances=placed)
+    one, quad = len(indices), 2
+    assert (from_file.triangle_count, from_file.instanced_triangle_count) == (2 * one + quad, 3 * one + quad)
+    assert (s.triangle_count, s.instanced_triangle_count) == (2 * one, 3 * one)  # the quad light joins when loaded
+    assert sombra.render(s).tobytes() == sombra.render(from_file).tobytes()
+    with pytest.raises(sombra.Error, match=r"/objects/2/instances/1/0/scale"):
+        s.add_mesh(positions, indices, instances=[[], [{"scale": 0}]])
+    with pytest.raises(TypeError, match="instances"):
+        s.add_mesh(positions, indices, instances=[])
+
+
 def test_pieces_are_checked_when_given():
     s = sombra.Scene()
     with pytest.raises(sombra.Error, match=r"^<scene>: /materials/x/kd: expected an array of 3 numbers$"):
