@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "core/vec3.h"
+#include "scene/animation.h"
 #include "scene/hdr_image.h"
 #include "scene/light.h"
 #include "scene/material.h"
@@ -92,7 +93,15 @@ struct Scene {
     // with material_ids into materials, and their drawings.
     std::vector<TriangleMesh> instanced_meshes;
     std::vector<Instance> instances;
+    // Keyframes (spec §22); the rest of the scene is at the moment
+    // set_scene_time (scene/animation.h) last moved it to.
+    std::optional<SceneAnimation> animation;
 };
+
+// Places `instance` by `object_to_world`, deriving its inverse, normals'
+// matrix and mirroring; false (the instance untouched) when the matrix is
+// not invertible in float.
+bool place_instance(Instance& instance, const Transform& object_to_world);
 
 // The mesh a triangle index belongs to: Scene::geometry for kNoInstance,
 // else the instance's mesh.

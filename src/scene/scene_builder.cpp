@@ -185,7 +185,6 @@ MeshProblem SceneBuilder::add_instanced_mesh(const TriangleMesh& in, std::span<c
     scene_.instances.reserve(scene_.instances.size() + instances.size());
     for (std::size_t k = 0; k < instances.size(); ++k) {
         const Transform to_world = placement.transform ? compose(*placement.transform, instances[k]) : instances[k];
-        const float det = determinant3(to_world);
         const auto fail = [&](MeshProblem p) {
             if (bad_instance) *bad_instance = k;
             return p;
@@ -195,12 +194,9 @@ MeshProblem SceneBuilder::add_instanced_mesh(const TriangleMesh& in, std::span<c
                 const Vec3 c{corner & 1 ? hi.x : lo.x, corner & 2 ? hi.y : lo.y, corner & 4 ? hi.z : lo.z};
                 if (!is_finite(transform_point(to_world, c))) return fail(MeshProblem::NonFinitePlacement);
             }
-        if (!(det != 0.0f) || !std::isfinite(det)) return fail(MeshProblem::SingularInstance);
-        const Transform to_object = inverse_affine(to_world);
-        for (const float v : to_object.m)
-            if (!std::isfinite(v)) return fail(MeshProblem::SingularInstance);
-        scene_.instances.push_back(
-            Instance{mesh_index, object_index, to_world, to_object, normal_transform(to_world), det < 0.0f});
+        Instance placed{mesh_index, object_index};
+        if (!place_instance(placed, to_world)) return fail(MeshProblem::SingularInstance);
+        scene_.instances.push_back(placed);
     }
     return MeshProblem::None;
 }

@@ -1,5 +1,6 @@
 // Questions about a loaded scene's content that the app asks before rendering.
 #include <algorithm>
+#include <cmath>
 #include <vector>
 
 #include "scene/scene.h"
@@ -29,6 +30,19 @@ const SceneObject* object_of_triangle(const Scene& scene, std::uint32_t triangle
     if (it == scene.objects.begin()) return nullptr;
     const SceneObject& object = *(it - 1);
     return triangle - object.first_triangle < object.triangle_count ? &object : nullptr;
+}
+
+bool place_instance(Instance& instance, const Transform& object_to_world) {
+    const float det = determinant3(object_to_world);
+    if (!(det != 0.0f) || !std::isfinite(det)) return false;
+    const Transform to_object = inverse_affine(object_to_world);
+    for (const float v : to_object.m)
+        if (!std::isfinite(v)) return false;
+    instance.object_to_world = object_to_world;
+    instance.world_to_object = to_object;
+    instance.normal_to_world = normal_transform(object_to_world);
+    instance.mirrored = det < 0.0f;
+    return true;
 }
 
 std::uint64_t stored_triangle_count(const Scene& scene) {

@@ -31,7 +31,8 @@ struct ObjectSpec {
     std::string pointer;                    // "/objects/3"
     fs::path path;                          // the mesh file, relative to the working directory
     std::optional<std::uint32_t> material;  // override: index into Scene::materials
-    Transform transform;
+    Transform transform;                    // keyed: its value at the first frame
+    std::vector<TransformKey> keys;         // spec §22; empty when the transform is fixed
     // Spec §23: each entry applied after `transform`; empty: drawn once.
     std::vector<Transform> instances;
     bool is_quad_light = false;         // a quad light: no file behind it
@@ -59,7 +60,7 @@ void read_object_file(const SceneJson& s, const Json& v, std::string_view pointe
 
 ObjectSpec read_object(const SceneJson& s, const Json& v, std::string_view pointer, const fs::path& scene_path,
                        const std::map<std::string, std::uint32_t, std::less<>>& material_index,
-                       std::span<const LoadedMesh* const> given_meshes) {
+                       std::span<const LoadedMesh* const> given_meshes, double start_time) {
     ObjectSpec spec;
     spec.pointer = std::string(pointer);
     if (given_meshes.empty()) {
@@ -85,8 +86,14 @@ ObjectSpec read_object(const SceneJson& s, const Json& v, std::string_view point
         if (it == material_index.end()) json_fail(s, material_pointer, "unknown material '" + name + "'");
         spec.material = it->second;
     }
-    if (const Json* t = find_member(v, "transform"))
-        spec.transform = read_transform(s, *t, json_child(pointer, "transform"));
+    if (const Json* t = find_member(v, "transform")) {
+        if (t->is_object()) {
+            spec.keys = read_transform_keys(s, *t, json_child(pointer, "transform"));
+            spec.transform = interpolate_transform(spec.keys, start_time);
+        } else {
+            spec.transform = read_transform(s, *t, json_child(pointer, "transform"));
+        }
+    }
     if (const Json* list = find_member(v, "instances")) {
         const std::string list_pointer = json_child(pointer, "instances");
         expect_array(s, *list, list_pointer);
@@ -106,25 +113,36 @@ ObjectSpec read_object(const SceneJson& s, const Json& v, std::string_view point
 // An object with instances is stored once and drawn per instance, unless
 // it has just one: a copy placed in the world geometry is as small and
 // saves the instance's ray transform (spec §23; docs/performance.md).
-void add_object(SceneBuilder& builder, const LoadedMesh& loaded, const ObjectSpec& spec, const SceneJson& s) {
+// A keyed object is always instanced (a single identity instance when it
+// has no list): a new moment then moves instances and keeps its mesh's
+// structure (spec §22).
+void add_object(SceneBuilder& builder, const LoadedMesh& loaded, ObjectSpec spec, const SceneJson& s,
+                SceneAnimation& animation) {
+    if (!spec.keys.empty()) {
+        if (spec.instances.empty()) spec.instances.push_back(Transform{});
+        animation.objects.push_back(AnimatedObject{
+            spec.pointer, static_cast<std::uint32_t>(builder.scene().instances.size()), spec.keys, spec.instances});
+    }
+    const bool instanced = spec.instances.size() > 1 || !spec.keys.empty();
     const std::string mesh_name = spec.path.string();
     MeshPlacement placement{spec.pointer, spec.is_quad_light ? std::string{} : mesh_name, spec.transform,
                             spec.material};
     std::size_t bad = 0;
     MeshProblem problem = MeshProblem::None;
-    if (spec.instances.size() == 1) placement.transform = compose(spec.transform, spec.instances[0]);
-    if (spec.instances.size() <= 1)
+    if (!instanced && spec.instances.size() == 1) placement.transform = compose(spec.transform, spec.instances[0]);
+    if (!instanced)
         problem = builder.add_mesh(loaded.mesh, loaded.materials, loaded.textures, placement);
     else
         problem =
             builder.add_instanced_mesh(loaded.mesh, loaded.materials, loaded.textures, placement, spec.instances, &bad);
-    const std::string where = spec.instances.size() == 1 ? json_child(json_child(spec.pointer, "instances"), 0)
-                                                         : json_child(spec.pointer, "transform");
+    const std::string where = !instanced && spec.instances.size() == 1
+                                  ? json_child(json_child(spec.pointer, "instances"), 0)
+                                  : json_child(spec.pointer, "transform");
     const std::string instance = json_child(json_child(spec.pointer, "instances"), bad);
     switch (problem) {
         case MeshProblem::None: return;
         case MeshProblem::NonFinitePlacement:
-            json_fail(s, spec.instances.size() > 1 ? instance : where, "a transformed vertex is not finite");
+            json_fail(s, instanced ? instance : where, "a transformed vertex is not finite");
         case MeshProblem::BadVertexIndex: throw Error(mesh_name, "a triangle refers to a vertex that does not exist");
         case MeshProblem::SingularInstance:
             json_fail(s, instance,
@@ -177,13 +195,25 @@ LoadedScene load_scene_text(const std::string& text, const fs::path& path, Diagn
                             std::span<const LoadedMesh* const> given_meshes) {
     const SceneJson s{path.string(), diag};
     const Json root = parse_scene_json(text, s.name);
-    expect_keys(s, root, "", {"render", "background", "environment", "camera", "materials", "lights", "objects"});
+    expect_keys(s, root, "",
+                {"render", "background", "environment", "camera", "materials", "lights", "objects", "animation"});
+    SceneClock clock;
+    if (const Json* v = find_member(root, "animation")) clock = read_animation(s, *v, "/animation");
+    // The scene is built at its first frame's moment (spec §22).
+    const double start_time = static_cast<double>(clock.first_frame) / clock.fps;
+    SceneAnimation animation{clock.fps, clock.first_frame, clock.last_frame, {}, {}};
 
     LoadedScene out;
     SceneBuilder builder;
     if (const Json* v = find_member(root, "render")) out.settings = read_render(s, *v, "/render");
     if (const Json* v = find_member(root, "background")) builder.set_background(read_rgb(s, *v, "/background"));
-    builder.set_camera(read_camera(s, require_member(s, root, "", "camera"), "/camera"));
+    const Json& camera = require_member(s, root, "", "camera");
+    if (camera.is_object() && find_member(camera, "keys")) {
+        animation.camera = read_camera_keys(s, camera, "/camera");
+        builder.set_camera(interpolate_camera(animation.camera, start_time));
+    } else {
+        builder.set_camera(read_camera(s, camera, "/camera"));
+    }
     // The file's materials name their textures in the file's own table, which joins the scene's.
     std::vector<Material> materials;
     std::vector<Texture> material_textures;
@@ -210,7 +240,8 @@ LoadedScene load_scene_text(const std::string& text, const fs::path& path, Diagn
     std::vector<ObjectSpec> specs;
     specs.reserve(objects.size());
     for (std::size_t i = 0; i < objects.size(); ++i)
-        specs.push_back(read_object(s, objects[i], json_child("/objects", i), path, material_index, given_meshes));
+        specs.push_back(
+            read_object(s, objects[i], json_child("/objects", i), path, material_index, given_meshes, start_time));
 
     // Quad lights join the geometry after the objects, through the same
     // assembly: each is a two-triangle mesh with its own material.
@@ -218,7 +249,11 @@ LoadedScene load_scene_text(const std::string& text, const fs::path& path, Diagn
     std::vector<ObjectSpec> quad_specs;
     for (const QuadLight& q : lights.quads) {
         quad_meshes.push_back(make_quad_light_mesh(q));
-        quad_specs.push_back(ObjectSpec{q.pointer, "quad light " + q.pointer, std::nullopt, Transform{}, {}, true});
+        ObjectSpec spec;
+        spec.pointer = q.pointer;
+        spec.path = "quad light " + q.pointer;
+        spec.is_quad_light = true;
+        quad_specs.push_back(std::move(spec));
     }
 
     // Load everything first so the world arrays are sized once, exactly. A
@@ -231,7 +266,7 @@ LoadedScene load_scene_text(const std::string& text, const fs::path& path, Diagn
     for (std::size_t i = 0; i < specs.size(); ++i) {
         const ObjectSpec& spec = specs[i];
         // Instanced objects keep their own arrays: no room in the world's.
-        const bool flattened = spec.instances.size() <= 1;
+        const bool flattened = spec.instances.size() <= 1 && spec.keys.empty();
         if (spec.given) {
             if (flattened) sizes += sizes_of(spec.given->mesh);
             continue;
@@ -260,7 +295,7 @@ LoadedScene load_scene_text(const std::string& text, const fs::path& path, Diagn
     builder.reserve(sizes);
     for (std::size_t i = 0; i < specs.size(); ++i) {
         if (specs[i].given) {
-            add_object(builder, *specs[i].given, specs[i], s);
+            add_object(builder, *specs[i].given, specs[i], s, animation);
             continue;
         }
         // Lights a glTF file places move with its object (§13, §16).
@@ -270,12 +305,15 @@ LoadedScene load_scene_text(const std::string& text, const fs::path& path, Diagn
             for (const Transform& instance : specs[i].instances)
                 builder.add_light(placed_light(light, compose(specs[i].transform, instance), s, specs[i].pointer));
         }
-        add_object(builder, meshes[mesh_of[i]], specs[i], s);
+        add_object(builder, meshes[mesh_of[i]], specs[i], s, animation);
         // Free each file's mesh after its last object: peak memory stays near two copies.
         if (last_use[mesh_of[i]] == i) meshes[mesh_of[i]] = LoadedMesh{};
     }
-    for (std::size_t i = 0; i < quad_meshes.size(); ++i) add_object(builder, quad_meshes[i], quad_specs[i], s);
+    for (std::size_t i = 0; i < quad_meshes.size(); ++i)
+        add_object(builder, quad_meshes[i], quad_specs[i], s, animation);
     out.scene = builder.finish();
+    if (find_member(root, "animation") || !animation.objects.empty() || !animation.camera.empty())
+        out.scene.animation = std::move(animation);
     return out;
 }
 

@@ -150,4 +150,15 @@ EnvironmentMap read_environment(const SceneJson& s, const Json& v, std::string_v
 // finite and invertible.
 Transform read_transform(const SceneJson& s, const Json& v, std::string_view pointer);
 
+// Spec §22: "animation": {"fps", "frames": [first, last]} (defaults 24 and
+// [0, 0]); a keyed "transform" {"keys": [{"time", "transform"}, …]}; a keyed
+// "camera" {"keys": [{"time", look-at camera keys…}, …]}. Times increase.
+struct SceneClock {
+    double fps = 24;
+    std::int64_t first_frame = 0, last_frame = 0;
+};
+SceneClock read_animation(const SceneJson& s, const Json& v, std::string_view pointer);
+std::vector<TransformKey> read_transform_keys(const SceneJson& s, const Json& v, std::string_view pointer);
+std::vector<CameraKey> read_camera_keys(const SceneJson& s, const Json& v, std::string_view pointer);
+
 }  // namespace sombra

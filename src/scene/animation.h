@@ -1,0 +1,75 @@
+// Animation (spec §22): keyframed object transforms and cameras on one
+// clock, and the scene at a moment of it. Keys hold whole matrices; between
+// two keys each is split by polar decomposition M = T·R·S (R a rotation, S
+// symmetric and carrying any reflection, as pbrt-v4's AnimatedTransform), T
+// and S are interpolated linearly and R by slerp along the shorter arc.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "scene/transform.h"
+
+namespace sombra {
+
+struct Scene;
+struct CameraSpec;
+
+struct TransformKey {
+    double time = 0;  // seconds
+    Transform transform;
+};
+
+// A look-at camera at one moment (spec §22: each key a full camera object).
+struct CameraKey {
+    double time = 0;
+    Vec3 origin, look_at;
+    Vec3 up{0, 1, 0};
+    float fov_degrees = 45;
+    float aperture_radius = 0;
+    std::optional<float> focus_distance;
+};
+
+// An object whose transform is keyed: it is stored as an instanced mesh
+// (scene/scene.h) so that a new moment moves its instances and keeps its
+// mesh's structure. Instance k of it is instances[k] after the keyed
+// transform (a single identity entry when the object has no "instances").
+struct AnimatedObject {
+    std::string name;  // the scene file's pointer, for messages
+    std::uint32_t first_instance = 0;
+    std::vector<TransformKey> keys;    // times increasing, at least one
+    std::vector<Transform> instances;  // applied after the keyed transform
+};
+
+struct SceneAnimation {
+    double fps = 24;
+    std::int64_t first_frame = 0, last_frame = 0;
+    std::vector<AnimatedObject> objects;
+    std::vector<CameraKey> camera;  // empty: the camera does not move
+};
+
+// The keyed transform at `time`: the end keys hold outside their range.
+Transform interpolate_transform(std::span<const TransformKey> keys, double time);
+
+// The camera at `time`, each keyed value interpolated linearly.
+CameraSpec interpolate_camera(std::span<const CameraKey> keys, double time);
+
+// The polar decomposition of `m`'s linear part, R·S, with R a proper
+// rotation as a unit quaternion (x, y, z, w) and S symmetric (row-major 3×3).
+struct PolarParts {
+    double translation[3];
+    double rotation[4];
+    double stretch[9];
+};
+PolarParts polar_decompose(const Transform& m);
+Transform compose_polar(const PolarParts& parts);
+
+// Moves `scene` to `time` seconds: its animated objects' instances and its
+// camera. Throws Error(scene_name, …) naming the object whose transform
+// at that moment cannot be inverted.
+void set_scene_time(Scene& scene, double time, const std::string& scene_name);
+
+}  // namespace sombra
