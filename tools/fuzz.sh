@@ -2,7 +2,7 @@
 # Builds the libFuzzer targets (CMake preset "fuzz", clang) and runs each for
 # a given time, one after the other, with its seed corpus.
 #
-#   tools/fuzz.sh [SECONDS_PER_TARGET] [TARGET...]     (default: 60 s; obj ply scene gltf texture view; shard only when named)
+#   tools/fuzz.sh [SECONDS_PER_TARGET] [TARGET...]     (default: 60 s; obj ply scene gltf texture view shard)
 #
 # Targets: obj (OBJ + MTL), ply, scene (scene JSON down to loaded meshes),
 # gltf (.gltf / .glb through tinygltf and Draco), texture (an image file
@@ -14,7 +14,8 @@
 # nothing is written into the repository). Exits non-zero when a target finds
 # a crash, leak, timeout or out-of-memory, and prints the reproducer's path:
 # replay it with  build/fuzz/fuzz/fuzz_TARGET REPRODUCER  and, once fixed, add it
-# to fuzz/regressions/TARGET/ (src/io/fuzz_regression_test.cpp replays those).
+# to fuzz/regressions/TARGET/ (src/io/fuzz_regression_test.cpp replays those;
+# src/image/exr_reader_test.cpp replays shard's).
 # Every run is appended to build/fuzz/runs.tsv (date, target, seconds run, result, inputs run).
 set -euo pipefail
 
@@ -22,10 +23,7 @@ root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 seconds="${1:-60}"
 [ $# -gt 0 ] && shift
 targets=("$@")
-# shard is left out of the default run (and so of CI) until merge's reader bounds
-# OpenEXR's allocations for pixel chunks too: it still runs out of memory
-# on a chunk whose claimed size is past the file (docs/robustness.md).
-[ ${#targets[@]} -gt 0 ] || targets=(obj ply scene gltf texture view)
+[ ${#targets[@]} -gt 0 ] || targets=(obj ply scene gltf texture view shard)
 case "$seconds" in
   '' | *[!0-9]*) echo "usage: tools/fuzz.sh [SECONDS_PER_TARGET] [obj|ply|scene|gltf|texture|view|shard ...]" >&2; exit 2 ;;
 esac

@@ -4,9 +4,11 @@
 // and merge refuses anything but the N shares of one render.
 #include <gtest/gtest.h>
 
+#include <cstdint>
 #include <string>
 
 #include "cli_test_fixture.h"
+#include "image/exr_test_bytes.h"
 
 namespace {
 
@@ -75,8 +77,27 @@ TEST_F(Shards, MergeRefusesAnythingButTheSharesOfOneRender) {
                        "another render than s0.exr's (seed 9 against seed 0)");
     expect_input_error(run("merge s0.exr plain.exr s2.exr -o out.png"), "plain.exr: not a shard");
     expect_input_error(run("merge cut.exr s1.exr s2.exr -o out.png"), "cut.exr: damaged EXR header");
-    expect_input_error(run("merge short.exr s1.exr s2.exr -o out.png"), "short.exr: not a readable EXR file");
+    expect_input_error(run("merge short.exr s1.exr s2.exr -o out.png"), "short.exr: damaged EXR file: pixel chunk ");
     expect_input_error(run("merge s0.exr missing.exr s2.exr -o out.png"), "missing.exr");
+}
+
+// A shard whose line-offset table or chunk sizes claim what the file does not
+// hold (OpenEXR would allocate what a chunk claims): one line, nothing written.
+TEST_F(Shards, MergeRefusesPixelChunksThatClaimMoreThanTheFile) {
+    for (int i = 0; i < 2; ++i) shard(i, 2, "");
+    const std::string good = read_text(dir_ / "s0.exr");
+    const std::size_t table = sombra::test::exr_header_end(good), chunk0 = sombra::test::exr_chunk(good, 0);
+    std::string bytes = good;
+    sombra::test::put_le(bytes, chunk0 + 4, 4, 0x7fffffff);  // 2 GiB of pixel data
+    write_text(dir_ / "huge.exr", bytes);
+    expect_input_error(run("merge huge.exr s1.exr -o out.exr"),
+                       "huge.exr: damaged EXR file: pixel chunk 0 claims 2147483647 bytes, more than the", "out.exr");
+    bytes = good;
+    sombra::test::put_le(bytes, table + 8, 8, std::uint64_t{1} << 40);
+    write_text(dir_ / "far.exr", bytes);
+    expect_input_error(run("merge s1.exr far.exr -o out.exr"),
+                       "far.exr: damaged EXR file: pixel chunk 1 is at byte 1099511627776, outside the pixel data",
+                       "out.exr");
 }
 
 TEST_F(Shards, ShardOptionsAreCheckedOnTheCommandLine) {

@@ -64,7 +64,8 @@ struct ExrChannels {
     std::vector<ImageAttribute> attributes;  // the string attributes
 };
 // Reads `path`; throws Error(path, ...) for a file that is not a readable
-// single-part scanline or tiled EXR, or whose size passes the image limits.
+// single-part scanline EXR (image/exr_check.h says what is checked before
+// OpenEXR reads it), or whose size passes the image limits.
 ExrChannels read_exr_channels(const std::filesystem::path& path);
 
 // The bytes of the PNG file write_image would write for `image` (for
