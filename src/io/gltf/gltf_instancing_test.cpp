@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "../../../fuzz/fuzz_harness.h"
 #include "io/gltf/gltf.h"
 #include "io/gltf/gltf_instancing_test_files.h"
 #include "io/gltf/gltf_test_files.h"
@@ -69,6 +70,7 @@ TEST(GltfInstancing, AMeshThreeNodesUseIsStoredOnceWithThreeInstances) {
     ASSERT_EQ(part.instances.size(), 3u);
     EXPECT_EQ(instance_name(part, 2), "node 2");
     EXPECT_LT(determinant3(part.instances[2]), 0.0f);  // the mirror is the scene builder's to handle
+    EXPECT_EQ(fuzz::loaded_mesh_problem(shared), "");  // the fuzz harness's invariants hold
     // Copies stay flattened, each where its instance draws the mesh.
     EXPECT_TRUE(copied.instanced.empty());
     ASSERT_EQ(copied.mesh.triangle_count(), 18u);
@@ -267,6 +269,7 @@ TEST(GltfInstancing, StatisticsCountStoredAndDrawnTrianglesAndObjectInstancesMul
         placed_corners(twice.instanced_meshes[last.mesh],
                        compose(make_scale(Vec3{-1, 1, 1}), make_translate(Vec3{2.5f + 5.0f, -1.0f, 0}))));
     EXPECT_TRUE(last.mirrored);
+    EXPECT_EQ(fuzz::scene_problem(LoadedScene{twice, RenderSettings{}}), "");
 }
 
 TEST(GltfInstancing, BuilderProblemsNameTheNode) {
