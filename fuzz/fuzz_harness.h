@@ -19,6 +19,7 @@
 #include "io/scene_json/scene_file.h"
 #include "scene/scene.h"
 #include "scene/texture.h"
+#include "scene/transform.h"
 
 namespace sombra::fuzz {
 
@@ -217,6 +218,29 @@ inline std::string light_problem(const PunctualLight& light) {
     return {};
 }
 
+// "" when an instance transform is usable: finite and invertible.
+inline std::string instance_transform_problem(const Transform& t) {
+    for (const float x : t.m)
+        if (!std::isfinite(x)) return "non-finite instance transform";
+    const float det = determinant3(t);
+    if (!(det != 0.0f) || !std::isfinite(det)) return "singular instance transform";
+    return {};
+}
+
+// "" when a mesh file's instanced parts are usable: each a mesh as good as
+// the flattened one, drawn at least twice, its origins covering its instances.
+inline std::string parts_problem(const LoadedMesh& loaded) {
+    for (const InstancedPart& part : loaded.instanced) {
+        if (std::string problem = mesh_problem(part.mesh, loaded.materials.size()); !problem.empty())
+            return "instanced part: " + problem;
+        if (part.instances.size() < 2) return "an instanced part drawn fewer than twice";
+        if (part.origins.empty() || part.origins[0].first != 0) return "instances without an origin";
+        for (const Transform& t : part.instances)
+            if (std::string problem = instance_transform_problem(t); !problem.empty()) return problem;
+    }
+    return {};
+}
+
 inline std::string loaded_mesh_problem(const LoadedMesh& loaded) {
     for (const Material& m : loaded.materials)
         if (std::string problem = material_problem(m); !problem.empty()) return problem;
@@ -228,6 +252,9 @@ inline std::string loaded_mesh_problem(const LoadedMesh& loaded) {
                std::fabs(length(c->forward) - 1) < 1e-3f && std::fabs(length(c->up) - 1) < 1e-3f))
         return "bad camera";
     if (std::string problem = textures_problem(loaded.materials, loaded.textures); !problem.empty()) return problem;
+    if (std::string problem = parts_problem(loaded); !problem.empty()) return problem;
+    // Everything may be instanced: the flattened mesh is then empty.
+    if (loaded.mesh.triangles.empty() && !loaded.instanced.empty()) return {};
     return mesh_problem(loaded.mesh, loaded.materials.size());
 }
 
@@ -250,6 +277,17 @@ inline std::string scene_problem(const LoadedScene& loaded) {
     for (const Material& m : scene.materials)
         if (std::string problem = material_problem(m); !problem.empty()) return problem;
     if (std::string problem = textures_problem(scene.materials, scene.textures); !problem.empty()) return problem;
+    for (const TriangleMesh& mesh : scene.instanced_meshes)
+        if (std::string problem = mesh_problem(mesh, scene.materials.size()); !problem.empty())
+            return "instanced mesh: " + problem;
+    for (const Instance& instance : scene.instances) {
+        if (instance.mesh >= scene.instanced_meshes.size() || instance.object >= scene.objects.size())
+            return "instance index out of range";
+        if (std::string problem = instance_transform_problem(instance.object_to_world); !problem.empty())
+            return problem;
+    }
+    // Everything may be instanced (spec §23): the world geometry is then empty.
+    if (scene.geometry.triangles.empty() && !scene.instances.empty()) return {};
     return mesh_problem(scene.geometry, scene.materials.size());
 }
 

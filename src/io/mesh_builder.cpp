@@ -324,6 +324,15 @@ void MeshBuilder::drop_non_finite_positions(Diagnostics& diag) {
 }
 
 LoadedMesh MeshBuilder::finish(std::vector<Material> materials, Diagnostics& diag) {
+    bool needs_default = false;
+    LoadedMesh out;
+    out.mesh = finish_mesh(materials.size(), needs_default, diag);
+    if (needs_default) materials.push_back(default_material());
+    out.materials = std::move(materials);
+    return out;
+}
+
+TriangleMesh MeshBuilder::finish_mesh(std::size_t material_count, bool& uses_default, Diagnostics& diag) {
     if (skipped_small_faces > 0) {
         diag.warn(where_, "skipped " + plural(skipped_small_faces, "face") + " with fewer than 3 corners");
     }
@@ -348,19 +357,14 @@ LoadedMesh MeshBuilder::finish(std::vector<Material> materials, Diagnostics& dia
                                                 ", no face with 3 or more corners)");
     }
 
-    const auto default_id = static_cast<std::uint32_t>(materials.size());
-    bool needs_default = false;
+    const auto default_id = static_cast<std::uint32_t>(material_count);
     for (std::uint32_t& id : mesh_.material_ids) {
         if (id >= default_id) {
             id = default_id;
-            needs_default = true;
+            uses_default = true;
         }
     }
-    if (needs_default) materials.push_back(default_material());
-    LoadedMesh out;
-    out.mesh = std::move(mesh_);
-    out.materials = std::move(materials);
-    return out;
+    return std::move(mesh_);
 }
 
 }  // namespace sombra

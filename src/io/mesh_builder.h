@@ -103,6 +103,13 @@ struct MeshBuilder {
     // material, default_material() is appended. Warnings go to `diag`.
     // Throws Error(where, "no triangles ...") when no triangle is left.
     LoadedMesh finish(std::vector<Material> materials, Diagnostics& diag);
+    // finish()'s mesh for a list of `material_count` materials kept by the
+    // caller (a glTF file's meshes share one list): material ids past it
+    // become material_count, and `uses_default` is set when any does.
+    TriangleMesh finish_mesh(std::size_t material_count, bool& uses_default, Diagnostics& diag);
+
+    // Triangles added so far.
+    std::size_t triangle_count() const { return mesh_.triangles.size(); }
 
 private:
     void drop_non_finite_positions(Diagnostics& diag);

@@ -35,6 +35,14 @@ LoadedMesh load_mesh_file(const std::filesystem::path& path, Diagnostics& diag) 
                            : "unsupported mesh file type '" + extension + "' (expected .obj, .ply, .gltf or .glb)");
 }
 
+std::string instance_name(const InstancedPart& part, std::size_t k) {
+    const auto after = std::upper_bound(part.origins.begin(), part.origins.end(), k,
+                                        [](std::size_t i, const InstancedPart::Origin& o) { return i < o.first; });
+    if (after == part.origins.begin()) return "instance " + std::to_string(k);
+    const InstancedPart::Origin& o = *(after - 1);
+    return o.numbered ? o.name + ": instance " + std::to_string(k - o.first) : o.name;
+}
+
 namespace {
 
 // strerror's text with a lower-case first letter, as our messages are.

@@ -5,6 +5,7 @@
 
 #include <filesystem>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "core/error.h"
@@ -13,6 +14,7 @@
 #include "scene/material.h"
 #include "scene/mesh.h"
 #include "scene/texture.h"
+#include "scene/transform.h"
 
 namespace sombra {
 
@@ -26,6 +28,25 @@ struct ModelCamera {
     float aspect = 0;
 };
 
+// A mesh a file draws several times (glTF: a mesh several nodes use, or
+// EXT_mesh_gpu_instancing; spec §23), stored once in its own coordinates.
+struct InstancedPart {
+    TriangleMesh mesh;  // material_ids index LoadedMesh::materials
+    // Each: the mesh's coordinates → the file's; at least two.
+    std::vector<Transform> instances;
+    // Who placed instances[k], for messages: the last origin with
+    // first <= k; `numbered` origins (GPU instancing) also name k − first.
+    struct Origin {
+        std::size_t first = 0;
+        std::string name;  // "node 3"
+        bool numbered = false;
+    };
+    std::vector<Origin> origins;
+};
+
+// "node 3", or "node 3: instance 2" for instance k of `part`.
+std::string instance_name(const InstancedPart& part, std::size_t k);
+
 // A mesh file as read from disk: geometry in the file's own coordinates and
 // the materials its faces refer to. Loaders always leave at least one
 // material when there are triangles (the default one for faces without).
@@ -34,6 +55,9 @@ struct LoadedMesh {
     TriangleMesh mesh;
     std::vector<Material> materials;
     std::vector<Texture> textures{};
+    // Meshes drawn several times, apart from `mesh` (which holds what is
+    // drawn once, and may then be empty); glTF only.
+    std::vector<InstancedPart> instanced{};
 
     // The lights and the first camera the file's scene places, in the
     // file's coordinates (glTF; none for OBJ and PLY).
@@ -53,7 +77,8 @@ LoadedMesh load_ply(const std::filesystem::path& path, Diagnostics& diag);
 
 // Reads a glTF 2.0 file, .gltf (JSON, external or embedded buffers) or .glb
 // (spec §13): the default scene's meshes in the file's world space (node
-// transforms applied), its materials as `pbr`, its point lights and first
+// transforms applied; a mesh drawn more than once is an InstancedPart
+// instead, spec §23), its materials as `pbr`, its point lights and first
 // perspective camera. Throws Error(path, ...) for a broken file.
 LoadedMesh load_gltf(const std::filesystem::path& path, Diagnostics& diag);
 

@@ -28,13 +28,31 @@ struct Sphere {
     float radius;
 };
 
-Sphere bounding_sphere(const TriangleMesh& mesh) {
+// The box of the model's triangles, its instanced meshes' boxes placed by
+// each instance (their corners: the box of the placed box, a little larger).
+Sphere bounding_sphere(const LoadedMesh& model) {
     Vec3 lo{INFINITY}, hi{-INFINITY};
-    for (const Index3& tri : mesh.triangles)
-        for (std::uint32_t v : tri) {
-            lo = min(lo, mesh.positions[v]);
-            hi = max(hi, mesh.positions[v]);
-        }
+    const auto box = [](const TriangleMesh& mesh, Vec3& low, Vec3& high) {
+        for (const Index3& tri : mesh.triangles)
+            for (std::uint32_t v : tri) {
+                low = min(low, mesh.positions[v]);
+                high = max(high, mesh.positions[v]);
+            }
+    };
+    box(model.mesh, lo, hi);
+    for (const InstancedPart& part : model.instanced) {
+        Vec3 part_lo{INFINITY}, part_hi{-INFINITY};
+        box(part.mesh, part_lo, part_hi);
+        if (!(part_lo.x <= part_hi.x)) continue;
+        for (const Transform& t : part.instances)
+            for (int corner = 0; corner < 8; ++corner) {
+                const Vec3 c{corner & 1 ? part_hi.x : part_lo.x, corner & 2 ? part_hi.y : part_lo.y,
+                             corner & 4 ? part_hi.z : part_lo.z};
+                const Vec3 p = transform_point(t, c);
+                lo = min(lo, p);
+                hi = max(hi, p);
+            }
+    }
     const float radius = 0.5f * length(hi - lo);
     // A single point (all triangles degenerate) still gets a usable frame.
     return {(lo + hi) * 0.5f, radius > 0.0f ? radius : 1.0f};
@@ -44,15 +62,33 @@ Sphere bounding_sphere(const TriangleMesh& mesh) {
 
 LoadedScene make_quicklook_scene(const std::filesystem::path& model, Diagnostics& diag) {
     LoadedMesh loaded = load_mesh_file(model, diag);
-    const Sphere sphere = bounding_sphere(loaded.mesh);
+    const Sphere sphere = bounding_sphere(loaded);
 
     LoadedScene out;
     SceneBuilder builder;
     builder.set_background(Vec3{0.02f});
     // The model is the world, in its own coordinates: it moves in as it is.
     const MeshPlacement placement{model.filename().string(), model.string(), std::nullopt, std::nullopt};
-    if (builder.add_mesh(std::move(loaded.mesh), std::move(loaded.materials), std::move(loaded.textures), placement) !=
-        MeshProblem::None)
+    // Meshes drawn several times are stored once (spec §23); their errors
+    // name the node that placed the instance.
+    for (const InstancedPart& part : loaded.instanced) {
+        std::size_t bad = 0;
+        switch (
+            builder.add_instanced_mesh(part.mesh, loaded.materials, loaded.textures, placement, part.instances, &bad)) {
+            case MeshProblem::None: continue;
+            case MeshProblem::BadVertexIndex: break;
+            case MeshProblem::NonFinitePlacement:
+                throw Error(model.string(), instance_name(part, bad) + ": a transformed vertex is not finite");
+            case MeshProblem::SingularInstance:
+                throw Error(model.string(), instance_name(part, bad) + ": the transform is not invertible");
+            case MeshProblem::TooManyInstances:
+                throw Error(model.string(), "more than " + std::to_string(kMaxInstances) + " instances");
+        }
+        throw Error(model.string(), "a triangle refers to a vertex that does not exist");
+    }
+    if ((!loaded.mesh.triangles.empty() || loaded.instanced.empty()) &&
+        builder.add_mesh(std::move(loaded.mesh), std::move(loaded.materials), std::move(loaded.textures), placement) !=
+            MeshProblem::None)
         throw Error(model.string(), "a triangle refers to a vertex that does not exist");
 
     // A glTF file's own camera (its first) and point lights replace the

@@ -182,9 +182,9 @@ void set_scene_time(Scene& scene, double time, const std::string& scene_name) {
     const SceneAnimation& animation = *scene.animation;
     for (const AnimatedObject& object : animation.objects) {
         const Transform keyed = interpolate_transform(object.keys, time);
-        for (std::size_t k = 0; k < object.instances.size(); ++k) {
+        for (std::size_t k = 0; k < object.after.size(); ++k) {
             Instance& instance = scene.instances[object.first_instance + k];
-            if (!place_instance(instance, compose(keyed, object.instances[k])))
+            if (!place_instance(instance, compose(compose(object.before[k], keyed), object.after[k])))
                 throw Error(scene_name, object.name + "/transform: at " + std::to_string(time) +
                                             " s the interpolated transform is not invertible");
         }

@@ -33,15 +33,16 @@ struct CameraKey {
     std::optional<float> focus_distance;
 };
 
-// An object whose transform is keyed: it is stored as an instanced mesh
+// An object whose transform is keyed: it is stored as instanced meshes
 // (scene/scene.h) so that a new moment moves its instances and keeps its
-// mesh's structure. Instance k of it is instances[k] after the keyed
-// transform (a single identity entry when the object has no "instances").
+// meshes' structures. Its instance k (Scene::instances[first_instance + k])
+// is before[k], then the keyed transform, then after[k]: a glTF file's own
+// placement of the mesh, and the object's "instances" entry.
 struct AnimatedObject {
     std::string name;  // the scene file's pointer, for messages
     std::uint32_t first_instance = 0;
-    std::vector<TransformKey> keys;    // times increasing, at least one
-    std::vector<Transform> instances;  // applied after the keyed transform
+    std::vector<TransformKey> keys;  // times increasing, at least one
+    std::vector<Transform> before, after;
 };
 
 struct SceneAnimation {

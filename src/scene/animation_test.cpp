@@ -88,6 +88,7 @@ TEST(Animation, SetSceneTimeMovesInstancesAndRefusesASingularMoment) {
     animation.objects.push_back(AnimatedObject{"/objects/0",
                                                0,
                                                {{0.0, Transform{}}, {2.0, make_scale({-1, 1, 1})}},
+                                               {Transform{}, Transform{}},
                                                {Transform{}, make_translate({5, 0, 0})}});
     scene.animation = animation;
     set_scene_time(scene, 2.0, "s.json");

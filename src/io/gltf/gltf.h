@@ -18,6 +18,7 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <map>
 #include <optional>
 #include <span>
 #include <string>
@@ -32,6 +33,7 @@
 #include "scene/material.h"
 #include "scene/mesh.h"
 #include "scene/texture.h"
+#include "scene/transform.h"
 
 namespace sombra::gltf {
 
@@ -50,6 +52,7 @@ inline constexpr const char* kUnlit = "KHR_materials_unlit";
 inline constexpr const char* kTextureTransform = "KHR_texture_transform";
 inline constexpr const char* kMeshopt = "EXT_meshopt_compression";
 inline constexpr const char* kWebp = "EXT_texture_webp";
+inline constexpr const char* kGpuInstancing = "EXT_mesh_gpu_instancing";
 
 // Reads and parses a .gltf or .glb file with tinygltf, after the checks that
 // keep hostile input away from it: the file's size, the GLB header and chunk
@@ -71,7 +74,9 @@ struct Unsupported {
 // The vertex attributes and indices a primitive needs, by what they mean:
 // which component types and counts each may have (glTF 2.0 §3.7.2.1, with
 // KHR_mesh_quantization's additions when the file uses it).
-enum class Semantic { Position, Normal, Tangent, Texcoord, Color };
+// EXT_mesh_gpu_instancing's TRANSLATION and SCALE read as Position, its
+// ROTATION (float or normalised signed integers) as Rotation.
+enum class Semantic { Position, Normal, Tangent, Texcoord, Color, Rotation };
 
 struct AccessorReader {
     const tinygltf::Model& model;
@@ -112,6 +117,15 @@ struct PrimitiveData {
     int material = -1;                    // index into the file's materials; -1: none
     std::size_t clamped_colors = 0;       // colour components the file gave outside [0, 1]
 };
+
+// Mesh `index`'s primitives (the index checked by the caller), each read
+// and checked, or nothing for one that is skipped (not triangles, sparse
+// accessors): counted in `skipped` by what was skipped, with the features
+// not drawn (more attribute sets, morph targets); colour components
+// clamped add to `clamped_colors`. Throws Error for a broken primitive.
+using Primitives = std::vector<std::optional<PrimitiveData>>;
+Primitives read_mesh(const AccessorReader& r, int index, std::size_t material_count,
+                     std::map<std::string, std::size_t>& skipped, std::size_t& clamped_colors);
 
 // TANGENT as read (x, y, z, w per vertex) → tangents, the handedness the
 // sign of w (glTF asks for ±1 exactly; its sign is what the frame needs).
@@ -169,6 +183,19 @@ UvTransform uv_transform_of(Vec2 offset, float rotation, Vec2 scale);
 // reads as inner = outer (with a warning unless they are equal).
 std::optional<PunctualLight> punctual_light(const tinygltf::Model& model, int index, const std::string& file,
                                             std::string& skipped_type, Diagnostics& diag);
+
+// T · R · S (glTF 2.0 §3.5.3) for the quaternion (x, y, z, w), normalised
+// here; nothing when its length is zero or not finite.
+std::optional<Transform> trs_transform(Vec3 translation, double x, double y, double z, double w, Vec3 scale);
+
+// The transforms EXT_mesh_gpu_instancing gives node `index` (its
+// TRANSLATION · ROTATION · SCALE per instance, in the node's coordinates,
+// applied before the node's own), in order; empty when it has none. Checks
+// the attributes' accessors (types as the extension allows, counts equal,
+// at most `room` instances, values finite), each rotation a non-zero
+// quaternion and each scale non-zero, and that the node has a mesh. Throws
+// Error(file, "node N: EXT_mesh_gpu_instancing: ...") or the accessor's error.
+std::vector<Transform> gpu_instances(const AccessorReader& r, const tinygltf::Node& node, int index, std::size_t room);
 
 // A JSON number that must be an integer in [lo, hi] (tinygltf's own
 // conversion of a huge double to int is undefined behaviour).

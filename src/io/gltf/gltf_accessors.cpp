@@ -194,6 +194,10 @@ std::string type_problem(const View& v, Semantic semantic, bool quantized) {
             want = v.components == 3 ? 3 : 4;
             ok = is_float || (is_unsigned && v.normalized);
             break;
+        case Semantic::Rotation:
+            want = 4;
+            ok = is_float || (is_signed && v.normalized);
+            break;
     }
     if (v.components != want)
         return std::string("type ") + type_name(v.type) + " where " +

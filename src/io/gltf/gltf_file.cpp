@@ -227,7 +227,8 @@ bool supported_extension(const std::string& name) {
                                                  kClearcoat,
                                                  kUnlit,
                                                  kMeshopt,
-                                                 kWebp};
+                                                 kWebp,
+                                                 kGpuInstancing};
     return supported.count(name) > 0;
 }
 

@@ -1,7 +1,8 @@
-// glTF 2.0 → LoadedMesh (spec §13): the default scene's node tree walked
-// from its roots, each node's transform composed parent × child, every
-// triangle primitive of every mesh instance placed in the file's world
-// space, plus the lights and the first camera the tree places.
+// glTF 2.0 → LoadedMesh (spec §13, §23): the default scene's node tree
+// walked from its roots, each node's transform composed parent × child,
+// every triangle primitive of a mesh drawn once placed in the file's world
+// space, a mesh drawn more often (several nodes, EXT_mesh_gpu_instancing)
+// kept once with its instances, plus the lights and the first camera.
 #include <algorithm>
 #include <cmath>
 #include <map>
@@ -11,6 +12,7 @@
 #include "io/gltf/gltf.h"
 #include "io/mesh_builder.h"
 #include "io/mesh_file.h"
+#include "scene/scene_builder.h"
 #include "scene/transform.h"
 
 namespace sombra {
@@ -18,12 +20,13 @@ namespace sombra {
 namespace {
 
 using gltf::PrimitiveData;
+using gltf::Primitives;
 
-// Triangles over all mesh instances: one mesh placed by many nodes is copied
-// for each, so this bounds what a small file can ask to build.
+// Triangles built: a mesh drawn once is copied into the file's world, an
+// instanced one stored once, so this bounds what a small file can ask for.
 constexpr std::size_t kMaxInstancedTriangles = std::size_t{1} << 26;
 
-struct Instance {
+struct NodePlacement {
     int node;
     Transform world;  // node → the file's world space
 };
@@ -51,30 +54,21 @@ Transform local_transform(const tinygltf::Node& n, int index, const std::string&
         (!n.rotation.empty() && n.rotation.size() != 4))
         throw Error(file, node_name(index) + ": translation and scale need 3 numbers, rotation 4");
     const Vec3 s = n.scale.empty() ? Vec3{1.0f} : Vec3{float(n.scale[0]), float(n.scale[1]), float(n.scale[2])};
-    double x = 0, y = 0, z = 0, w = 1;
-    if (!n.rotation.empty()) {
-        x = n.rotation[0], y = n.rotation[1], z = n.rotation[2], w = n.rotation[3];
-        const double len = std::sqrt(x * x + y * y + z * z + w * w);
-        if (!(len > 1e-12) || !std::isfinite(len))
-            throw Error(file, node_name(index) + ": rotation is not a unit quaternion");
-        x /= len, y /= len, z /= len, w /= len;
-    }
-    // Rotation matrix of the unit quaternion (x, y, z, w), columns scaled by s.
-    const double r[3][3] = {{1 - 2 * (y * y + z * z), 2 * (x * y - z * w), 2 * (x * z + y * w)},
-                            {2 * (x * y + z * w), 1 - 2 * (x * x + z * z), 2 * (y * z - x * w)},
-                            {2 * (x * z - y * w), 2 * (y * z + x * w), 1 - 2 * (x * x + y * y)}};
-    const float scale[3] = {s.x, s.y, s.z};
-    for (std::size_t row = 0; row < 3; ++row) {
-        for (std::size_t col = 0; col < 3; ++col) t.m[row * 4 + col] = float(r[row][col]) * scale[col];
-        t.m[row * 4 + 3] = n.translation.empty() ? 0.0f : float(n.translation[row]);
-    }
-    return t;
+    const Vec3 translation = n.translation.empty()
+                                 ? Vec3{0.0f}
+                                 : Vec3{float(n.translation[0]), float(n.translation[1]), float(n.translation[2])};
+    const std::optional<Transform> trs =
+        n.rotation.empty()
+            ? gltf::trs_transform(translation, 0, 0, 0, 1, s)
+            : gltf::trs_transform(translation, n.rotation[0], n.rotation[1], n.rotation[2], n.rotation[3], s);
+    if (!trs) throw Error(file, node_name(index) + ": rotation is not a unit quaternion");
+    return *trs;
 }
 
 // Every node the scene reaches, parents before children, with its world
 // transform. Throws for a child index out of range, a node with two
 // parents, a cycle, or a root that is someone's child.
-std::vector<Instance> walk_nodes(const tinygltf::Model& model, const std::string& file, Diagnostics& diag) {
+std::vector<NodePlacement> walk_nodes(const tinygltf::Model& model, const std::string& file, Diagnostics& diag) {
     const std::size_t count = model.nodes.size();
     std::vector<int> parent(count, -1);
     for (std::size_t i = 0; i < count; ++i)
@@ -114,9 +108,9 @@ std::vector<Instance> walk_nodes(const tinygltf::Model& model, const std::string
             throw Error(file, "the default scene " + std::to_string(scene) + " does not exist");
         roots = model.scenes[std::size_t(scene)].nodes;
     }
-    std::vector<Instance> out;
+    std::vector<NodePlacement> out;
     std::vector<bool> seen(count, false);
-    std::vector<Instance> stack;
+    std::vector<NodePlacement> stack;
     for (auto root = roots.rbegin(); root != roots.rend(); ++root) {
         if (*root < 0 || static_cast<std::size_t>(*root) >= count)
             throw Error(file, "the scene names " + node_name(*root) + ", but the file has " + std::to_string(count) +
@@ -127,7 +121,7 @@ std::vector<Instance> walk_nodes(const tinygltf::Model& model, const std::string
         stack.push_back({*root, Transform{}});
     }
     while (!stack.empty()) {
-        Instance top = stack.back();
+        NodePlacement top = stack.back();
         stack.pop_back();
         if (seen[std::size_t(top.node)]) throw Error(file, "the scene lists " + node_name(top.node) + " twice");
         seen[std::size_t(top.node)] = true;
@@ -140,75 +134,35 @@ std::vector<Instance> walk_nodes(const tinygltf::Model& model, const std::string
     return out;
 }
 
-// A primitive's attributes and indices, read and checked; v flipped.
-PrimitiveData read_primitive(const gltf::AccessorReader& r, const tinygltf::Primitive& p, const std::string& what) {
-    const auto attribute = [&](const char* name) {
-        const auto it = p.attributes.find(name);
-        return it == p.attributes.end() ? -1 : it->second;
-    };
-    if (attribute("POSITION") < 0) throw gltf::Unsupported{"primitives without POSITION"};
-    PrimitiveData out;
-    out.material = p.material;
-    const std::vector<float> pos =
-        read_floats(r, attribute("POSITION"), gltf::Semantic::Position, "POSITION of " + what);
-    const std::size_t n = pos.size() / 3;
-    if (n >= kNoNormal) throw Error(r.file, what + ": too many vertices");
-    out.positions.resize(n);
-    for (std::size_t i = 0; i < n; ++i) out.positions[i] = {pos[3 * i], pos[3 * i + 1], pos[3 * i + 2]};
-    if (attribute("NORMAL") >= 0) {
-        const std::vector<float> nor = read_floats(r, attribute("NORMAL"), gltf::Semantic::Normal, "NORMAL of " + what);
-        if (nor.size() != pos.size()) throw Error(r.file, what + ": NORMAL and POSITION differ in count");
-        out.normals.resize(n);
-        for (std::size_t i = 0; i < n; ++i) out.normals[i] = {nor[3 * i], nor[3 * i + 1], nor[3 * i + 2]};
-    }
-    if (attribute("TEXCOORD_0") >= 0) {
-        const std::vector<float> uv =
-            read_floats(r, attribute("TEXCOORD_0"), gltf::Semantic::Texcoord, "TEXCOORD_0 of " + what);
-        if (uv.size() / 2 != n) throw Error(r.file, what + ": TEXCOORD_0 and POSITION differ in count");
-        out.uvs.resize(n);
-        // glTF's v = 0 is the image's top row; sombra's uvs (like OBJ's) put v = 0 at the bottom.
-        for (std::size_t i = 0; i < n; ++i) out.uvs[i] = {uv[2 * i], 1.0f - uv[2 * i + 1]};
-    }
-    if (attribute("TANGENT") >= 0) {
-        const std::vector<float> t =
-            read_floats(r, attribute("TANGENT"), gltf::Semantic::Tangent, "TANGENT of " + what);
-        if (t.size() / 4 != n) throw Error(r.file, what + ": TANGENT and POSITION differ in count");
-        out.tangents = gltf::tangents_of(t);
-    }
-    if (attribute("COLOR_0") >= 0) {
-        const std::vector<float> c = read_floats(r, attribute("COLOR_0"), gltf::Semantic::Color, "COLOR_0 of " + what);
-        if (c.size() / 4 != n) throw Error(r.file, what + ": COLOR_0 and POSITION differ in count");
-        out.colors = gltf::colors_of(c, out.clamped_colors);
-    }
-    if (p.indices >= 0) {
-        out.indices = read_indices(r, p.indices, n, "indices of " + what);
-    } else {
-        out.indices.resize(n);
-        for (std::size_t i = 0; i < n; ++i) out.indices[i] = static_cast<std::uint32_t>(i);
-    }
-    return out;
-}
-
-// Appends one instance of a primitive, placed by `world`, to the builder.
-void append_instance(MeshBuilder& b, const PrimitiveData& p, const Transform& world, std::uint32_t material) {
+// Appends a primitive to the builder, placed by `world` (none: as it is,
+// for a mesh stored once and drawn by instances).
+void append_primitive(MeshBuilder& b, const PrimitiveData& p, const std::optional<Transform>& world,
+                      std::uint32_t material) {
     const auto base = static_cast<std::uint32_t>(b.positions.size());
     const auto normal_base = static_cast<std::uint32_t>(b.normals.size());
     const auto uv_base = static_cast<std::uint32_t>(b.uvs.size());
     const auto tangent_base = static_cast<std::uint32_t>(b.tangents.size());
     const auto color_base = static_cast<std::uint32_t>(b.colors.size());
-    for (const Vec3 v : p.positions) b.positions.push_back(transform_point(world, v));
-    const Transform to_world = normal_transform(world);
-    for (const Vec3 n : p.normals) b.normals.push_back(transform_vector(to_world, n));
+    if (world) {
+        for (const Vec3 v : p.positions) b.positions.push_back(transform_point(*world, v));
+        const Transform to_world = normal_transform(*world);
+        for (const Vec3 n : p.normals) b.normals.push_back(transform_vector(to_world, n));
+    } else {
+        b.positions.insert(b.positions.end(), p.positions.begin(), p.positions.end());
+        b.normals.insert(b.normals.end(), p.normals.begin(), p.normals.end());
+    }
     b.uvs.insert(b.uvs.end(), p.uvs.begin(), p.uvs.end());
     // A mirroring node (negative determinant) reverses the winding; swapping
     // two corners restores it, so the dielectric's outside stays outside (§11).
-    const bool mirrored = determinant3(world) < 0;
+    // (Instances are the scene builder's to mirror.)
+    const bool mirrored = world && determinant3(*world) < 0;
     // Tangents are surface directions: they move with the linear part. The
     // mirror also turns M·(n × t) into −(M⁻ᵀn × Mt) (up to positive
     // factors), so the handedness flips for bitangent = w·(n × t) to keep
     // following the mirrored surface.
     for (const VertexTangent& t : p.tangents)
-        b.tangents.push_back({transform_vector(world, t.direction), mirrored ? -t.handedness : t.handedness});
+        b.tangents.push_back(
+            {world ? transform_vector(*world, t.direction) : t.direction, mirrored ? -t.handedness : t.handedness});
     b.colors.insert(b.colors.end(), p.colors.begin(), p.colors.end());
     const auto corners = [](bool present, std::uint32_t first, const std::uint32_t(&c)[3], std::uint32_t(&out)[3]) {
         for (int k = 0; k < 3; ++k) out[k] = first + c[k];
@@ -223,6 +177,28 @@ void append_instance(MeshBuilder& b, const PrimitiveData& p, const Transform& wo
                    corners(!p.colors.empty(), color_base, c, col));
     }
 }
+
+// Appends a mesh's primitives (see append_primitive); returns whether any
+// has a triangle.
+bool append_mesh(MeshBuilder& b, const Primitives& primitives, const std::optional<Transform>& world,
+                 const std::string& file) {
+    bool any = false;
+    for (const std::optional<PrimitiveData>& p : primitives) {
+        if (!p) continue;
+        const std::uint32_t material = p->material < 0 ? kNoMaterial : std::uint32_t(p->material);
+        if (b.positions.size() + p->positions.size() >= kNoNormal)
+            throw Error(file, "the scene has more than " + std::to_string(kNoNormal - 1) + " vertices");
+        append_primitive(b, *p, world, material);
+        any = any || p->indices.size() >= 3;
+    }
+    return any;
+}
+
+// A mesh drawn more than once, while it is assembled.
+struct PartBuild {
+    MeshBuilder builder;
+    InstancedPart part;  // all but the mesh
+};
 
 // The camera `index` placed by `world`, or nothing (with a warning) when it
 // is orthographic or degenerate.
@@ -264,34 +240,59 @@ LoadedMesh load_gltf(const std::filesystem::path& path, Diagnostics& diag) {
         return std::find(model.extensionsUsed.begin(), model.extensionsUsed.end(), ext) != model.extensionsUsed.end();
     };
     const gltf::AccessorReader reader{model, file, uses(gltf::kQuantization)};
-    const std::vector<Instance> instances = walk_nodes(model, file, diag);
-
+    const std::vector<NodePlacement> placements = walk_nodes(model, file, diag);
     gltf::Materials materials = gltf::convert_materials(model, file, diag);
-    std::map<std::string, std::size_t> skipped;  // what was skipped → how often
-    std::size_t triangles = 0;
-    for (const Instance& in : instances) {
-        const int m = model.nodes[std::size_t(in.node)].mesh;
+
+    // How often each mesh is drawn: once per node, or once per instance of
+    // a node with EXT_mesh_gpu_instancing. Nodes scaled to nothing are invisible.
+    const auto visible = [](const NodePlacement& in) { return std::fabs(determinant3(in.world)) > 0.0f; };
+    std::map<int, std::vector<Transform>> gpu;  // node → its instances, in its own coordinates
+    std::vector<std::size_t> drawings(model.meshes.size(), 0);
+    std::vector<bool> named(model.meshes.size(), false);  // by any node: its accessors are checked
+    std::size_t instance_total = 0;
+    for (const NodePlacement& in : placements) {
+        const tinygltf::Node& node = model.nodes[std::size_t(in.node)];
+        std::vector<Transform> local = gltf::gpu_instances(reader, node, in.node, kMaxInstances - instance_total);
+        const int m = node.mesh;
         if (m < 0) continue;
         if (static_cast<std::size_t>(m) >= model.meshes.size())
             throw Error(file, node_name(in.node) + " names mesh " + std::to_string(m) + ", but the file has " +
                                   std::to_string(model.meshes.size()));
-        for (const tinygltf::Primitive& p : model.meshes[std::size_t(m)].primitives) {
+        named[std::size_t(m)] = true;
+        if (!visible(in)) continue;
+        const std::size_t n = node.extensions.count(gltf::kGpuInstancing) ? local.size() : 1;
+        drawings[std::size_t(m)] += n;
+        instance_total += n;
+        if (instance_total > kMaxInstances)
+            throw Error(file, "the scene draws meshes more than " + std::to_string(kMaxInstances) + " times");
+        if (!local.empty()) gpu.emplace(in.node, std::move(local));
+    }
+    std::size_t triangles = 0;
+    for (std::size_t m = 0; m < drawings.size(); ++m) {
+        if (!named[m]) continue;
+        std::size_t count = 0;
+        for (const tinygltf::Primitive& p : model.meshes[m].primitives) {
             const int counted =
                 p.indices >= 0 ? p.indices : (p.attributes.count("POSITION") ? p.attributes.at("POSITION") : -1);
             if (p.mode == TINYGLTF_MODE_TRIANGLES && counted >= 0)
-                triangles += gltf::accessor_count(reader, counted, "mesh " + std::to_string(m)) / 3;
+                count += gltf::accessor_count(reader, counted, "mesh " + std::to_string(m)) / 3;
         }
+        // A mesh drawn once is copied once, one drawn more often stored once.
+        triangles += count;
         if (triangles > kMaxInstancedTriangles)
             throw Error(file, "the scene places more than " + std::to_string(kMaxInstancedTriangles) + " triangles");
     }
 
+    std::map<std::string, std::size_t> skipped;  // what was skipped → how often
     MeshBuilder builder(file);
-    std::map<int, std::vector<std::optional<PrimitiveData>>> decoded;  // mesh → its primitives, read once
-    std::optional<std::pair<int, ModelCamera>> camera;                 // the lowest camera index placed
+    std::map<int, Primitives> decoded;   // mesh → its primitives, read once
+    std::map<int, std::size_t> part_of;  // instanced mesh → its index in parts
+    std::vector<PartBuild> parts;
+    std::optional<std::pair<int, ModelCamera>> camera;  // the lowest camera index placed
     std::vector<PunctualLight> lights;
     bool any_triangles = false;
     std::size_t clamped_colors = 0;
-    for (const Instance& in : instances) {
+    for (const NodePlacement& in : placements) {
         const tinygltf::Node& node = model.nodes[std::size_t(in.node)];
         if (node.skin >= 0) ++skipped["skins (the bind pose is used)"];
         if (node.camera >= 0 && (!camera || node.camera < camera->first))
@@ -314,47 +315,32 @@ LoadedMesh load_gltf(const std::filesystem::path& path, Diagnostics& diag) {
             } else
                 ++skipped[type + " lights"];
         }
-        if (node.mesh < 0) continue;
-        if (!(std::fabs(determinant3(in.world)) > 0.0f)) continue;  // scaled to nothing: invisible
-        const tinygltf::Mesh& mesh = model.meshes[std::size_t(node.mesh)];
-        auto& cache = decoded[node.mesh];
-        const bool first_use = cache.empty();
-        if (first_use) cache.resize(mesh.primitives.size());
-        for (std::size_t i = 0; i < mesh.primitives.size(); ++i) {
-            const tinygltf::Primitive& p = mesh.primitives[i];
-            const std::string what = "mesh " + std::to_string(node.mesh) + " primitive " + std::to_string(i);
-            if (first_use) {
-                if (p.mode != TINYGLTF_MODE_TRIANGLES) {
-                    ++skipped["primitives of mode " + std::to_string(p.mode) + " (only 4, triangles, is drawn)"];
-                    continue;
-                }
-                if (p.material < -1 || p.material >= int(materials.materials.size()))
-                    throw Error(file, what + " names material " + std::to_string(p.material) + ", but the file has " +
-                                          std::to_string(materials.materials.size()));
-                for (const auto& [name, accessor] : p.attributes)
-                    if (name.rfind("TEXCOORD_", 0) == 0 || name.rfind("COLOR_", 0) == 0 ||
-                        name.rfind("JOINTS_", 0) == 0 || name.rfind("WEIGHTS_", 0) == 0)
-                        if (name != "TEXCOORD_0" && name != "COLOR_0")
-                            ++skipped["attribute " + name + " (not used yet)"];
-                if (!p.targets.empty()) ++skipped["morph targets"];
-                try {
-                    const auto draco = p.extensions.find(gltf::kDraco);
-                    cache[i] = draco != p.extensions.end() ? gltf::decode_draco(reader, p, draco->second, what)
-                                                           : read_primitive(reader, p, what);
-                } catch (const gltf::Unsupported& u) {
-                    ++skipped[u.feature];
-                    continue;
-                }
-                if (cache[i]->indices.size() % 3 != 0) ++skipped["trailing indices that make no whole triangle"];
-                clamped_colors += cache[i]->clamped_colors;
-            }
-            if (!cache[i]) continue;
-            const std::uint32_t material = cache[i]->material < 0 ? kNoMaterial : std::uint32_t(cache[i]->material);
-            if (builder.positions.size() + cache[i]->positions.size() >= kNoNormal)
-                throw Error(file, "the scene has more than " + std::to_string(kNoNormal - 1) + " vertices");
-            append_instance(builder, *cache[i], in.world, material);
-            any_triangles = any_triangles || cache[i]->indices.size() >= 3;
+        if (node.mesh < 0 || !visible(in)) continue;
+        auto [cached, first_use] = decoded.try_emplace(node.mesh);
+        if (first_use)
+            cached->second = gltf::read_mesh(reader, node.mesh, materials.materials.size(), skipped, clamped_colors);
+        const Primitives& primitives = cached->second;
+        const auto local = gpu.find(in.node);
+        const bool gpu_instanced = node.extensions.count(gltf::kGpuInstancing) > 0;
+        if (gpu_instanced && local == gpu.end()) continue;  // no instances (count 0 is the accessor's error)
+        if (drawings[std::size_t(node.mesh)] == 1) {
+            const Transform world = gpu_instanced ? compose(local->second[0], in.world) : in.world;
+            any_triangles = append_mesh(builder, primitives, world, file) || any_triangles;
+            continue;
         }
+        const auto [index, new_part] = part_of.try_emplace(node.mesh, parts.size());
+        if (new_part) {
+            parts.push_back(PartBuild{MeshBuilder(file), {}});
+            any_triangles = append_mesh(parts.back().builder, primitives, std::nullopt, file) || any_triangles;
+        }
+        InstancedPart& part = parts[index->second].part;
+        part.origins.push_back({part.instances.size(), node_name(in.node), gpu_instanced});
+        if (!gpu_instanced) {
+            part.instances.push_back(in.world);
+            continue;
+        }
+        // The instance's T · R · S first, then the node's transform (the extension's order).
+        for (const Transform& t : local->second) part.instances.push_back(compose(t, in.world));
     }
     if (!model.animations.empty()) ++skipped["animations (the rest pose is used)"];
     if (!any_triangles) {
@@ -366,7 +352,20 @@ LoadedMesh load_gltf(const std::filesystem::path& path, Diagnostics& diag) {
     if (clamped_colors > 0)
         diag.warn(file, "COLOR_0: " + std::to_string(clamped_colors) + " components outside [0, 1] clamped");
 
-    LoadedMesh out = builder.finish(std::move(materials.materials), diag);
+    // The meshes' material ids index one list; a face without a material
+    // gets the default, added once at its end.
+    LoadedMesh out;
+    const std::size_t material_count = materials.materials.size();
+    bool uses_default = false;
+    if (builder.triangle_count() > 0 || parts.empty())
+        out.mesh = builder.finish_mesh(material_count, uses_default, diag);
+    for (PartBuild& p : parts) {
+        if (p.builder.triangle_count() == 0) continue;  // every primitive skipped
+        p.part.mesh = p.builder.finish_mesh(material_count, uses_default, diag);
+        out.instanced.push_back(std::move(p.part));
+    }
+    if (uses_default) materials.materials.push_back(default_material());
+    out.materials = std::move(materials.materials);
     materials.texture_refs.resize(out.materials.size());  // the default material, if added, has none
     gltf::apply_textures(model, path, materials.texture_refs, out.materials, out.textures, diag);
     out.lights = std::move(lights);

@@ -130,4 +130,16 @@ inline GltfFile quad_file(bool indexed = true) {
     return f;
 }
 
+// A pyramid (four slanted faces on a square base, apex up +y and off
+// centre, so that a mirror shows) added to `f` as one mesh, with vertex
+// normals pointing away from its centre so that a wrong normal transform
+// shows; returns the mesh's index.
+inline int add_pyramid(GltfFile& f, int material = -1) {
+    const std::vector<Vec3> p{{-1, 0, -1}, {1, 0, -1}, {1, 0, 1}, {-1, 0, 1}, {0.5f, 1.5f, 0.3f}};
+    std::vector<Vec3> n;
+    for (const Vec3 v : p) n.push_back(normalize(v - Vec3{0, 0.5f, 0}));
+    const std::vector<std::uint32_t> i{0, 1, 4, 1, 2, 4, 2, 3, 4, 3, 0, 4, 0, 2, 1, 0, 3, 2};
+    return f.add_mesh({{"POSITION", f.add_positions(p)}, {"NORMAL", f.add_normals(n)}}, f.add_indices(i), material);
+}
+
 }  // namespace sombra::gltf_test

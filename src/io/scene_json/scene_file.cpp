@@ -4,6 +4,7 @@
 // scene's builder (scene/scene_builder.h), which places them in world space.
 #include "io/scene_json/scene_file.h"
 
+#include <algorithm>
 #include <fstream>
 #include <limits>
 #include <map>
@@ -107,21 +108,22 @@ ObjectSpec read_object(const SceneJson& s, const Json& v, std::string_view point
     return spec;
 }
 
-// One object joins the scene: placed by its transform, with the scene's
-// material when it names one, else its file's own. The builder's problems
-// become errors naming the object's transform or its file.
-// An object with instances is stored once and drawn per instance, unless
-// it has just one: a copy placed in the world geometry is as small and
-// saves the instance's ray transform (spec §23; docs/performance.md).
-// A keyed object is always instanced (a single identity instance when it
-// has no list): a new moment then moves instances and keeps its mesh's
-// structure (spec §22).
-void add_object(SceneBuilder& builder, const LoadedMesh& loaded, ObjectSpec spec, const SceneJson& s,
-                SceneAnimation& animation) {
+// What an object's file draws once joins the scene: placed by its
+// transform, with the scene's material when it names one, else its file's
+// own. The builder's problems become errors naming the object's transform
+// or its file. An object with instances is stored once and drawn per
+// instance, unless it has just one: a copy placed in the world geometry is
+// as small and saves the instance's ray transform (spec §23). A keyed
+// object is always instanced (a single identity instance when it has no
+// list): a new moment then moves instances and keeps its mesh's structure
+// (spec §22).
+void add_whole(SceneBuilder& builder, const LoadedMesh& loaded, ObjectSpec spec, const SceneJson& s,
+               SceneAnimation& animation) {
     if (!spec.keys.empty()) {
         if (spec.instances.empty()) spec.instances.push_back(Transform{});
-        animation.objects.push_back(AnimatedObject{
-            spec.pointer, static_cast<std::uint32_t>(builder.scene().instances.size()), spec.keys, spec.instances});
+        animation.objects.push_back(
+            AnimatedObject{spec.pointer, static_cast<std::uint32_t>(builder.scene().instances.size()), spec.keys,
+                           std::vector<Transform>(spec.instances.size()), spec.instances});
     }
     const bool instanced = spec.instances.size() > 1 || !spec.keys.empty();
     const std::string mesh_name = spec.path.string();
@@ -152,6 +154,64 @@ void add_object(SceneBuilder& builder, const LoadedMesh& loaded, ObjectSpec spec
             json_fail(s, json_child(spec.pointer, "instances"),
                       "the scene would hold more than " + std::to_string(kMaxInstances) + " instances");
     }
+}
+
+// A glTF file's meshes drawn several times (spec §23): each instance placed
+// in the file, then by the object's transform, then by each of the
+// object's instances (all of a part's for the first, then the next). The
+// builder's problems name the glTF node as well as the object.
+void add_parts(SceneBuilder& builder, const LoadedMesh& loaded, const ObjectSpec& spec, const SceneJson& s,
+               SceneAnimation& animation) {
+    const std::string mesh_name = spec.path.string();
+    const MeshPlacement placement{spec.pointer, mesh_name, std::nullopt, spec.material};
+    const std::size_t copies = std::max<std::size_t>(1, spec.instances.size());
+    const std::string list = json_child(spec.pointer, spec.instances.empty() ? "transform" : "instances");
+    const std::string too_many = "the scene would hold more than " + std::to_string(kMaxInstances) + " instances";
+    std::vector<Transform> world;
+    for (const InstancedPart& part : loaded.instanced) {
+        const std::size_t n = part.instances.size();
+        if (n > kMaxInstances / copies) json_fail(s, list, too_many);
+        world.clear();
+        world.reserve(n * copies);
+        for (std::size_t j = 0; j < copies; ++j) {
+            const Transform object =
+                spec.instances.empty() ? spec.transform : compose(spec.transform, spec.instances[j]);
+            for (const Transform& t : part.instances) world.push_back(compose(t, object));
+        }
+        if (!spec.keys.empty()) {
+            // Keyed: the file's placement acts before the keyed transform, the object's instances after.
+            AnimatedObject moving{
+                spec.pointer, static_cast<std::uint32_t>(builder.scene().instances.size()), spec.keys, {}, {}};
+            for (std::size_t j = 0; j < copies; ++j)
+                for (const Transform& t : part.instances) {
+                    moving.before.push_back(t);
+                    moving.after.push_back(spec.instances.empty() ? Transform{} : spec.instances[j]);
+                }
+            animation.objects.push_back(std::move(moving));
+        }
+        std::size_t bad = 0;
+        const MeshProblem problem =
+            builder.add_instanced_mesh(part.mesh, loaded.materials, loaded.textures, placement, world, &bad);
+        const std::string node = mesh_name + ": " + instance_name(part, bad % n) + ": ";
+        const std::string where = spec.instances.empty() ? list : json_child(list, bad / n);
+        switch (problem) {
+            case MeshProblem::None: continue;
+            case MeshProblem::NonFinitePlacement: json_fail(s, where, node + "a transformed vertex is not finite");
+            case MeshProblem::BadVertexIndex:
+                throw Error(mesh_name, "a triangle refers to a vertex that does not exist");
+            case MeshProblem::SingularInstance:
+                json_fail(s, where, node + "the node's and the object's transforms together are not invertible");
+            case MeshProblem::TooManyInstances: json_fail(s, list, too_many);
+        }
+    }
+}
+
+// One object joins the scene: what its file draws once as add_whole says,
+// the meshes drawn several times as add_parts says.
+void add_object(SceneBuilder& builder, const LoadedMesh& loaded, const ObjectSpec& spec, const SceneJson& s,
+                SceneAnimation& animation) {
+    if (!loaded.mesh.triangles.empty() || loaded.instanced.empty()) add_whole(builder, loaded, spec, s, animation);
+    add_parts(builder, loaded, spec, s, animation);
 }
 
 // A light a glTF file placed, carried by its object's transform.
@@ -282,7 +342,8 @@ LoadedScene load_scene_text(const std::string& text, const fs::path& path, Diagn
         mesh_of[i] = it->second;
         last_use[it->second] = i;
         const TriangleMesh& m = meshes[it->second].mesh;
-        if (m.triangles.empty()) json_warn(s, json_child(spec.pointer, "file"), "the mesh has no triangles");
+        if (m.triangles.empty() && meshes[it->second].instanced.empty())
+            json_warn(s, json_child(spec.pointer, "file"), "the mesh has no triangles");
         if (flattened) sizes += sizes_of(m);
     }
     for (const LoadedMesh& q : quad_meshes) sizes += sizes_of(q.mesh);
