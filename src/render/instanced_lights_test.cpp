@@ -1,0 +1,158 @@
+// Emitters in instances are lights (spec §23): each (instance, emitting
+// triangle) pair is one light of the set, placed in world space as its
+// flattened copy would be, so the lamps of render/instanced_emitters_test_util.h
+// weigh, sample and answer densities as their flattened copies do.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <numbers>
+#include <vector>
+
+#include "render/instanced_emitters_test_util.h"
+#include "render/lights.h"
+#include "render/path_test_util.h"
+#include "render/sampler.h"
+
+namespace sombra {
+namespace {
+
+using testing::Estimate;
+using testing::flattened_triangle;
+using testing::kZ;
+
+constexpr double kPi = std::numbers::pi;
+
+// Σ luminance(ke) · area · π · sides over the set's emitters (spec §10's power).
+double emitted_power(const LightSet& lights, const Scene& scene) {
+    double power = 0;
+    for (std::size_t k = 0; k < lights.emitters.size(); ++k) {
+        const Emitter e = lights.emitters[k];
+        const Material& m = scene.materials[surface_mesh(scene, e.instance).material_ids[e.triangle]];
+        power += luminance(m.ke) * lights.emitter_areas[k] * kPi * (m.emits_front_only ? 1.0 : 2.0);
+    }
+    return power;
+}
+
+// Irradiance at x (normal n, every emitter above its horizon) from a
+// uniformly emitting triangle of radiance 1 (Lambert's formula), 0 from
+// its dark side when it emits from its front only.
+double triangle_irradiance(const std::array<Vec3, 3>& p, bool front_only, Vec3 x, Vec3 n) {
+    if (front_only && dot(cross(p[1] - p[0], p[2] - p[0]), x - p[0]) <= 0.0f) return 0.0;
+    double e = 0;
+    for (std::size_t i = 0; i < 3; ++i) {
+        const Vec3 a = normalize(p[i] - x), b = normalize(p[(i + 1) % 3] - x);
+        const double theta = std::acos(std::clamp(static_cast<double>(dot(a, b)), -1.0, 1.0));
+        e += theta * dot(normalize(cross(a, b)), n);
+    }
+    return 0.5 * std::fabs(e);
+}
+
+TEST(InstancedLights, EveryInstanceOfAnEmittingTriangleIsOneLight) {
+    const Scene instanced = testing::instanced_lamps();
+    const Scene flattened = testing::flattened_lamps();
+    ASSERT_EQ(instanced.instances.size(), 12u);
+    ASSERT_EQ(instanced.geometry.triangle_count(), 2u) << "the lamps are not copied";
+    const LightSet li = make_light_set(instanced, make_constant_environment(Vec3{0.0f}), true);
+    const LightSet lf = make_light_set(flattened, make_constant_environment(Vec3{0.0f}), true);
+    // Three emitting triangles per lamp: twelve lamps, 36 lights, by tree.
+    ASSERT_EQ(li.emitters.size(), 36u);
+    ASSERT_EQ(lf.emitters.size(), 36u);
+    EXPECT_TRUE(li.use_tree);
+    EXPECT_NEAR(emitted_power(li, instanced), emitted_power(lf, flattened), 1e-6 * emitted_power(lf, flattened));
+    for (std::size_t k = 0; k < li.emitters.size(); ++k) {
+        const Emitter e = li.emitters[k];
+        ASSERT_NE(e.instance, kNoInstance);
+        // Placed as the builder places the flattened copy, corners swapped where it mirrors.
+        const std::uint32_t flat = flattened_triangle(e.instance, e.triangle);
+        EXPECT_EQ(world_triangle_corners(instanced, e.triangle, e.instance), triangle_corners(flattened.geometry, flat))
+            << "instance " << e.instance << " triangle " << e.triangle;
+        EXPECT_EQ(li.emitter_areas[k], lf.emitter_areas[k]);
+        EXPECT_EQ(emitter_light(li, e.triangle, e.instance), li.first_emitter() + k);
+        EXPECT_EQ(light_kind(li, instanced, li.first_emitter() + static_cast<std::uint32_t>(k)),
+                  e.triangle == 2 ? LightKind::Quad : LightKind::Triangle);
+    }
+    EXPECT_EQ(emitter_light(li, 3, 0), kNoLight) << "the plain triangle emits nothing";
+    EXPECT_EQ(emitter_light(li, 0, kNoInstance), kNoLight) << "nor does the floor";
+    EXPECT_EQ(emitter_light(li, 0, 12), kNoLight) << "there is no instance 12";
+}
+
+TEST(InstancedLights, DensitiesEqualTheFlattenedCopiesUnderPowerSelection) {
+    // Chosen in proportion to power, a light's density at a point is its
+    // flattened copy's (the same power share, the same world triangle).
+    const Scene instanced = testing::instanced_lamps();
+    const Scene flattened = testing::flattened_lamps();
+    const LightSet li = make_light_set(instanced, make_constant_environment(Vec3{0.0f}), true, LightSelection::Power);
+    const LightSet lf = make_light_set(flattened, make_constant_environment(Vec3{0.0f}), true, LightSelection::Power);
+    const Vec3 x{0.2f, 0, -0.1f}, n{0, 1, 0};
+    for (const Emitter& e : li.emitters) {
+        const auto p = world_triangle_corners(instanced, e.triangle, e.instance);
+        for (const Vec3 b : {Vec3{0.2f, 0.3f, 0.5f}, Vec3{0.7f, 0.1f, 0.2f}}) {
+            const Vec3 y = b.x * p[0] + b.y * p[1] + b.z * p[2];
+            const float pi = pdf_light_triangle(li, instanced, e.triangle, e.instance, x, n, y);
+            const float pf =
+                pdf_light_triangle(lf, flattened, flattened_triangle(e.instance, e.triangle), kNoInstance, x, n, y);
+            EXPECT_NEAR(pi, pf, 1e-5f * pf) << "instance " << e.instance << " triangle " << e.triangle;
+        }
+    }
+}
+
+// The unshadowed irradiance estimate Σ L_e cos θ / pdf at x from light
+// samples, one channel, against Lambert's formula summed over the
+// flattened copies' world triangles: unbiased only when sample_light's
+// densities are those of what it samples.
+void expect_irradiance_from_light_samples(const Scene& scene, const Scene& flattened, LightSelection selection, Vec3 x,
+                                          Vec3 n, std::uint64_t seed, const char* what) {
+    const LightSet lights = make_light_set(scene, make_constant_environment(Vec3{0.0f}), true, selection);
+    double expected = 0;
+    for (std::uint32_t t = 2; t < flattened.geometry.triangle_count(); ++t) {
+        const Material& m = flattened.materials[flattened.geometry.material_ids[t]];
+        expected += m.ke.z * triangle_irradiance(triangle_corners(flattened.geometry, t), m.emits_front_only, x, n);
+    }
+    Estimate e;
+    int checked = 0;
+    for (std::uint32_t k = 0; k < 40000; ++k) {
+        const std::uint32_t i = k + static_cast<std::uint32_t>(seed) * 100000u;
+        LightSample ls;
+        if (!sample_light(lights, scene, x, n, hash_to_unit(i, 1), hash_to_unit(i, 2), hash_to_unit(i, 3), ls)) {
+            e.add(0.0);
+            continue;
+        }
+        // The reported density is the one MIS asks for at the same point.
+        if (++checked <= 2000) {
+            EXPECT_NEAR(ls.pdf, pdf_light_triangle(lights, scene, ls.triangle, ls.instance, x, n, ls.target),
+                        1e-3f * ls.pdf)
+                << what;
+            EXPECT_EQ(ls.light, emitter_light(lights, ls.triangle, ls.instance)) << what;
+        }
+        e.add(ls.radiance.z * std::max(0.0f, dot(n, ls.wi)) / ls.pdf);
+    }
+    ASSERT_GT(expected, 0.0);
+    const double z = (e.mean() - expected) / e.standard_error();
+    EXPECT_LT(std::fabs(z), kZ) << what << ": " << e.mean() << " ± " << e.standard_error() << ", Lambert " << expected;
+}
+
+TEST(InstancedLights, LightSamplingEstimatesLambertsIrradianceFromEveryLamp) {
+    const Scene instanced = testing::instanced_lamps();
+    const Scene flattened = testing::flattened_lamps();
+    // Floor points, and one above every lamp looking down (where only the
+    // upside-down lamp's one-sided triangle shines from its front).
+    struct Point {
+        Vec3 x, n;
+    };
+    const Point points[] = {{{0, 0, 0}, {0, 1, 0}},
+                            {{0.5f, 0, -0.4f}, {0, 1, 0}},
+                            {{-1.2f, 0, 1}, {0, 1, 0}},
+                            {{0.3f, 2.6f, 1.3f}, {0, -1, 0}}};
+    std::uint64_t seed = 1;
+    for (const Point& p : points)
+        for (const LightSelection selection : {LightSelection::Tree, LightSelection::Power}) {
+            const char* what = selection == LightSelection::Tree ? "tree" : "power";
+            expect_irradiance_from_light_samples(instanced, flattened, selection, p.x, p.n, ++seed, what);
+            expect_irradiance_from_light_samples(flattened, flattened, selection, p.x, p.n, ++seed, what);
+        }
+}
+
+}  // namespace
+}  // namespace sombra
