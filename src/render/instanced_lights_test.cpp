@@ -14,6 +14,7 @@
 #include "render/lights.h"
 #include "render/path_test_util.h"
 #include "render/sampler.h"
+#include "scene/texture.h"
 
 namespace sombra {
 namespace {
@@ -152,6 +153,94 @@ TEST(InstancedLights, LightSamplingEstimatesLambertsIrradianceFromEveryLamp) {
             expect_irradiance_from_light_samples(instanced, flattened, selection, p.x, p.n, ++seed, what);
             expect_irradiance_from_light_samples(flattened, flattened, selection, p.x, p.n, ++seed, what);
         }
+}
+
+// A cut-out quad lamp (alpha 1 1 0 0 0 0 1 1 along u: its middle half is
+// cut) whose ke is textured by a red-to-blue ramp along u, drawn three times
+// (one mirrored) as instances or as flattened copies.
+Scene cut_out_textured_lamps(bool instanced) {
+    Texture strip, ramp;
+    strip.source = "strip";
+    ramp.source = "ramp";
+    strip.encoding = ramp.encoding = TextureEncoding::Data;
+    strip.width = 8;
+    ramp.width = 2;
+    strip.height = ramp.height = 1;
+    strip.channels = 1;
+    ramp.channels = 3;
+    strip.texels = {1, 1, 0, 0, 0, 0, 1, 1};
+    ramp.texels = {1, 0.2f, 0.2f, 0.2f, 0.2f, 1};
+    Material lamp;
+    lamp.kd = Vec3{0.0f};
+    lamp.ke = Vec3{3.0f};
+    lamp.textures.alpha_test = true;
+    lamp.textures.alpha.texture = 0;
+    lamp.textures.ke.texture = 1;
+    TriangleMesh mesh;
+    testing::add_quad(mesh, {-0.6f, 0, -0.6f}, {0.6f, 0, -0.6f}, {0.6f, 0, 0.6f}, {-0.6f, 0, 0.6f}, 0);
+    mesh.uvs = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+    mesh.uv_indices = {{0, 1, 2}, {0, 2, 3}};
+    const std::vector<Transform> placements{
+        make_translate({0, 1, 0}), compose(make_scale({-1, 1, 1}), make_translate({1.5f, 1.2f, 0.3f})),
+        compose(make_rotate({0, 1, 0}, 90),
+                compose(make_scale({0.7f, 1, 1.3f}), make_translate({-1.4f, 0.9f, -0.2f})))};
+    SceneBuilder b;
+    testing::add_floor(b);
+    if (instanced) {
+        EXPECT_EQ(b.add_instanced_mesh(mesh, std::vector<Material>{lamp}, std::vector<Texture>{strip, ramp},
+                                       MeshPlacement{"/objects/1", "lamp.obj", std::nullopt, std::nullopt}, placements),
+                  MeshProblem::None);
+    } else {
+        for (const Transform& t : placements)
+            EXPECT_EQ(b.add_mesh(mesh, std::vector<Material>{lamp}, std::vector<Texture>{strip, ramp},
+                                 MeshPlacement{"/objects/1", "lamp.obj", t, std::nullopt}),
+                      MeshProblem::None);
+    }
+    return b.finish();
+}
+
+TEST(InstancedLights, SampledPointsReadCutOutsAndEmissionTexturesFromTheInstancesMesh) {
+    // Chosen by power, the two scenes' samples land on the same world
+    // points: a point on a cut-out part is no light in either, and the ke
+    // texture is read at the same uv (up to the rounding of barycentrics
+    // found in the mesh's coordinates rather than the world's).
+    const Scene instanced = cut_out_textured_lamps(true);
+    const Scene flattened = cut_out_textured_lamps(false);
+    const LightSet li = make_light_set(instanced, make_constant_environment(Vec3{0.0f}), true, LightSelection::Power);
+    const LightSet lf = make_light_set(flattened, make_constant_environment(Vec3{0.0f}), true, LightSelection::Power);
+    ASSERT_EQ(li.emitters.size(), 6u);
+    const Vec3 x{0.1f, 0, 0.05f}, n{0, 1, 0};
+    const int samples = 20000;
+    int both = 0, neither = 0, differ = 0;
+    float lo = 1e9f, hi = 0;
+    for (int k = 0; k < samples; ++k) {
+        const auto i = static_cast<std::uint32_t>(k);
+        const float u0 = hash_to_unit(i, 31), u1 = hash_to_unit(i, 32), u2 = hash_to_unit(i, 33);
+        LightSample a, b;
+        const bool in_a = sample_light(li, instanced, x, n, u0, u1, u2, a);
+        const bool in_b = sample_light(lf, flattened, x, n, u0, u1, u2, b);
+        if (in_a != in_b) {
+            ++differ;
+            continue;
+        }
+        if (!in_a) {
+            ++neither;
+            continue;
+        }
+        ++both;
+        EXPECT_EQ(a.target, b.target);
+        EXPECT_EQ(a.triangle, b.triangle - 2 - 2 * a.instance) << "instance " << a.instance;
+        for (int c = 0; c < 3; ++c) EXPECT_NEAR(a.radiance[c], b.radiance[c], 1e-4f * b.radiance[c] + 1e-6f);
+        lo = std::min(lo, a.radiance.x);
+        hi = std::max(hi, a.radiance.x);
+    }
+    // Half of each lamp is cut; over the rest the red of ke × ramp spans 0.6 to 3.
+    EXPECT_GT(neither, samples / 4);
+    EXPECT_GT(both, samples / 4);
+    EXPECT_LT(hi - lo, 3.0f * 0.8f + 1e-3f);
+    EXPECT_GT(hi - lo, 0.5f) << "the texture varies over the sampled points";
+    // A point may fall within rounding of the cut's edge: at most a few in 20,000.
+    EXPECT_LE(differ, samples / 1000);
 }
 
 }  // namespace
