@@ -102,8 +102,9 @@ LightKind light_kind(const LightSet& lights, const Scene& scene, std::uint32_t l
 std::uint32_t emitter_light(const LightSet& lights, std::uint32_t triangle, std::uint32_t instance = kNoInstance);
 
 // The lights of `scene` for one render: its delta lights, its emitting
-// triangles (the world's and every instance's) and the environment. `environment` lights the scene when
-// `sample_environment_light` (under path tracing) and is otherwise only seen.
+// triangles (the world's and every instance's) and the environment.
+// `environment` lights the scene when `sample_environment_light` (under path
+// tracing) and is otherwise only seen.
 // Emitter power = luminance(ke) · area · π (twice for two-sided emitters);
 // the environment's = its power proxy · π R², R the scene's bounding radius.
 LightSet make_light_set(const Scene& scene, Environment environment, bool sample_environment_light,
