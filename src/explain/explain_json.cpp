@@ -164,7 +164,7 @@ private:
         if (!l.sampled) return {{"type", "sampled"}, {"outcome", "none"}, {"contribution", vec(l.contribution)}};
         Json j = {{"type", l.environment ? "environment" : "emitter"}, {"light", l.light}};
         if (!l.environment) {
-            j["emitter"] = where(l.triangle);
+            j["emitter"] = where(l.triangle, l.instance);
             j["point"] = vec(l.target);
         }
         j["outcome"] = outcome_name(l.outcome);

@@ -197,10 +197,10 @@ private:
         const LightSet& lights = c_.job.lights;
         if (lights.emitters.size() <= 2000) {
             svg_ << "<path fill=\"#ffd54f\" fill-opacity=\"0.6\" stroke=\"#e0a000\" stroke-width=\"1\" d=\"";
-            for (const std::uint32_t t : lights.emitters) {
-                const Index3& tri = c_.scene.geometry.triangles[t];
+            for (const Emitter& e : lights.emitters) {
+                const std::array<Vec3, 3> corners = world_triangle_corners(c_.scene, e.triangle, e.instance);
                 for (int k = 0; k < 3; ++k) {
-                    const Point2 p = view_.screen(c_.scene.geometry.positions[tri[k]]);
+                    const Point2 p = view_.screen(corners[static_cast<std::size_t>(k)]);
                     svg_ << (k == 0 ? "M" : "L") << num(p.x) << " " << num(p.y);
                 }
                 svg_ << "Z";

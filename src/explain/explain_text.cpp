@@ -223,7 +223,7 @@ private:
             return;
         }
         out_ << "  sampled light " << l.light << ": "
-             << (l.environment ? std::string("the environment") : where(l.triangle)) << "\n";
+             << (l.environment ? std::string("the environment") : where(l.triangle, l.instance)) << "\n";
         out_ << "    ω_i = " << readable(l.wi);
         if (!l.environment)
             out_ << ", point " << readable(l.target) << ", distance " << readable(l.distance)

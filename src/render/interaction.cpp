@@ -66,6 +66,15 @@ Vec3 normal_to_world(const Instance& instance, Vec3 n) {
 
 }  // namespace
 
+std::array<Vec3, 3> instanced_triangle_corners(const Scene& scene, std::uint32_t triangle, std::uint32_t instance) {
+    const Instance& in = scene.instances[instance];
+    const auto [q0, q1, q2] = triangle_corners(scene.instanced_meshes[in.mesh], triangle);
+    const Transform& m = in.object_to_world;
+    const Vec3 p0 = transform_point(m, q0), p1 = transform_point(m, q1), p2 = transform_point(m, q2);
+    if (in.mirrored) return {p0, p2, p1};
+    return {p0, p1, p2};
+}
+
 SurfaceInteraction make_surface_interaction(const TriangleMesh& mesh, const Ray& ray, const Hit& hit) {
     const auto [p0, p1, p2] = hit.has_corners ? hit.corners : triangle_corners(mesh, hit.triangle);
     const bool smooth = has_vertex_normals(mesh, hit.triangle);

@@ -3,6 +3,7 @@
 // error for spawning rays that cannot re-hit the surface they leave.
 #pragma once
 
+#include <array>
 #include <cstdint>
 
 #include "accel/accel.h"
@@ -51,6 +52,17 @@ SurfaceInteraction make_surface_interaction(const Scene& scene, const Ray& ray, 
 // derivative) carried to world space; unchanged for kNoInstance.
 inline Vec3 vector_to_world(const Scene& scene, std::uint32_t instance, Vec3 v) {
     return instance == kNoInstance ? v : transform_vector(scene.instances[instance].object_to_world, v);
+}
+
+// The world corners of `triangle` of surface_mesh(scene, instance), in an
+// order whose (p1 − p0) × (p2 − p0) is its winding normal: an instance's are
+// carried by object_to_world, a mirror's corners 1 and 2 swapped, exactly as
+// the builder places a flattened copy's (spec §11, §23). For light sampling
+// and explain, which see an emitter as its world triangle.
+std::array<Vec3, 3> instanced_triangle_corners(const Scene& scene, std::uint32_t triangle, std::uint32_t instance);
+inline std::array<Vec3, 3> world_triangle_corners(const Scene& scene, std::uint32_t triangle, std::uint32_t instance) {
+    return instance == kNoInstance ? triangle_corners(scene.geometry, triangle)
+                                   : instanced_triangle_corners(scene, triangle, instance);
 }
 
 // Where a ray leaving surface point x should start so that it cannot hit the

@@ -1,6 +1,7 @@
 #include "render/lights.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <numbers>
@@ -15,15 +16,39 @@ namespace {
 
 constexpr float kPi = std::numbers::pi_v<float>;
 
-// The radius of a sphere around the scene's bounding box.
-float bounding_radius(const TriangleMesh& mesh) {
-    if (mesh.positions.empty()) return 1.0f;
-    Vec3 lo{std::numeric_limits<float>::max()}, hi{-std::numeric_limits<float>::max()};
+// The box around a mesh's finite positions (empty: lo > hi).
+void grow_bounds(const TriangleMesh& mesh, Vec3& lo, Vec3& hi) {
     for (const Vec3& p : mesh.positions)
         if (is_finite(p)) {
             lo = min(lo, p);
             hi = max(hi, p);
         }
+}
+
+// The radius of a sphere around the scene's bounding box: the world
+// geometry's and each instance's mesh box carried to world space (a
+// little looser than its flattened copy's box, and far cheaper).
+float bounding_radius(const Scene& scene) {
+    if (scene.geometry.positions.empty() && scene.instances.empty()) return 1.0f;
+    Vec3 lo{std::numeric_limits<float>::max()}, hi{-std::numeric_limits<float>::max()};
+    grow_bounds(scene.geometry, lo, hi);
+    std::vector<std::array<Vec3, 2>> mesh_boxes;
+    for (const TriangleMesh& mesh : scene.instanced_meshes) {
+        Vec3 mlo{std::numeric_limits<float>::max()}, mhi{-std::numeric_limits<float>::max()};
+        grow_bounds(mesh, mlo, mhi);
+        mesh_boxes.push_back({mlo, mhi});
+    }
+    for (const Instance& instance : scene.instances) {
+        const auto [mlo, mhi] = mesh_boxes[instance.mesh];
+        if (!(mlo.x <= mhi.x)) continue;
+        for (int k = 0; k < 8; ++k) {
+            const Vec3 corner{(k & 1) ? mhi.x : mlo.x, (k & 2) ? mhi.y : mlo.y, (k & 4) ? mhi.z : mlo.z};
+            const Vec3 p = transform_point(instance.object_to_world, corner);
+            if (!is_finite(p)) continue;
+            lo = min(lo, p);
+            hi = max(hi, p);
+        }
+    }
     const float r = 0.5f * length(hi - lo);
     return r > 0.0f && std::isfinite(r) ? r : 1.0f;
 }
@@ -78,11 +103,23 @@ float emitters_choice_probability(const LightSet& lights) {
     return lights.choice_cdf[lights.emitters.size() - 1];
 }
 
-// False when y, a point sampled on `triangle`, lies where its surface is cut out.
-bool sampled_point_exists(const Scene& scene, std::uint32_t triangle, Vec3 y) {
+// False when y, a point sampled on emitter e, lies where its surface is cut
+// out. In an instance y is carried back to the mesh's coordinates, where
+// its barycentrics are the same (the transform is affine).
+bool sampled_point_exists(const Scene& scene, Emitter e, Vec3 y) {
+    const TriangleMesh& mesh = surface_mesh(scene, e.instance);
+    if (e.instance != kNoInstance) y = transform_point(scene.instances[e.instance].world_to_object, y);
     float b1 = 0, b2 = 0;
-    if (!point_barycentrics(scene.geometry, triangle, y, b1, b2)) return true;
-    return surface_exists(Cutouts{&scene.geometry, &scene.materials, &scene.textures}, triangle, b1, b2);
+    if (!point_barycentrics(mesh, e.triangle, y, b1, b2)) return true;
+    return surface_exists(Cutouts{&mesh, &scene.materials, &scene.textures}, e.triangle, b1, b2);
+}
+
+// The position of emitter `e` in lights.emitters, or lights.emitters.size().
+std::size_t find_emitter(const LightSet& lights, Emitter e) {
+    const auto it = std::lower_bound(lights.emitters.begin(), lights.emitters.end(), e,
+                                     [](const Emitter& a, const Emitter& b) { return a.key() < b.key(); });
+    if (it == lights.emitters.end() || it->key() != e.key()) return lights.emitters.size();
+    return static_cast<std::size_t>(it - lights.emitters.begin());
 }
 
 }  // namespace
@@ -91,21 +128,40 @@ LightSet make_light_set(const Scene& scene, Environment environment, bool sample
                         LightSelection selection) {
     LightSet lights;
     lights.delta = scene.lights;
-    const TriangleMesh& mesh = scene.geometry;
     std::vector<float> power;
     std::vector<LightTreeEmitter> tree_emitters;
-    for (std::uint32_t t = 0; t < mesh.triangle_count(); ++t) {
-        const Material& m = scene.materials[mesh.material_ids[t]];
-        if (!is_emissive(m)) continue;
-        const auto [p0, p1, p2] = triangle_corners(mesh, t);
+    // Emitter e with material m, its world corners p0 p1 p2 (winding order).
+    auto add = [&](Emitter e, const Material& m, Vec3 p0, Vec3 p1, Vec3 p2) {
         const float area = 0.5f * length(cross(p1 - p0, p2 - p0));
         // Degenerate or non-finite triangles are never hit, so never lights.
-        if (!(area > 0.0f) || !std::isfinite(area)) continue;
-        lights.emitters.push_back(t);
+        if (!(area > 0.0f) || !std::isfinite(area)) return;
+        lights.emitters.push_back(e);
         lights.emitter_areas.push_back(area);
         const float sides = m.emits_front_only ? 1.0f : 2.0f;
         power.push_back(std::max(luminance(m.ke), 1e-6f * max_component(m.ke)) * area * kPi * sides);
         tree_emitters.push_back({p0, p1, p2, power.back(), !m.emits_front_only});
+    };
+    const TriangleMesh& mesh = scene.geometry;
+    for (std::uint32_t t = 0; t < mesh.triangle_count(); ++t) {
+        const Material& m = scene.materials[mesh.material_ids[t]];
+        if (!is_emissive(m)) continue;
+        const auto [p0, p1, p2] = triangle_corners(mesh, t);
+        add(Emitter{t, kNoInstance}, m, p0, p1, p2);
+    }
+    // Each instance's emitting triangles (found once per mesh), placed in
+    // world space: the light tree bounds them there, nothing is copied.
+    std::vector<std::vector<std::uint32_t>> mesh_emitters(scene.instanced_meshes.size());
+    for (std::size_t k = 0; k < scene.instanced_meshes.size(); ++k) {
+        const TriangleMesh& im = scene.instanced_meshes[k];
+        for (std::uint32_t t = 0; t < im.triangle_count(); ++t)
+            if (is_emissive(scene.materials[im.material_ids[t]])) mesh_emitters[k].push_back(t);
+    }
+    for (std::uint32_t i = 0; i < scene.instances.size(); ++i) {
+        const TriangleMesh& im = scene.instanced_meshes[scene.instances[i].mesh];
+        for (const std::uint32_t t : mesh_emitters[scene.instances[i].mesh]) {
+            const auto [p0, p1, p2] = instanced_triangle_corners(scene, t, i);
+            add(Emitter{t, i}, scene.materials[im.material_ids[t]], p0, p1, p2);
+        }
     }
     lights.use_tree = selection == LightSelection::Tree ||
                       (selection == LightSelection::Automatic && tree_emitters.size() >= kLightTreeMinEmitters);
@@ -118,7 +174,7 @@ LightSet make_light_set(const Scene& scene, Environment environment, bool sample
     lights.environment = std::move(environment);
     lights.environment_lights = sample_environment_light && !is_black(lights.environment);
     if (lights.environment_lights) {
-        const float r = bounding_radius(mesh);
+        const float r = bounding_radius(scene);
         power.push_back(std::max(environment_power_proxy(lights.environment), 1e-12f) * kPi * r * r);
     }
 
@@ -171,8 +227,8 @@ bool sample_light(const LightSet& lights, const Scene& scene, Vec3 x, Vec3 n, fl
         return max_component(out.radiance) > 0.0f;
     }
 
-    const std::uint32_t triangle = lights.emitters[chosen];
-    const auto [p0, p1, p2] = triangle_corners(scene.geometry, triangle);
+    const Emitter e = lights.emitters[chosen];
+    const auto [p0, p1, p2] = world_triangle_corners(scene, e.triangle, e.instance);
     const Vec3 n_w = normalize(cross(p1 - p0, p2 - p0));
     const SphericalTriangle spherical = spherical_triangle_to_sample(x, p0, p1, p2, n_w, lights.emitter_areas[chosen]);
     Vec3 y, wi;
@@ -196,31 +252,32 @@ bool sample_light(const LightSet& lights, const Scene& scene, Vec3 x, Vec3 n, fl
         wi = to_light / std::sqrt(dist2);
         pdf = area_to_solid_angle(x, y, n_w, lights.emitter_areas[chosen]);
     }
-    const Material& m = scene.materials[scene.geometry.material_ids[triangle]];
+    const Material& m = scene.materials[surface_mesh(scene, e.instance).material_ids[e.triangle]];
     // One-sided emitters shine only toward their winding normal's side.
     if (m.emits_front_only && dot(n_w, wi) >= 0.0f) return false;
     // A point on a cut-out part of the emitter is no light (spec §12).
-    if (m.textures.alpha_test && !sampled_point_exists(scene, triangle, y)) return false;
+    if (m.textures.alpha_test && !sampled_point_exists(scene, e, y)) return false;
     if (!(pdf > 0.0f) || !std::isfinite(pdf)) return false;
-    out.radiance = emission_at(scene, m, triangle, y);
+    out.radiance = emission_at(scene, m, e.triangle, y, e.instance);
     out.wi = wi;
     out.target = y;
     out.at_infinity = false;
     out.pdf = choice * pdf;
     out.light = lights.first_emitter() + static_cast<std::uint32_t>(chosen);
-    out.triangle = triangle;
+    out.triangle = e.triangle;
+    out.instance = e.instance;
     return true;
 }
 
-float pdf_light_triangle(const LightSet& lights, const Scene& scene, std::uint32_t triangle, Vec3 x, Vec3 n, Vec3 y) {
-    const auto it = std::lower_bound(lights.emitters.begin(), lights.emitters.end(), triangle);
-    if (it == lights.emitters.end() || *it != triangle) return 0.0f;
-    const auto e = static_cast<std::size_t>(it - lights.emitters.begin());
+float pdf_light_triangle(const LightSet& lights, const Scene& scene, std::uint32_t triangle, std::uint32_t instance,
+                         Vec3 x, Vec3 n, Vec3 y) {
+    const std::size_t e = find_emitter(lights, Emitter{triangle, instance});
+    if (e == lights.emitters.size()) return 0.0f;
     const float choice = lights.use_tree ? emitters_choice_probability(lights) *
                                                pmf_light_tree(lights.tree, x, n, static_cast<std::uint32_t>(e))
                                          : lights.choice_probability[e];
     if (!(choice > 0.0f)) return 0.0f;
-    const auto [p0, p1, p2] = triangle_corners(scene.geometry, triangle);
+    const auto [p0, p1, p2] = world_triangle_corners(scene, triangle, instance);
     const Vec3 n_w = normalize(cross(p1 - p0, p2 - p0));
     const SphericalTriangle spherical = spherical_triangle_to_sample(x, p0, p1, p2, n_w, lights.emitter_areas[e]);
     if (sample_by_solid_angle(spherical)) return choice * static_cast<float>(1.0 / spherical.solid_angle);
@@ -236,15 +293,16 @@ LightKind light_kind(const LightSet& lights, const Scene& scene, std::uint32_t l
         }
     }
     if (light >= lights.environment_light()) return LightKind::Environment;
-    const std::uint32_t triangle = lights.emitters[light - lights.first_emitter()];
-    return scene.materials[scene.geometry.material_ids[triangle]].emits_front_only ? LightKind::Quad
-                                                                                   : LightKind::Triangle;
+    const Emitter e = lights.emitters[light - lights.first_emitter()];
+    return scene.materials[surface_mesh(scene, e.instance).material_ids[e.triangle]].emits_front_only
+               ? LightKind::Quad
+               : LightKind::Triangle;
 }
 
-std::uint32_t emitter_light(const LightSet& lights, std::uint32_t triangle) {
-    const auto it = std::lower_bound(lights.emitters.begin(), lights.emitters.end(), triangle);
-    if (it == lights.emitters.end() || *it != triangle) return kNoLight;
-    return lights.first_emitter() + static_cast<std::uint32_t>(it - lights.emitters.begin());
+std::uint32_t emitter_light(const LightSet& lights, std::uint32_t triangle, std::uint32_t instance) {
+    const std::size_t e = find_emitter(lights, Emitter{triangle, instance});
+    if (e == lights.emitters.size()) return kNoLight;
+    return lights.first_emitter() + static_cast<std::uint32_t>(e);
 }
 
 float pdf_light_environment(const LightSet& lights, Vec3 dir) {

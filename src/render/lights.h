@@ -45,20 +45,34 @@ enum class LightKind : std::uint8_t {
 
 inline constexpr std::uint32_t kNoLight = 0xffffffffu;
 
+// An emitting triangle: `triangle` of surface_mesh(scene, instance), so an
+// emissive mesh instanced N times is N lights (spec §23) whose triangles
+// are stored once. Ordered world triangles first (kNoInstance), then by
+// instance and triangle.
+struct Emitter {
+    std::uint32_t triangle = 0;
+    std::uint32_t instance = kNoInstance;
+
+    // kNoInstance + 1 wraps to 0: the world geometry sorts first.
+    std::uint64_t key() const { return std::uint64_t{instance + 1u} << 32 | triangle; }
+};
+
 // Every light of one render, each once. A light's identity is its index in
 // the set, the same for the integrators, `explain` and tests:
 //   [0, delta.size())                         the delta lights (point, spot,
 //                                             directional: scene.lights, in order);
-//   [first_emitter(), environment_light())    the emitting triangles, in triangle order;
+//   [first_emitter(), environment_light())    the emitting triangles, in Emitter order (the
+//                                             world's in triangle order, then each instance's);
 //   environment_light()                       the environment, when environment_lights.
 // The kinds live in per-kind arrays (plain data for the hot path): delta
 // lights are visited one by one at every vertex (render/delta_lights.h);
 // emitters and the environment are sampled one at a time below.
 struct LightSet {
     std::vector<PunctualLight> delta;
-    // Emissive triangles (material ke > 0), in increasing triangle order
-    // (so that a hit triangle is found by binary search), with their areas.
-    std::vector<std::uint32_t> emitters;
+    // Emissive triangles (material ke > 0), in increasing Emitter::key
+    // order (so that a hit triangle is found by binary search), with their
+    // world areas.
+    std::vector<Emitter> emitters;
     std::vector<float> emitter_areas;
     Environment environment;
     bool environment_lights = false;  // the environment is sampled (path integrator, not black)
@@ -83,12 +97,14 @@ struct LightSet {
 // The kind of light `light` (< lights.light_count()).
 LightKind light_kind(const LightSet& lights, const Scene& scene, std::uint32_t light);
 
-// The identity of emitting triangle `triangle`, or kNoLight when it emits nothing.
-std::uint32_t emitter_light(const LightSet& lights, std::uint32_t triangle);
+// The identity of emitting triangle `triangle` of surface_mesh(scene,
+// instance), or kNoLight when it emits nothing.
+std::uint32_t emitter_light(const LightSet& lights, std::uint32_t triangle, std::uint32_t instance = kNoInstance);
 
 // The lights of `scene` for one render: its delta lights, its emitting
-// triangles and the environment. `environment` lights the scene when
-// `sample_environment_light` (under path tracing) and is otherwise only seen.
+// triangles (the world's and every instance's) and the environment.
+// `environment` lights the scene when `sample_environment_light` (under path
+// tracing) and is otherwise only seen.
 // Emitter power = luminance(ke) · area · π (twice for two-sided emitters);
 // the environment's = its power proxy · π R², R the scene's bounding radius.
 LightSet make_light_set(const Scene& scene, Environment environment, bool sample_environment_light,
@@ -103,6 +119,7 @@ struct LightSample {
     float pdf = 0;                   // solid-angle density, including the probability of choosing this light
     std::uint32_t light = kNoLight;  // its identity in the light set
     std::uint32_t triangle = 0xffffffffu;  // the emitter triangle sampled (all ones for the environment)
+    std::uint32_t instance = kNoInstance;  // the instance it lies in (kNoInstance: the world geometry)
 };
 
 // Samples one emitter or the environment for the point x with unit shading
@@ -116,9 +133,11 @@ bool sample_light(const LightSet& lights, const Scene& scene, Vec3 x, Vec3 n, fl
                   LightSample& out);
 
 // The solid-angle density with which sample_light, called at x with normal
-// n (the same x and n), picks point y on emitter triangle `triangle` (0 when
-// it is not a light, or the light tree gives it no chance from x).
-float pdf_light_triangle(const LightSet& lights, const Scene& scene, std::uint32_t triangle, Vec3 x, Vec3 n, Vec3 y);
+// n (the same x and n), picks point y on emitter triangle `triangle` of
+// surface_mesh(scene, instance) (0 when it is not a light, or the light
+// tree gives it no chance from x).
+float pdf_light_triangle(const LightSet& lights, const Scene& scene, std::uint32_t triangle, std::uint32_t instance,
+                         Vec3 x, Vec3 n, Vec3 y);
 
 // The solid-angle density with which sample_light picks direction `dir` on
 // the environment (0 when the environment is not sampled).

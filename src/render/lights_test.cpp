@@ -74,7 +74,8 @@ TEST(Lights, SampledDensityEqualsTheDensityOfTheSampledPoint) {
         const bool bright = ls.target.y < 10;
         ++counts[bright ? 0 : 1];
         const std::uint32_t triangle = bright ? 1 : 2;
-        EXPECT_NEAR(ls.pdf, pdf_light_triangle(lights, scene, triangle, x, Vec3{0, 1, 0}, ls.target), 1e-3f * ls.pdf);
+        EXPECT_NEAR(ls.pdf, pdf_light_triangle(lights, scene, triangle, kNoInstance, x, Vec3{0, 1, 0}, ls.target),
+                    1e-3f * ls.pdf);
         EXPECT_EQ(ls.radiance, scene.materials[bright ? 1 : 2].ke);
     }
     // How often each light is chosen: binomial, |z| < 5.
@@ -105,7 +106,7 @@ TEST(Lights, SamplingAndDensityAgreeOnBothSidesOfTheStrategyChoice) {
                           ls))
             continue;
         ++checked;
-        const float pdf = pdf_light_triangle(lights, scene, 1, x, Vec3{0, 1, 0}, ls.target);
+        const float pdf = pdf_light_triangle(lights, scene, 1, kNoInstance, x, Vec3{0, 1, 0}, ls.target);
         EXPECT_NEAR(ls.pdf, pdf, 1e-3f * ls.pdf) << "x = " << x.x << " " << x.y << " " << x.z;
     }
     EXPECT_GT(checked, 300);

@@ -125,12 +125,10 @@ Vec3 trace_path_recorded(const IntegratorContext& ctx, const Ray& camera_ray, Sa
 
         const Vec3 le = emitted_radiance(material, si);
         if (max_component(le) > 0.0f) {
-            // Emitters in instances are not among the sampled lights yet:
-            // only BSDF sampling finds them, at full weight.
-            const float light_pdf =
-                previous_delta || si.instance != kNoInstance
-                    ? 0.0f
-                    : pdf_light_triangle(lights, scene, si.triangle, previous_position, previous_normal, si.position);
+            const float light_pdf = previous_delta
+                                        ? 0.0f
+                                        : pdf_light_triangle(lights, scene, si.triangle, si.instance, previous_position,
+                                                             previous_normal, si.position);
             const float w = previous_delta ? 1.0f : bounce_weight(previous_pdf, light_pdf);
             radiance += beta * le * w;
             recorder.emission(le, w, previous_delta ? 0.0f : previous_pdf, light_pdf, beta * le * w);

@@ -87,18 +87,19 @@ struct DeltaLightRecord {
 // The one emitter or environment direction sampled for next-event
 // estimation at a path vertex, MIS-weighted against BSDF sampling.
 struct SampledLightRecord {
-    bool sampled = false;               // false: no light could be sampled (or none carries anything)
-    bool environment = false;           // the environment rather than an emitting triangle
-    std::uint32_t light = kNoTriangle;  // its identity in the light set (render/lights.h)
-    std::uint32_t triangle = kNoTriangle;
-    Vec3 wi;                    // unit, towards the sampled point
-    Vec3 target;                // the sampled point on the emitter
-    float distance = 0;         // to the sampled point (infinite for the environment)
-    Vec3 radiance;              // L_e arriving along −ω_i
-    float light_pdf = 0;        // solid-angle density of next-event estimation (with the choice of light)
-    float bsdf_pdf = 0;         // the BSDF's density for the same direction
-    float mis_weight = 0;       // power heuristic (1 when only lights are sampled)
-    float cos_s = 0;            // |n_s·ω_i|
+    bool sampled = false;                  // false: no light could be sampled (or none carries anything)
+    bool environment = false;              // the environment rather than an emitting triangle
+    std::uint32_t light = kNoTriangle;     // its identity in the light set (render/lights.h)
+    std::uint32_t triangle = kNoTriangle;  // of surface_mesh(scene, instance)
+    std::uint32_t instance = kNoInstance;  // the instance the emitter lies in (kNoInstance: the world)
+    Vec3 wi;                               // unit, towards the sampled point
+    Vec3 target;                           // the sampled point on the emitter
+    float distance = 0;                    // to the sampled point (infinite for the environment)
+    Vec3 radiance;                         // L_e arriving along −ω_i
+    float light_pdf = 0;                   // solid-angle density of next-event estimation (with the choice of light)
+    float bsdf_pdf = 0;                    // the BSDF's density for the same direction
+    float mis_weight = 0;                  // power heuristic (1 when only lights are sampled)
+    float cos_s = 0;                       // |n_s·ω_i|
     float cos_light = 0;        // |n_light·ω_i| at the sampled point of an emitting triangle (0 for the environment)
     Vec3 f_diffuse, f_lobe, f;  // f_r split and whole
     Vec3 f_transmission, f_coat;                   // pbr's transmission and clearcoat terms of f_r; 0 elsewhere

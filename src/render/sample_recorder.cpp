@@ -130,18 +130,17 @@ void SampleRecorder::sampled_light(const LightSample* ls, const ShadingView& vie
         r.environment = ls->at_infinity;
         r.light = ls->light;
         r.triangle = ls->triangle;
+        r.instance = ls->instance;
         r.wi = ls->wi;
         r.target = ls->target;
         r.distance = ls->at_infinity ? std::numeric_limits<float>::infinity() : length(ls->target - view.si.position);
         r.radiance = ls->radiance;
         r.light_pdf = ls->pdf;
         r.cos_s = std::fabs(dot(view.si.n_s, ls->wi));
-        if (!ls->at_infinity && ls->triangle < scene_.geometry.triangles.size()) {
-            const Index3& tri = scene_.geometry.triangles[ls->triangle];
-            const Vec3 p0 = scene_.geometry.positions[tri[0]];
-            const Vec3 n_light =
-                normalize(cross(scene_.geometry.positions[tri[1]] - p0, scene_.geometry.positions[tri[2]] - p0));
-            r.cos_light = std::fabs(dot(n_light, ls->wi));
+        if (!ls->at_infinity && (ls->instance == kNoInstance || ls->instance < scene_.instances.size()) &&
+            ls->triangle < surface_mesh(scene_, ls->instance).triangles.size()) {
+            const auto [p0, p1, p2] = world_triangle_corners(scene_, ls->triangle, ls->instance);
+            r.cos_light = std::fabs(dot(normalize(cross(p1 - p0, p2 - p0)), ls->wi));
         }
         const BsdfTerms terms = eval_bsdf_terms(view.material, view.bsdf_point, view.wo, ls->wi);
         r.f_diffuse = terms.diffuse;

@@ -186,13 +186,16 @@ const Material& resolve_material(const Scene& scene, SurfaceInteraction& si, Mat
     return scratch;
 }
 
-Vec3 emission_at(const Scene& scene, const Material& material, std::uint32_t triangle, Vec3 y) {
+Vec3 emission_at(const Scene& scene, const Material& material, std::uint32_t triangle, Vec3 y, std::uint32_t instance) {
     const TextureRef& ref = material.textures.ke;
     if (!ref.is_set()) return material.ke;
+    // In an instance, y's barycentrics are found in the mesh's own
+    // coordinates (the same weights: the transform is affine).
+    const TriangleMesh& mesh = surface_mesh(scene, instance);
+    if (instance != kNoInstance) y = transform_point(scene.instances[instance].world_to_object, y);
     Vec2 uv{0.0f, 0.0f};
     float b1 = 0, b2 = 0;
-    if (scene.geometry.has_uvs() && point_barycentrics(scene.geometry, triangle, y, b1, b2))
-        interpolate_uv(scene.geometry, triangle, b1, b2, uv);
+    if (mesh.has_uvs() && point_barycentrics(mesh, triangle, y, b1, b2)) interpolate_uv(mesh, triangle, b1, b2, uv);
     return clamp_rgb(material.ke * rgb_of(lookup(scene, ref, uv, 0.0f)), std::numeric_limits<float>::max());
 }
 

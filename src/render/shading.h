@@ -41,10 +41,12 @@ inline bool needs_resolved_material(const Scene& scene, const SurfaceInteraction
            (m.type == MaterialType::Pbr && has_vertex_colors(surface_mesh(scene, si.instance), si.triangle));
 }
 
-// The radiance `material` emits at point y of `triangle` (towards a side
-// where it emits): ke, times ke's texture at y's uv when it has one. For
-// light sampling, where y is a sampled point rather than a hit.
-Vec3 emission_at(const Scene& scene, const Material& material, std::uint32_t triangle, Vec3 y);
+// The radiance `material` emits at world point y of `triangle` of
+// surface_mesh(scene, instance) (towards a side where it emits): ke, times
+// ke's texture at y's uv when it has one. For light sampling, where y is a
+// sampled point rather than a hit.
+Vec3 emission_at(const Scene& scene, const Material& material, std::uint32_t triangle, Vec3 y,
+                 std::uint32_t instance = kNoInstance);
 
 // The shading normal that a tangent-space normal-map value `n_map` (unit,
 // +z along the surface normal) gives at a point whose surface normal is n
