@@ -19,8 +19,7 @@ Accel make_compared_accel(const Scene& scene, AccelKind kind, const EmbreeSettin
         accel.kind = kind;
         accel.mesh = &scene.geometry;
         accel.cutouts = make_cutouts(scene.geometry, scene.materials, scene.textures);
-        accel.embree =
-            make_embree_scene(scene.geometry, accel.cutouts, embree.quality == EmbreeQuality::High, embree.robust);
+        accel.embree = make_embree_scene(scene, accel.cutouts, embree.quality == EmbreeQuality::High, embree.robust);
         return accel;
     }
 #endif

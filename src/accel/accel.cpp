@@ -86,6 +86,18 @@ Accel make_accel(const TriangleMesh& mesh, AccelKind kind, Cutouts cutouts) {
 }
 
 Accel make_accel(const Scene& scene, AccelKind kind) {
+#ifdef SOMBRA_HAVE_EMBREE
+    // The yardstick instances with Embree's own two levels, not sombra's
+    // tree over instances (accel/embree_backend.h).
+    if (kind == AccelKind::Embree) {
+        Accel accel;
+        accel.kind = kind;
+        accel.mesh = &scene.geometry;
+        accel.cutouts = make_cutouts(scene.geometry, scene.materials, scene.textures);
+        accel.embree = make_embree_scene(scene, accel.cutouts);
+        return accel;
+    }
+#endif
     Accel accel = make_accel(scene.geometry, kind, make_cutouts(scene.geometry, scene.materials, scene.textures));
     accel.instances = make_instance_level(scene, kind);
     return accel;

@@ -84,7 +84,8 @@ Accel make_accel(const TriangleMesh& mesh, AccelKind kind, Cutouts cutouts = {})
 
 // The structure for a loaded scene: its world geometry with its materials'
 // cut-outs, and its instances: one structure of `kind` per instanced mesh
-// (built in parallel), under a tree over the instances. The scene must
+// (built in parallel), under a tree over the instances; for Embree, Embree's
+// own instancing instead (Accel::instances stays null). The scene must
 // outlive the Accel.
 Accel make_accel(const Scene& scene, AccelKind kind);
 

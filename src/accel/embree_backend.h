@@ -7,7 +7,9 @@
 // not the watertight "robust" mode, which the benchmarks may ask for) and the
 // default build quality (RTC_BUILD_QUALITY_MEDIUM; RTC_BUILD_QUALITY_HIGH,
 // its spatial-split builder, on request), one triangle geometry over the
-// whole mesh.
+// whole mesh. A scene's instances (spec §23) use Embree's own instancing:
+// one Embree scene per instanced mesh, drawn by RTC_GEOMETRY_TYPE_INSTANCE
+// geometries in a top-level scene beside the world mesh.
 // Hits agree with the BVH's to float rounding, not bit for bit: Embree's
 // Möller–Trumbore variant rounds differently, is not watertight at edges, and
 // does not send ties at equal t to the lower triangle index.
@@ -25,6 +27,7 @@
 namespace sombra {
 
 struct Hit;
+struct Scene;
 
 // An Embree device and committed scene over one mesh, plus the buffers shared
 // with Embree; opaque outside embree_backend.cpp.
@@ -44,9 +47,18 @@ struct EmbreeScene;
 std::shared_ptr<const EmbreeScene> make_embree_scene(const TriangleMesh& mesh, const Cutouts& cutouts = {},
                                                      bool high_quality = false, bool robust = false);
 
+// The same for a whole scene: its world geometry (with `world_cutouts`) and
+// its instances, each instanced mesh built once as its own Embree scene
+// (with its own cut-outs) and drawn by one instance geometry per
+// Scene::instances entry. The scene must outlive the result.
+std::shared_ptr<const EmbreeScene> make_embree_scene(const Scene& scene, const Cutouts& world_cutouts,
+                                                     bool high_quality = false, bool robust = false);
+
 // Closest hit with 0 < t < ray.tmax; (b1, b2) are Embree's (u, v), which are
 // the weights of the triangle's second and third corner as in sombra, and
-// hit.triangle is the index into mesh.triangles. Returns false and leaves
+// hit.triangle is the index into mesh.triangles; through an instance,
+// hit.instance is its index in Scene::instances (Embree's instID), and
+// (b1, b2) and hit.triangle are the instanced mesh's own. Returns false and leaves
 // `hit` untouched on a miss. The ray must be traceable (finite origin,
 // finite non-zero direction): accel.cpp checks that before calling.
 bool intersect_embree(const EmbreeScene& scene, const Ray& ray, Hit& hit);
