@@ -103,6 +103,16 @@ Accel make_accel(const Scene& scene, AccelKind kind) {
     return accel;
 }
 
+void update_instances(Accel& accel, const Scene& scene) {
+#ifdef SOMBRA_HAVE_EMBREE
+    if (accel.kind == AccelKind::Embree) {
+        accel = make_accel(scene, accel.kind);
+        return;
+    }
+#endif
+    if (accel.instances != nullptr) accel.instances = replace_instance_tree(*accel.instances, scene);
+}
+
 namespace {
 
 // The backends other than the BVH. Kept out of line: inlined into

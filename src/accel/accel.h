@@ -89,6 +89,13 @@ Accel make_accel(const TriangleMesh& mesh, AccelKind kind, Cutouts cutouts = {})
 // outlive the Accel.
 Accel make_accel(const Scene& scene, AccelKind kind);
 
+// `accel` (made by make_accel(scene, kind)) for the scene's instances as
+// they are placed now, after set_scene_time (scene/animation.h) moved them:
+// the meshes' structures are kept and only the tree over the instances is
+// built again (Embree: the whole structure). Gives exactly the Accel that
+// make_accel(scene, kind) would.
+void update_instances(Accel& accel, const Scene& scene);
+
 // Closest hit with 0 < t < ray.tmax (tmax itself excluded). Returns false and
 // leaves `hit` untouched when nothing is hit. Between hits at exactly the same
 // t the lower triangle index wins, so every backend returns the same hit

@@ -211,19 +211,10 @@ void visit_instances(const InstanceLevel& level, const Ray& ray, Visit visit) {
 
 }  // namespace
 
-std::shared_ptr<const InstanceLevel> make_instance_level(const Scene& scene, AccelKind kind) {
-    if (scene.instances.empty()) return nullptr;
-    auto level = std::make_shared<InstanceLevel>();
-    level->kind = kind;
-    level->instances = &scene.instances;
-    level->meshes.resize(scene.instanced_meshes.size());
-    // Meshes build in parallel; each BVH build is itself parallel inside.
-    tbb::parallel_for(std::size_t{0}, scene.instanced_meshes.size(), [&](std::size_t m) {
-        const TriangleMesh& mesh = scene.instanced_meshes[m];
-        level->meshes[m] = make_accel(mesh, kind, make_cutouts(mesh, scene.materials, scene.textures));
-    });
-    if (kind == AccelKind::Brute) return level;
+namespace {
 
+// The tree over `scene`'s instances, into level.nodes.
+void build_tree(InstanceLevel& level, const Scene& scene) {
     std::vector<Box> object_boxes(scene.instanced_meshes.size());
     for (std::size_t m = 0; m < object_boxes.size(); ++m) object_boxes[m] = mesh_box(scene.instanced_meshes[m]);
     std::vector<Box> boxes(scene.instances.size());
@@ -236,10 +227,36 @@ std::shared_ptr<const InstanceLevel> make_instance_level(const Scene& scene, Acc
     order.reserve(boxes.size());
     for (std::size_t i = 0; i < boxes.size(); ++i)
         if (boxes[i].lo.x <= boxes[i].hi.x) order.push_back(static_cast<std::uint32_t>(i));
-    if (order.empty()) return level;
-    level->nodes.reserve(2 * order.size() - 1);
-    level->nodes.resize(1);
-    TreeBuilder{boxes, order, level->nodes}.build(0, 0, static_cast<std::uint32_t>(order.size()), 0);
+    if (order.empty()) return;
+    level.nodes.reserve(2 * order.size() - 1);
+    level.nodes.resize(1);
+    TreeBuilder{boxes, order, level.nodes}.build(0, 0, static_cast<std::uint32_t>(order.size()), 0);
+}
+
+}  // namespace
+
+std::shared_ptr<const InstanceLevel> make_instance_level(const Scene& scene, AccelKind kind) {
+    if (scene.instances.empty()) return nullptr;
+    auto level = std::make_shared<InstanceLevel>();
+    level->kind = kind;
+    level->instances = &scene.instances;
+    auto meshes = std::make_shared<std::vector<Accel>>(scene.instanced_meshes.size());
+    // Meshes build in parallel; each BVH build is itself parallel inside.
+    tbb::parallel_for(std::size_t{0}, scene.instanced_meshes.size(), [&](std::size_t m) {
+        const TriangleMesh& mesh = scene.instanced_meshes[m];
+        (*meshes)[m] = make_accel(mesh, kind, make_cutouts(mesh, scene.materials, scene.textures));
+    });
+    level->meshes = std::move(meshes);
+    if (kind != AccelKind::Brute) build_tree(*level, scene);
+    return level;
+}
+
+std::shared_ptr<const InstanceLevel> replace_instance_tree(const InstanceLevel& previous, const Scene& scene) {
+    auto level = std::make_shared<InstanceLevel>();
+    level->kind = previous.kind;
+    level->instances = &scene.instances;
+    level->meshes = previous.meshes;
+    if (level->kind != AccelKind::Brute) build_tree(*level, scene);
     return level;
 }
 
@@ -250,7 +267,7 @@ bool intersect_instances(const InstanceLevel& level, const Ray& ray, Hit& hit) {
         Ray local = to_object(instances[i], ray);
         local.tmax = tmax;
         Hit h;
-        if (!intersect(level.meshes[instances[i].mesh], local, h)) return false;
+        if (!intersect((*level.meshes)[instances[i].mesh], local, h)) return false;
         h.instance = i;
         hit = h;
         found = true;
@@ -276,7 +293,7 @@ bool intersect_instances(const InstanceLevel& level, const Ray& ray, Hit& hit) {
 bool occluded_instances(const InstanceLevel& level, const Ray& ray) {
     const std::vector<Instance>& instances = *level.instances;
     const auto blocks = [&](std::uint32_t i) {
-        return occluded(level.meshes[instances[i].mesh], to_object(instances[i], ray));
+        return occluded((*level.meshes)[instances[i].mesh], to_object(instances[i], ray));
     };
     if (level.kind == AccelKind::Brute) {
         for (std::uint32_t i = 0; i < instances.size(); ++i)
@@ -291,7 +308,7 @@ bool occluded_instances(const InstanceLevel& level, const Ray& ray) {
 
 std::size_t instance_level_memory_bytes(const InstanceLevel& level) {
     std::size_t bytes = level.nodes.size() * sizeof(InstanceNode);
-    for (const Accel& mesh : level.meshes) bytes += accel_memory_bytes(mesh);
+    for (const Accel& mesh : *level.meshes) bytes += accel_memory_bytes(mesh);
     return bytes;
 }
 

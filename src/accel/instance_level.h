@@ -28,13 +28,19 @@ struct InstanceNode {
 
 struct InstanceLevel {
     AccelKind kind = AccelKind::Bvh;
-    std::vector<Accel> meshes;  // one per Scene::instanced_meshes, over the mesh in its coordinates
+    std::shared_ptr<const std::vector<Accel>>
+        meshes;  // one per Scene::instanced_meshes, over the mesh in its coordinates
     const std::vector<Instance>* instances = nullptr;  // Scene::instances; not owned
     std::vector<InstanceNode> nodes;  // nodes[0] is the root; empty for Brute (every instance, in order)
 };
 
 // The level for `scene`'s instances, or null when it has none.
 std::shared_ptr<const InstanceLevel> make_instance_level(const Scene& scene, AccelKind kind);
+
+// The level for `scene`'s instances as they are placed now, keeping the
+// meshes' structures of `previous` (made for the same scene's meshes):
+// what a new moment of an animation needs (spec §22).
+std::shared_ptr<const InstanceLevel> replace_instance_tree(const InstanceLevel& previous, const Scene& scene);
 
 // intersect() and occluded() over the instances only: `hit` is replaced only
 // by a hit closer than ray.tmax.

@@ -142,7 +142,29 @@ void add_output_options(CLI::App& render, CliOptions& o) {
             o.shard_count = count;
             o.sharded = true;
         },
-        "Render share I of N of the pixels into an .exr that 'sombra merge' joins with the others");
+        "Render share I of N of the pixels into an .exr that 'sombra merge' joins with the others (with --frames: "
+        "every Nth frame, from the first plus I)");
+    // Frames are whole numbers from 0 up: "A-B" stays unambiguous.
+    render.add_option("--frame", o.frame, "Render frame F of an animated scene (time F / fps, spec §22)")
+        ->check(CLI::Range(std::int64_t{0}, std::int64_t{1} << 31));
+    render.add_option_function<std::string>(
+        "--frames",
+        [&o](const std::string& text) {
+            const auto dash = text.find('-');
+            std::int64_t first = -1, last = -1;
+            const bool parsed = dash != std::string::npos && dash > 0 &&
+                                std::from_chars(text.data(), text.data() + dash, first).ptr == text.data() + dash &&
+                                std::from_chars(text.data() + dash + 1, text.data() + text.size(), last).ptr ==
+                                    text.data() + text.size();
+            if (!parsed || first < 0 || last < first || last > (std::int64_t{1} << 31) ||
+                last - first >= kMaxFrameCount)
+                throw CLI::ValidationError("--frames", "expected A-B with 0 <= A <= B and at most " +
+                                                           std::to_string(kMaxFrameCount) + " frames, not '" + text +
+                                                           "'");
+            o.first_frame = first;
+            o.last_frame = last;
+        },
+        "Render frames A to B into the output name with '#'s replaced by the frame number (out_####.png)");
 }
 
 }  // namespace
@@ -216,7 +238,17 @@ CliParse parse(int argc, const char* const* argv, std::ostream& out, std::ostrea
                 : app.got_subcommand(view)  ? Command::View
                 : app.got_subcommand(merge) ? Command::Merge
                                             : Command::Render;
-    if (o.sharded) {
+    const auto refuse = [&err](const std::string& problem) {
+        err << "sombra: error: command line: " << problem << " (see 'sombra render --help')\n";
+        return CliParse{std::nullopt, 2};
+    };
+    if (o.frame && o.first_frame) return refuse("give --frame or --frames, not both");
+    if (o.first_frame && o.output.find('#') == std::string::npos)
+        return refuse("--frames needs '#' in the output name (out_####.png): each frame's number replaces them");
+    if (o.first_frame && o.time_budget)
+        return refuse("--frames and --time cannot go together: the budget is for one image");
+    // With --frames, --shard splits the frames, and each is a whole image in any format.
+    if (o.sharded && !o.first_frame) {
         const char* problem = nullptr;
         if (std::filesystem::path(o.output).extension() != ".exr")
             problem = "--shard writes an .exr (the shard's float pixels and what merging needs)";
@@ -242,6 +274,23 @@ CliParse parse(int argc, const char* const* argv, std::ostream& out, std::ostrea
 }
 
 }  // namespace
+
+std::string frame_file_name(const std::string& output, std::int64_t frame) {
+    const std::string digits = std::to_string(frame < 0 ? -frame : frame);
+    std::string out;
+    for (std::size_t i = 0; i < output.size();) {
+        if (output[i] != '#') {
+            out += output[i++];
+            continue;
+        }
+        std::size_t run = 0;
+        while (i < output.size() && output[i] == '#') ++i, ++run;
+        if (frame < 0) out += '-';
+        if (digits.size() < run) out.append(run - digits.size(), '0');
+        out += digits;
+    }
+    return out;
+}
 
 CliParse parse_command_line(int argc, const char* const* argv) { return parse(argc, argv, std::cout, std::cerr); }
 

@@ -41,6 +41,10 @@ struct CliOptions {
     // --shard I/N (spec §21): render share I of N of the pixels; count 1 = all.
     int shard_index = 0, shard_count = 1;
     bool sharded = false;  // --shard given (0/1 included: a shard of one, for merge)
+    // Spec §22: one frame (time = frame / fps), or frames first … last
+    // written to the output name with its '#'s replaced by the frame number.
+    std::optional<std::int64_t> frame;
+    std::optional<std::int64_t> first_frame, last_frame;
     // sombra merge PART... -o OUT [--exposure E]
     std::vector<std::string> parts;
     bool quiet = false;
@@ -61,6 +65,13 @@ struct CliParse {
     std::optional<CliOptions> options;
     int exit_code = 0;
 };
+
+// The most frames one --frames range may hold.
+inline constexpr std::int64_t kMaxFrameCount = 1000000;
+
+// `output` with each run of '#' replaced by `frame`, zero-padded to the
+// run's length ("out_####.png", 7 → "out_0007.png"); unchanged without '#'.
+std::string frame_file_name(const std::string& output, std::int64_t frame);
 
 // Parses argv. Prints help/version to stdout and command-line errors as one
 // line "sombra: error: command line: ..." to stderr (exit code 2).

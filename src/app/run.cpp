@@ -65,16 +65,89 @@ void stream_passes_to(DisplayConnection& display, RenderJob& job) {
     };
 }
 
+// One image of the run: rendered, written to `output`, its counters added
+// to `stats`. Returns the exit status (non-zero when interrupted).
+int render_frame(const CliOptions& o, const Scene& scene, const Accel& accel, const RenderSettings& settings,
+                 const std::filesystem::path& output, Clock::time_point start, InterruptWatcher& interrupt,
+                 RenderProgress& progress, RunStats& stats) {
+    RenderJob job = make_render_job(scene, accel, settings, o.threads, light_selection(o));
+    job.limits = sampling_limits(o, start);
+    job.aovs = o.aovs;
+    // With --frames, --shard splits frames, not pixels (spec §21).
+    const bool pixel_shard = o.sharded && !o.first_frame;
+    if (pixel_shard) job.shard = ShardSpec{o.shard_index, o.shard_count};
+    // A shard's header says which share it is, of which render (spec §21).
+    const std::vector<ImageAttribute> shard_header =
+        pixel_shard ? shard_attributes(o, settings) : std::vector<ImageAttribute>{};
+    std::optional<DisplayConnection> display;
+    if (!o.display_server.empty()) {
+        display.emplace(*parse_display_address(o.display_server), output.filename().string(), settings.width,
+                        settings.height);
+        stream_passes_to(*display, job);
+    }
+
+    interrupt.set_phase(InterruptWatcher::Phase::Rendering);
+    const auto render_start = Clock::now();
+    RenderOutput rendered;
+    {
+        const bool show = !o.quiet && isatty(STDERR_FILENO);
+        ProgressBar bar(progress,
+                        shard_pixel_count(job.shard, settings.width, settings.height) *
+                            static_cast<std::uint64_t>(settings.spp),
+                        show, job.limits.deadline);
+        rendered = render_image(job, progress);
+    }
+    stats.render_seconds += seconds_since(render_start);
+    if (display && !rendered.cancelled)
+        display->show(ImageView{rendered.film.width, rendered.film.height, rendered.film.rgb.data()});
+    if (rendered.cancelled) {
+        const int sig = interrupt.signal_received();
+        std::cerr << "sombra: error: " << signal_name(sig) << ": interrupted, nothing written\n";
+        return interrupted_exit_status(sig);
+    }
+    interrupt.set_phase(InterruptWatcher::Phase::Writing);
+
+    const auto write_start = Clock::now();
+    write_image(output, ImageView{rendered.film.width, rendered.film.height, rendered.film.rgb.data()}, o.exposure,
+                aov_layers(rendered.aovs), shard_header);
+    stats.write_seconds += seconds_since(write_start);
+
+    stats.spp = o.time_budget && !o.spp ? static_cast<int>(rendered.max_pixel_spp) : settings.spp;
+    stats.spp_uniform = rendered.min_pixel_spp == rendered.max_pixel_spp;
+    stats.spp_reached =
+        static_cast<double>(rendered.samples) / static_cast<double>(std::max<std::uint64_t>(rendered.pixels, 1));
+    if (stats.spp_uniform) stats.spp_reached = rendered.max_pixel_spp;
+    stats.passes = rendered.passes;
+    stats.bounce_rays += rendered.counters.bounce_rays;
+    stats.camera_rays += rendered.counters.camera_rays;
+    stats.shadow_rays += rendered.counters.shadow_rays;
+    stats.nonfinite_samples += rendered.counters.nonfinite_samples;
+    return 0;
+}
+
 }  // namespace
+
+// The frames a run renders (spec §22): --frames' range (every Nth of it
+// under --shard I/N), --frame, or the scene's first frame.
+std::vector<std::int64_t> frames_to_render(const CliOptions& o, const Scene& scene) {
+    if (o.first_frame) {
+        std::vector<std::int64_t> frames;
+        const std::int64_t step = o.sharded ? o.shard_count : 1;
+        for (std::int64_t f = *o.first_frame + (o.sharded ? o.shard_index : 0); f <= *o.last_frame; f += step)
+            frames.push_back(f);
+        return frames;
+    }
+    if (o.frame) return {*o.frame};
+    return {scene.animation ? scene.animation->first_frame : 0};
+}
 
 int run_render(const CliOptions& o) {
     const auto start = Clock::now();
     RenderProgress progress;
     InterruptWatcher interrupt(progress);  // first: before any other thread starts
     return reporting_errors(o, [&] {
-        const std::filesystem::path output = o.output;
         // Fail before a long render, not after it.
-        check_output_path(output);
+        check_output_path(o.output);
         if (!o.stats_json.empty()) check_side_file_path(o.stats_json);
 
         RunStats stats;
@@ -92,70 +165,42 @@ int run_render(const CliOptions& o) {
         prepare_textures(scene, settings);
         stats.mipmap_seconds = seconds_since(mipmap_start);
 
+        // Every frame, the first included, is placed by set_scene_time, so
+        // that --frame F and frame F of --frames are the same scene bit for bit.
+        const std::vector<std::int64_t> frames = frames_to_render(o, scene);
+        const auto time_of = [&](std::int64_t frame) {
+            return static_cast<double>(frame) / (scene.animation ? scene.animation->fps : 24.0);
+        };
+        if (scene.animation && !frames.empty()) set_scene_time(scene, time_of(frames.front()), o.input);
         const auto build_start = Clock::now();
-        const Accel accel = make_accel(scene, kind);
+        Accel accel = make_accel(scene, kind);
         stats.build_seconds = seconds_since(build_start);
 
-        RenderJob job = make_render_job(scene, accel, settings, o.threads, light_selection(o));
-        job.limits = sampling_limits(o, start);
-        job.aovs = o.aovs;
-        job.shard = ShardSpec{o.shard_index, o.shard_count};
-        // A shard's header says which share it is, of which render (spec §21).
-        const std::vector<ImageAttribute> shard_header =
-            o.sharded ? shard_attributes(o, settings) : std::vector<ImageAttribute>{};
-        std::optional<DisplayConnection> display;
-        if (!o.display_server.empty()) {
-            display.emplace(*parse_display_address(o.display_server), output.filename().string(), settings.width,
-                            settings.height);
-            stream_passes_to(*display, job);
+        for (std::size_t i = 0; i < frames.size(); ++i) {
+            if (i > 0 && scene.animation) {
+                // A new moment moves instances only: the meshes' structures stay (spec §22).
+                set_scene_time(scene, time_of(frames[i]), o.input);
+                const auto refit_start = Clock::now();
+                update_instances(accel, scene);
+                stats.build_seconds += seconds_since(refit_start);
+            }
+            const std::string output = o.first_frame ? frame_file_name(o.output, frames[i]) : o.output;
+            if (const int status = render_frame(o, scene, accel, settings, output, start, interrupt, progress, stats);
+                status != 0)
+                return status;
         }
-
-        interrupt.set_phase(InterruptWatcher::Phase::Rendering);
-        const auto render_start = Clock::now();
-        RenderOutput rendered;
-        {
-            const bool show = !o.quiet && isatty(STDERR_FILENO);
-            ProgressBar bar(progress,
-                            shard_pixel_count(job.shard, settings.width, settings.height) *
-                                static_cast<std::uint64_t>(settings.spp),
-                            show, job.limits.deadline);
-            rendered = render_image(job, progress);
-        }
-        stats.render_seconds = seconds_since(render_start);
-        if (display && !rendered.cancelled)
-            display->show(ImageView{rendered.film.width, rendered.film.height, rendered.film.rgb.data()});
-        if (rendered.cancelled) {
-            const int sig = interrupt.signal_received();
-            std::cerr << "sombra: error: " << signal_name(sig) << ": interrupted, nothing written\n";
-            return interrupted_exit_status(sig);
-        }
-        interrupt.set_phase(InterruptWatcher::Phase::Writing);
-
-        const auto write_start = Clock::now();
-        write_image(output, ImageView{rendered.film.width, rendered.film.height, rendered.film.rgb.data()}, o.exposure,
-                    aov_layers(rendered.aovs), shard_header);
-        stats.write_seconds = seconds_since(write_start);
 
         stats.triangles = stored_triangle_count(scene);
         stats.instanced_triangles = drawn_triangle_count(scene);
+        stats.frames = frames.size();
         stats.width = settings.width;
         stats.height = settings.height;
-        stats.spp = o.time_budget && !o.spp ? static_cast<int>(rendered.max_pixel_spp) : settings.spp;
-        stats.spp_uniform = rendered.min_pixel_spp == rendered.max_pixel_spp;
-        stats.spp_reached =
-            static_cast<double>(rendered.samples) / static_cast<double>(std::max<std::uint64_t>(rendered.pixels, 1));
-        if (stats.spp_uniform) stats.spp_reached = rendered.max_pixel_spp;
-        stats.passes = rendered.passes;
         stats.threads = o.threads > 0 ? o.threads : tbb::info::default_concurrency();
         stats.accel = std::string(accel_name(kind));
         stats.accel_bytes = accel_memory_bytes(accel);
         stats.integrator = settings.integrator == IntegratorKind::Path ? "path" : "direct";
         stats.max_depth = settings.max_depth;
         stats.texture_filter = settings.texture_filter == TextureFilter::Mipmap ? "mipmap" : "bilinear";
-        stats.bounce_rays = rendered.counters.bounce_rays;
-        stats.camera_rays = rendered.counters.camera_rays;
-        stats.shadow_rays = rendered.counters.shadow_rays;
-        stats.nonfinite_samples = rendered.counters.nonfinite_samples;
         stats.peak_rss_bytes = peak_rss_bytes();
         stats.total_seconds = seconds_since(start);
         if (!o.stats_json.empty()) write_stats_json(o.stats_json, stats);

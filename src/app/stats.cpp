@@ -15,6 +15,7 @@ void write_stats_json(const std::filesystem::path& path, const RunStats& s) {
     const nlohmann::ordered_json j = {
         {"triangles", s.triangles},
         {"instanced_triangles", s.instanced_triangles},
+        {"frames", s.frames},
         {"width", s.width},
         {"height", s.height},
         {"spp", s.spp},
@@ -72,10 +73,10 @@ std::string summary_line(const RunStats& s, const std::string& output) {
     char rate[48];
     std::snprintf(rate, sizeof rate, "%.1f Mrays/s", mrays);
     return "sombra: " + thousands(s.triangles) + " triangles, " + std::to_string(s.width) + "x" +
-           std::to_string(s.height) + " at " + samples_text(s) +
-           (s.passes > 1 ? " in " + std::to_string(s.passes) + " passes" : std::string()) + ", " + s.integrator +
-           " | load " + seconds(s.load_seconds) + ", build " + seconds(s.build_seconds) + ", render " +
-           seconds(s.render_seconds) + " (" + rate + ", " + std::to_string(s.threads) +
+           std::to_string(s.height) + (s.frames > 1 ? " × " + std::to_string(s.frames) + " frames" : std::string()) +
+           " at " + samples_text(s) + (s.passes > 1 ? " in " + std::to_string(s.passes) + " passes" : std::string()) +
+           ", " + s.integrator + " | load " + seconds(s.load_seconds) + ", build " + seconds(s.build_seconds) +
+           ", render " + seconds(s.render_seconds) + " (" + rate + ", " + std::to_string(s.threads) +
            (s.threads == 1 ? " thread), write " : " threads), write ") + seconds(s.write_seconds) + " | wrote " +
            output;
 }

@@ -11,6 +11,7 @@ namespace sombra {
 struct RunStats {
     std::uint64_t triangles = 0;            // stored (spec §23)
     std::uint64_t instanced_triangles = 0;  // drawn: equal to triangles without instances
+    std::uint64_t frames = 1;               // images rendered (spec §22: --frames)
     int width = 0, height = 0;
     int spp = 0;  // asked for; under --time without --spp, the most a pixel took
     // Spec §18: the mean samples a pixel took (integral when all took the

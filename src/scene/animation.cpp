@@ -164,7 +164,8 @@ Transform interpolate_transform(std::span<const TransformKey> keys, double time)
 }
 
 CameraSpec interpolate_camera(std::span<const CameraKey> keys, double time) {
-    const auto [i, u] = bracket(keys, time);
+    const auto [i, weight] = bracket(keys, time);
+    const double u = weight;  // a plain variable: lambdas may not capture a structured binding (C++17)
     const CameraKey& a = keys[i];
     const CameraKey& b = u == 0.0 ? a : keys[i + 1];
     const auto mix = [u](float x, float y) { return static_cast<float>(lerp(x, y, u)); };

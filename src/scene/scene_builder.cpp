@@ -194,7 +194,9 @@ MeshProblem SceneBuilder::add_instanced_mesh(const TriangleMesh& in, std::span<c
                 const Vec3 c{corner & 1 ? hi.x : lo.x, corner & 2 ? hi.y : lo.y, corner & 4 ? hi.z : lo.z};
                 if (!is_finite(transform_point(to_world, c))) return fail(MeshProblem::NonFinitePlacement);
             }
-        Instance placed{mesh_index, object_index};
+        Instance placed;
+        placed.mesh = mesh_index;
+        placed.object = object_index;
         if (!place_instance(placed, to_world)) return fail(MeshProblem::SingularInstance);
         scene_.instances.push_back(placed);
     }
