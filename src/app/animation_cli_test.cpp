@@ -60,6 +60,16 @@ TEST_F(AnimationCli, WithoutAFrameTheFirstFrameRendersAndStatisticsCountFrames) 
     for (const char* name : {"g0.png", "g1.png", "g2.png"}) EXPECT_TRUE(fs::exists(dir_ / name)) << name;
 }
 
+TEST_F(AnimationCli, ExplainTellsAFramesStory) {
+    const RunResult first = run("explain a.json 20 12 --json --frame 1");
+    const RunResult later = run("explain a.json 20 12 --json --frame 5");
+    const RunResult plain = run("explain a.json 20 12 --json");
+    ASSERT_EQ(first.status, 0) << first.err;
+    ASSERT_EQ(later.status, 0) << later.err;
+    EXPECT_NE(first.out, later.out);
+    EXPECT_EQ(first.out, plain.out) << "without --frame: the scene's first frame";
+}
+
 TEST_F(AnimationCli, ShardsSplitFramesWhenFramesAreGiven) {
     for (int i = 0; i < 3; ++i)
         ASSERT_EQ(run("render a.json -q --frames 1-6 --shard " + std::to_string(i) + "/3 -o s_#.pfm").status, 0);

@@ -41,6 +41,8 @@ std::string one_line(std::string text) {
 
 // The options of §1 that decide what is rendered; `render` and `explain` share them.
 void add_render_options(CLI::App& command, CliOptions& o) {
+    command.add_option("--frame", o.frame, "Frame F of an animated scene (time F / fps, spec §22)")
+        ->check(CLI::Range(std::int64_t{0}, std::int64_t{1} << 31));
     command.add_option("--width", o.width, "Image width in pixels (overrides the scene)");
     command.add_option("--height", o.height, "Image height in pixels (overrides the scene)");
     command.add_option("--spp", o.spp, "Samples per pixel (overrides the scene)");
@@ -145,8 +147,6 @@ void add_output_options(CLI::App& render, CliOptions& o) {
         "Render share I of N of the pixels into an .exr that 'sombra merge' joins with the others (with --frames: "
         "every Nth frame, from the first plus I)");
     // Frames are whole numbers from 0 up: "A-B" stays unambiguous.
-    render.add_option("--frame", o.frame, "Render frame F of an animated scene (time F / fps, spec §22)")
-        ->check(CLI::Range(std::int64_t{0}, std::int64_t{1} << 31));
     render.add_option_function<std::string>(
         "--frames",
         [&o](const std::string& text) {

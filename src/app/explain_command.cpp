@@ -41,6 +41,7 @@ int run_explain(const CliOptions& o) {
         print_warnings(diag, scene, settings, o);
         check_explain_pixel(o, settings);
         prepare_textures(scene, settings);  // the lookups must be the render's
+        move_to_frame(scene, o);
 
         const Accel accel = make_accel(scene, *parse_accel_kind(o.accel));
         const RenderJob job = make_render_job(scene, accel, settings, o.threads, light_selection(o));

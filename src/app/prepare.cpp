@@ -98,6 +98,15 @@ void prepare_textures(Scene& scene, const RenderSettings& settings) {
     if (settings.texture_filter == TextureFilter::Mipmap) build_mip_pyramids(scene.textures);
 }
 
+double frame_time(const Scene& scene, std::int64_t frame) {
+    return static_cast<double>(frame) / (scene.animation ? scene.animation->fps : 24.0);
+}
+
+void move_to_frame(Scene& scene, const CliOptions& options) {
+    if (!scene.animation) return;
+    set_scene_time(scene, frame_time(scene, options.frame.value_or(scene.animation->first_frame)), options.input);
+}
+
 LightSelection light_selection(const CliOptions& o) {
     return o.light_tree == "on"    ? LightSelection::Tree
            : o.light_tree == "off" ? LightSelection::Power

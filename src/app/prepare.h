@@ -53,6 +53,13 @@ void check_explain_pixel(const CliOptions& options, const RenderSettings& settin
 // TextureFilter::Mipmap (scene/texture_mipmap.h), nothing otherwise.
 void prepare_textures(Scene& scene, const RenderSettings& settings);
 
+// The moment of `frame` in seconds: frame / fps (24 without an "animation").
+double frame_time(const Scene& scene, std::int64_t frame);
+
+// Moves an animated scene to --frame's moment, or its first frame's
+// (spec §22); a scene without animation is left as it is. Throws Error.
+void move_to_frame(Scene& scene, const CliOptions& options);
+
 // The light choice --light-tree asks for.
 LightSelection light_selection(const CliOptions& options);
 

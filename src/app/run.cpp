@@ -168,9 +168,7 @@ int run_render(const CliOptions& o) {
         // Every frame, the first included, is placed by set_scene_time, so
         // that --frame F and frame F of --frames are the same scene bit for bit.
         const std::vector<std::int64_t> frames = frames_to_render(o, scene);
-        const auto time_of = [&](std::int64_t frame) {
-            return static_cast<double>(frame) / (scene.animation ? scene.animation->fps : 24.0);
-        };
+        const auto time_of = [&](std::int64_t frame) { return frame_time(scene, frame); };
         if (scene.animation && !frames.empty()) set_scene_time(scene, time_of(frames.front()), o.input);
         const auto build_start = Clock::now();
         Accel accel = make_accel(scene, kind);

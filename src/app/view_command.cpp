@@ -22,6 +22,7 @@ int run_view(const CliOptions& o) {
         const RenderSettings settings = resolve_settings(input.settings, o);
         print_warnings(diag, scene, settings, o);
         prepare_textures(scene, settings);
+        move_to_frame(scene, o);
         const Accel accel = make_accel(scene, *parse_accel_kind(o.accel));
 
         ViewServerOptions options;

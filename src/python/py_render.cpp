@@ -40,6 +40,15 @@ CliOptions parse_with_input(const char* command, const PyScene& scene, const std
 // The scene, read-locked for a render; its mip pyramids built first (under
 // the write lock, once) when the settings ask for them, as prepare_textures
 // does for the command line.
+// A scene's render lock: shared, so renders of one scene run together;
+// but an animated scene is moved to the asked frame first (spec §22), and
+// holds its lock alone while it renders at that moment.
+struct RenderLock {
+    std::shared_lock<std::shared_mutex> shared;
+    std::unique_lock<std::shared_mutex> alone;
+};
+RenderLock lock_at_frame(PyScene& scene, const RenderSettings& settings, const CliOptions& options);
+
 std::shared_lock<std::shared_mutex> lock_for_render(PyScene& scene, const RenderSettings& settings) {
     if (settings.texture_filter == TextureFilter::Mipmap) {
         const std::unique_lock write(scene.access);
@@ -49,6 +58,17 @@ std::shared_lock<std::shared_mutex> lock_for_render(PyScene& scene, const Render
         }
     }
     return std::shared_lock(scene.access);
+}
+
+RenderLock lock_at_frame(PyScene& scene, const RenderSettings& settings, const CliOptions& options) {
+    if (!scene.loaded.scene.animation) return {lock_for_render(scene, settings), {}};
+    std::unique_lock alone(scene.access);
+    if (settings.texture_filter == TextureFilter::Mipmap && !scene.mip_pyramids_built) {
+        prepare_textures(scene.loaded.scene, settings);
+        scene.mip_pyramids_built = true;
+    }
+    move_to_frame(scene.loaded.scene, options);
+    return {{}, std::move(alone)};
 }
 
 // Runs `work` on its own thread with the GIL released; every kPollInterval
@@ -98,7 +118,7 @@ py::object render(const std::shared_ptr<PyScene>& scene, const std::vector<std::
                                 static_cast<std::uint64_t>(settings.height) * static_cast<std::uint64_t>(settings.spp);
     run_watched(
         [&] {
-            const auto lock = lock_for_render(*scene, settings);
+            const RenderLock lock = lock_at_frame(*scene, settings, o);
             const Scene& s = scene->loaded.scene;
             const Accel accel = make_accel(s, *parse_accel_kind(o.accel));  // the parser checked the name
             RenderJob job = make_render_job(s, accel, settings, o.threads, light_selection(o));
@@ -132,7 +152,7 @@ std::string explain(const std::shared_ptr<PyScene>& scene, const std::vector<std
     const RenderSettings settings = resolve_settings(scene->loaded.settings, o);
     check_explain_pixel(o, settings);
     py::gil_scoped_release release;
-    const auto lock = lock_for_render(*scene, settings);
+    const RenderLock lock = lock_at_frame(*scene, settings, o);
     const Scene& s = scene->loaded.scene;
     const Accel accel = make_accel(s, *parse_accel_kind(o.accel));
     const RenderJob job = make_render_job(s, accel, settings, o.threads, light_selection(o));

@@ -373,8 +373,12 @@ LoadedScene load_scene_text(const std::string& text, const fs::path& path, Diagn
     for (std::size_t i = 0; i < quad_meshes.size(); ++i)
         add_object(builder, quad_meshes[i], quad_specs[i], s, animation);
     out.scene = builder.finish();
-    if (find_member(root, "animation") || !animation.objects.empty() || !animation.camera.empty())
+    if (find_member(root, "animation") || !animation.objects.empty() || !animation.camera.empty()) {
         out.scene.animation = std::move(animation);
+        // Placed as every later moment will be, so that the first frame is
+        // the same scene however it is reached (spec §22).
+        set_scene_time(out.scene, start_time, s.name);
+    }
     return out;
 }
 

@@ -34,6 +34,7 @@ _RUN_OPTIONS = {
     "threads": ("--threads", _INT),
     "accel": ("--accel", _STR),
     "light_tree": ("--light-tree", _STR),
+    "frame": ("--frame", _INT),
 }
 _RENDER_OPTIONS = {
     **_RUN_OPTIONS,

@@ -1,5 +1,6 @@
 """sombra.render against `sombra render`: the same floats, the AOVs, the time budget."""
 
+import json
 import time
 
 import numpy as np
@@ -107,3 +108,21 @@ def test_a_quick_looks_camera_is_the_framing_it_chose():
     assert set(camera) == {"origin", "look_at", "up", "fov"}
     assert camera["fov"] == pytest.approx(40)
     assert camera["origin"][2] > camera["look_at"][2]  # in front of the model (+z)
+
+
+def test_a_frame_of_an_animated_scene_is_the_command_lines(tmp_path):
+    (tmp_path / "square.obj").write_text("v -1 -1 0\nv 1 -1 0\nv 1 1 0\nv -1 1 0\nf 1 2 3 4\n")
+    keyed = {"keys": [{"time": 0, "transform": [{"scale": 0.5}]},
+                      {"time": 1, "transform": [{"rotate": {"axis": [0, 1, 0], "degrees": 60}}, {"translate": [0.5, 0, 0]}]}]}
+    scene = {"render": {"width": 24, "height": 16, "spp": 2}, "animation": {"fps": 4, "frames": [0, 4]},
+             "camera": {"origin": [0, 0, 4], "look_at": [0, 0, 0], "fov": 50},
+             "lights": [{"type": "point", "position": [0, 1, 3], "intensity": [8, 8, 8]}],
+             "objects": [{"file": "square.obj", "transform": keyed}]}
+    (tmp_path / "a.json").write_text(json.dumps(scene))
+    s = sombra.load(tmp_path / "a.json")
+    frames = {f: sombra.render(s, frame=f) for f in (0, 3)}
+    assert frames[0].tobytes() != frames[3].tobytes()
+    assert sombra.render(s).tobytes() == frames[0].tobytes()  # the first frame without one
+    status, _, err = run_cli("render", tmp_path / "a.json", "-q", "--frame", 3, "-o", tmp_path / "f3.pfm")
+    assert status == 0, err
+    assert frames[3].tobytes() == read_pfm(tmp_path / "f3.pfm").tobytes()
