@@ -190,7 +190,19 @@ void set_scene_time(Scene& scene, double time, const std::string& scene_name) {
                                             " s the interpolated transform is not invertible");
         }
     }
-    if (!animation.camera.empty()) scene.camera = interpolate_camera(animation.camera, time);
+    if (animation.camera.empty()) return;
+    const CameraSpec camera = interpolate_camera(animation.camera, time);
+    // Each key was checked as a camera; a blend of two can still lose its
+    // frame (look_at meeting origin, up turning along the view): refused
+    // as the scene file's reader refuses such a key (1e-3 of parallel).
+    const CameraLookAt& c = *camera.look_at;
+    const Vec3 view = c.look_at - c.origin;
+    const float cross_len = length(cross(c.up, view)), scale = length(c.up) * length(view);
+    if (!(scale > 0.0f) || !(cross_len > 1e-3f * scale))
+        throw Error(scene_name, "/camera: at " + std::to_string(time) +
+                                    " s the blended camera has no frame (look_at meets origin, or up lies along "
+                                    "the view)");
+    scene.camera = camera;
 }
 
 }  // namespace sombra

@@ -79,6 +79,18 @@ TEST(Animation, CameraValuesBlendLinearly) {
     EXPECT_EQ(interpolate_camera(keys, 7.0).look_at->origin, (Vec3{4, 1, 1}));
 }
 
+TEST(Animation, ACameraBlendWithoutAFrameIsRefused) {
+    Scene scene;
+    SceneAnimation animation;
+    // up turns from +y to -y: at 1 s it is zero.
+    animation.camera = {CameraKey{0.0, {0, 0, 5}, {0, 0, 0}, {0, 1, 0}, 40, 0, std::nullopt},
+                        CameraKey{2.0, {0, 0, 5}, {0, 0, 0}, {0, -1, 0}, 40, 0, std::nullopt}};
+    scene.animation = animation;
+    set_scene_time(scene, 0.5, "s.json");
+    EXPECT_EQ(scene.camera.look_at->up, (Vec3{0, 0.5f, 0}));
+    EXPECT_THROW(set_scene_time(scene, 1.0, "s.json"), Error);
+}
+
 TEST(Animation, SetSceneTimeMovesInstancesAndRefusesASingularMoment) {
     Scene scene;
     scene.instanced_meshes.emplace_back();
