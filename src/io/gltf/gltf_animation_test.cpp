@@ -13,6 +13,7 @@
 
 #include "../../../fuzz/fuzz_harness.h"
 #include "io/gltf/gltf.h"
+#include "io/gltf/gltf_instancing_test_files.h"
 #include "io/gltf/gltf_test_files.h"
 #include "io/mesh_file.h"
 #include "io/polygon_test_files.h"
@@ -153,6 +154,27 @@ TEST(GltfAnimation, RotationsMayBeNormalizedShortsAndAreNormalised) {
     LoadedScene s = quick_look(f, dir, diag);
     set_scene_time(s.scene, 0.5, "scene");
     expect_near(s.scene.instances[0].object_to_world, make_rotate(Vec3{0, 1, 0}, 45));
+}
+
+TEST(GltfAnimation, GpuInstancesActBeforeTheirAnimatedNode) {
+    GltfFile f =
+        gltf_test::instancing::gpu_instanced_file();  // node 0 at rest: translation (0, 0, -1), scale (1, 2, 1)
+    add_channel(f, add_sampler(f, {0, 1}, {0, 0, -1, 0, 4, -1}, "VEC3", "LINEAR"), 0, "translation");
+    TempFolder dir;
+    Diagnostics diag;
+    LoadedScene s = quick_look(f, dir, diag);
+    ASSERT_EQ(s.scene.instances.size(), std::size_t(gltf_test::kInstances));
+    set_scene_time(s.scene, 0.5, "scene");
+    const Transform node = compose(make_scale(Vec3{1, 2, 1}), make_translate(Vec3{0, 2, -1}));
+    for (int k = 0; k < gltf_test::kInstances; ++k) {
+        SCOPED_TRACE(k);
+        const gltf_test::instancing::Trs trs = gltf_test::instancing::instance_trs(k);
+        const std::optional<Transform> local =
+            gltf::trs_transform(trs.t, trs.q[0], trs.q[1], trs.q[2], trs.q[3], trs.s);
+        ASSERT_TRUE(local);
+        expect_near(s.scene.instances[std::size_t(k)].object_to_world, compose(*local, node), 1e-5f);
+        EXPECT_EQ(s.scene.instances[std::size_t(k)].mirrored, k == 3);
+    }
 }
 
 TEST(GltfAnimation, AnObjectsTransformActsAfterTheNodesAndTheSceneStartsAtItsFirstFrame) {
