@@ -12,6 +12,10 @@ namespace sombra::gltf {
 
 namespace {
 
+// Key values kept for all samplers: samplers may share one accessor, so the
+// file's bytes alone do not bound what reading each of them costs.
+constexpr std::size_t kMaxKeyValues = std::size_t{1} << 26;
+
 GltfNodeAnimation::Node rest_of(const tinygltf::Node& n, int parent) {
     GltfNodeAnimation::Node out;
     out.parent = parent;
@@ -29,7 +33,7 @@ GltfNodeAnimation::Node rest_of(const tinygltf::Node& n, int parent) {
 
 // Sampler `index` of `animation`, read for a rotation or a 3-vector.
 GltfSampler read_sampler(const AccessorReader& r, const tinygltf::Animation& animation, int index, bool rotation,
-                         const std::string& where) {
+                         const std::string& where, std::size_t& budget) {
     const tinygltf::AnimationSampler& s = animation.samplers[std::size_t(index)];
     const auto fail = [&](const std::string& what) { throw Error(r.file, where + ": " + what); };
     GltfSampler out;
@@ -43,6 +47,12 @@ GltfSampler read_sampler(const AccessorReader& r, const tinygltf::Animation& ani
         fail("unknown interpolation '" + s.interpolation + "' (LINEAR, STEP or CUBICSPLINE)");
     if (s.input < 0) fail("has no input accessor");
     if (s.output < 0) fail("has no output accessor");
+    // Counted before anything is read.
+    const std::size_t in = accessor_count(r, s.input, where + " input");
+    const std::size_t out_count = accessor_count(r, s.output, where + " output");
+    if (in > budget || out_count > budget / 4 || in + out_count * 4 > budget)
+        fail("the file's animations hold more than " + std::to_string(kMaxKeyValues) + " key values");
+    budget -= in + out_count * 4;
     out.times = read_floats(r, s.input, Semantic::KeyTimes, where + " input");
     if (out.times.empty()) fail("the input has no key times");
     for (std::size_t k = 1; k < out.times.size(); ++k)
@@ -75,6 +85,7 @@ std::shared_ptr<GltfNodeAnimation> read_animations(const AccessorReader& r, cons
     if (model.animations.empty()) return nullptr;
     auto out = std::make_shared<GltfNodeAnimation>();
     const std::size_t count = model.nodes.size();
+    std::size_t budget = kMaxKeyValues;
     std::vector<int> parent(count, -1);  // the loader's walk checked the tree
     for (std::size_t i = 0; i < count; ++i)
         for (const int child : model.nodes[i].children)
@@ -123,7 +134,7 @@ std::shared_ptr<GltfNodeAnimation> read_animations(const AccessorReader& r, cons
                 read.try_emplace({channel.sampler, rotation}, std::uint32_t(out->samplers.size()));
             if (is_new) {
                 out->samplers.push_back(read_sampler(r, animation, channel.sampler, rotation,
-                                                     name + ": sampler " + std::to_string(channel.sampler)));
+                                                     name + ": sampler " + std::to_string(channel.sampler), budget));
                 out->end_time = std::max(out->end_time, double(out->samplers.back().times.back()));
             }
             out->channels.push_back({std::uint32_t(channel.target_node), kind, it->second});

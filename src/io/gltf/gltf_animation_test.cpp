@@ -299,6 +299,9 @@ const HostileCase kHostile[] = {
          overwrite(f, output_of(f, 1), {0, 0, 0, 0, 0, kS45, 0, kC45});
      },
      "animation 0: sampler 1: key 0 is not a unit quaternion"},
+    {"a count of 2^62, counted before it is read",
+     [](GltfFile& f) { f.doc["accessors"][output_of(f, 0)]["count"] = std::size_t{1} << 62; },
+     "animation 0: sampler 0: the file's animations hold more than 67108864 key values"},
     {"channel not an object", [](GltfFile& f) { f.doc["animations"][0]["channels"][0] = 3; },
      "/animations/0/channels/0"},
 };
