@@ -210,6 +210,14 @@ std::vector<Transform> gpu_instances(const AccessorReader& r, const tinygltf::No
 std::shared_ptr<GltfNodeAnimation> read_animations(const AccessorReader& r, const std::vector<std::uint32_t>& order,
                                                    std::map<std::string, std::size_t>& skipped);
 
+// Which nodes move (a channel targets them or an ancestor: 1) and every
+// node's world transform at time 0; nothing moves without an animation.
+struct Motion {
+    std::vector<char> moving;
+    std::vector<Transform> at_start;
+};
+Motion motion_of(const GltfNodeAnimation* animation, std::size_t node_count);
+
 // A JSON number that must be an integer in [lo, hi] (tinygltf's own
 // conversion of a huge double to int is undefined behaviour).
 std::optional<int> value_int(const tinygltf::Value& v, int lo, int hi);

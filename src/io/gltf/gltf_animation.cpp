@@ -144,4 +144,15 @@ std::shared_ptr<GltfNodeAnimation> read_animations(const AccessorReader& r, cons
     return out;
 }
 
+Motion motion_of(const GltfNodeAnimation* animation, std::size_t node_count) {
+    Motion out{std::vector<char>(node_count, 0), {}};
+    if (!animation) return out;
+    for (const GltfChannel& c : animation->channels) out.moving[c.node] = 1;
+    for (const std::uint32_t n : animation->order)  // parents first
+        if (const int parent = animation->nodes[n].parent; parent >= 0 && out.moving[std::size_t(parent)])
+            out.moving[n] = 1;
+    out.at_start = gltf_node_worlds(*animation, 0.0);
+    return out;
+}
+
 }  // namespace sombra::gltf

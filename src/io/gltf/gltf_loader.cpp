@@ -29,7 +29,6 @@ constexpr std::size_t kMaxInstancedTriangles = std::size_t{1} << 26;
 struct NodePlacement {
     int node;
     Transform world;  // node → the file's world space
-    int parent = -1;
 };
 
 std::string node_name(int node) { return "node " + std::to_string(node); }
@@ -119,7 +118,7 @@ std::vector<NodePlacement> walk_nodes(const tinygltf::Model& model, const std::s
         if (parent[std::size_t(*root)] != -1)
             throw Error(file, "the scene's root " + node_name(*root) + " is a child of " +
                                   node_name(parent[std::size_t(*root)]));
-        stack.push_back({*root, Transform{}, -1});
+        stack.push_back({*root, Transform{}});
     }
     while (!stack.empty()) {
         NodePlacement top = stack.back();
@@ -130,7 +129,7 @@ std::vector<NodePlacement> walk_nodes(const tinygltf::Model& model, const std::s
         top.world = compose(local_transform(n, top.node, file), top.world);
         out.push_back(top);
         for (auto child = n.children.rbegin(); child != n.children.rend(); ++child)
-            stack.push_back({*child, top.world, top.node});
+            stack.push_back({*child, top.world});
     }
     return out;
 }
@@ -251,16 +250,10 @@ LoadedMesh load_gltf(const std::filesystem::path& path, Diagnostics& diag) {
     std::vector<std::uint32_t> order;
     for (const NodePlacement& in : placements) order.push_back(std::uint32_t(in.node));
     std::shared_ptr<const GltfNodeAnimation> animation = gltf::read_animations(reader, order, skipped);
-    std::vector<char> animated(model.nodes.size(), 0);
-    std::vector<Transform> at_start;  // each node's world transform at time 0
-    if (animation) {
-        for (const GltfChannel& c : animation->channels) animated[c.node] = 1;
-        for (const NodePlacement& in : placements)
-            if (in.parent >= 0 && animated[std::size_t(in.parent)]) animated[std::size_t(in.node)] = 1;
-        at_start = gltf_node_worlds(*animation, 0.0);
-    }
+    const gltf::Motion motion = gltf::motion_of(animation.get(), model.nodes.size());
+    const std::vector<char>& animated = motion.moving;
     const auto world_of = [&](const NodePlacement& in) {
-        return animated[std::size_t(in.node)] ? at_start[std::size_t(in.node)] : in.world;
+        return animated[std::size_t(in.node)] ? motion.at_start[std::size_t(in.node)] : in.world;
     };
 
     // How often each mesh is drawn: once per node, or once per instance of
