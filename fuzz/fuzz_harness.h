@@ -228,12 +228,25 @@ inline std::string instance_transform_problem(const Transform& t) {
 }
 
 // "" when a mesh file's instanced parts are usable: each a mesh as good as
-// the flattened one, drawn at least twice, its origins covering its instances.
+// the flattened one, drawn at least twice (once if animated), its origins
+// covering its instances.
 inline std::string parts_problem(const LoadedMesh& loaded) {
     for (const InstancedPart& part : loaded.instanced) {
         if (std::string problem = mesh_problem(part.mesh, loaded.materials.size()); !problem.empty())
             return "instanced part: " + problem;
-        if (part.instances.size() < 2) return "an instanced part drawn fewer than twice";
+        // A part a glTF animation moves may be drawn once (spec §22).
+        if (part.instances.size() < (part.nodes.empty() ? 2u : 1u)) return "an instanced part drawn fewer than twice";
+        if (!part.nodes.empty() && (!loaded.animation || part.nodes.size() != part.instances.size() ||
+                                    part.local.size() != part.instances.size()))
+            return "an animated part without one node per instance";
+        for (const std::uint32_t n : part.nodes)
+            if (n >= loaded.animation->nodes.size()) return "an animated part's node out of range";
+        // Evaluated before, inside and after the keys, for the sanitizers (a
+        // singular moment is the renderer's error to report, not a bug).
+        if (&part == &loaded.instanced.front() && !part.nodes.empty())
+            for (const double t : {-1.0, 0.5 * loaded.animation->end_time, loaded.animation->end_time + 1})
+                if (gltf_node_worlds(*loaded.animation, t).size() != loaded.animation->nodes.size())
+                    return "node transforms missing";
         if (part.origins.empty() || part.origins[0].first != 0) return "instances without an origin";
         for (const Transform& t : part.instances)
             if (std::string problem = instance_transform_problem(t); !problem.empty()) return problem;

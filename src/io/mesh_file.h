@@ -4,12 +4,14 @@
 #pragma once
 
 #include <filesystem>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "core/error.h"
 #include "core/vec3.h"
+#include "scene/gltf_animation.h"
 #include "scene/light.h"
 #include "scene/material.h"
 #include "scene/mesh.h"
@@ -32,8 +34,14 @@ struct ModelCamera {
 // EXT_mesh_gpu_instancing; spec §23), stored once in its own coordinates.
 struct InstancedPart {
     TriangleMesh mesh;  // material_ids index LoadedMesh::materials
-    // Each: the mesh's coordinates → the file's; at least two.
+    // Each: the mesh's coordinates → the file's (animated: at time 0); at
+    // least two, or one drawn by an animated node.
     std::vector<Transform> instances;
+    // Animated parts (some node animated, LoadedMesh::animation): per
+    // instance, the node drawing it and what acts before the node's world
+    // transform (EXT_mesh_gpu_instancing's, else the identity). Empty: static.
+    std::vector<std::uint32_t> nodes{};
+    std::vector<Transform> local{};
     // Who placed instances[k], for messages: the last origin with
     // first <= k; `numbered` origins (GPU instancing) also name k − first.
     struct Origin {
@@ -63,6 +71,9 @@ struct LoadedMesh {
     // file's coordinates (glTF; none for OBJ and PLY).
     std::vector<PunctualLight> lights;
     std::optional<ModelCamera> camera;
+    // The file's node animations (glTF, spec §22), which the parts with
+    // `nodes` follow; none when the file has no animation.
+    std::shared_ptr<const GltfNodeAnimation> animation{};
 };
 
 // Reads an OBJ file and the MTL files it names (spec §5, §9). Polygons are

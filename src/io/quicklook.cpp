@@ -70,8 +70,23 @@ LoadedScene make_quicklook_scene(const std::filesystem::path& model, Diagnostics
     // The model is the world, in its own coordinates: it moves in as it is.
     const MeshPlacement placement{model.filename().string(), model.string(), std::nullopt, std::nullopt};
     // Meshes drawn several times are stored once (spec §23); their errors
-    // name the node that placed the instance.
+    // name the node that placed the instance. Parts the file animates
+    // follow its nodes (spec §22): all its animations at 24 fps, frames 0
+    // to the last key time × 24 rounded up.
+    std::optional<SceneAnimation> animation;
+    if (loaded.animation)
+        animation = SceneAnimation{
+            24.0, 0, static_cast<std::int64_t>(std::ceil(std::min(loaded.animation->end_time, 1e6) * 24.0)), {}, {}};
     for (const InstancedPart& part : loaded.instanced) {
+        if (animation && !part.nodes.empty())
+            animation->objects.push_back(AnimatedObject{model.filename().string(),
+                                                        static_cast<std::uint32_t>(builder.scene().instances.size()),
+                                                        {TransformKey{}},
+                                                        part.local,
+                                                        std::vector<Transform>(part.local.size()),
+                                                        loaded.animation,
+                                                        part.nodes,
+                                                        model.string()});
         std::size_t bad = 0;
         switch (
             builder.add_instanced_mesh(part.mesh, loaded.materials, loaded.textures, placement, part.instances, &bad)) {
@@ -118,6 +133,7 @@ LoadedScene make_quicklook_scene(const std::filesystem::path& model, Diagnostics
     builder.set_camera(camera);
     if (!loaded.lights.empty()) {
         out.scene = builder.finish();
+        out.scene.animation = std::move(animation);
         return out;
     }
 
@@ -131,6 +147,7 @@ LoadedScene make_quicklook_scene(const std::filesystem::path& model, Diagnostics
     builder.add_light(light_at({1.2f, 0.3f, 1.0f}, 4.0f, 0.35f));  // fill: right, low
     builder.add_light(light_at({0.3f, 1.2f, -1.2f}, 4.0f, 0.5f));  // rim: behind, above
     out.scene = builder.finish();
+    out.scene.animation = std::move(animation);
     return out;
 }
 

@@ -181,13 +181,25 @@ CameraSpec interpolate_camera(std::span<const CameraKey> keys, double time) {
 void set_scene_time(Scene& scene, double time, const std::string& scene_name) {
     if (!scene.animation) return;
     const SceneAnimation& animation = *scene.animation;
+    // A glTF file's parts share its animation: its nodes are evaluated once.
+    const GltfNodeAnimation* evaluated = nullptr;
+    std::vector<Transform> worlds;
     for (const AnimatedObject& object : animation.objects) {
         const Transform keyed = interpolate_transform(object.keys, time);
+        if (object.gltf && object.gltf.get() != evaluated) {
+            worlds = gltf_node_worlds(*object.gltf, time);
+            evaluated = object.gltf.get();
+        }
         for (std::size_t k = 0; k < object.after.size(); ++k) {
             Instance& instance = scene.instances[object.first_instance + k];
-            if (!place_instance(instance, compose(compose(object.before[k], keyed), object.after[k])))
-                throw Error(scene_name, object.name + "/transform: at " + std::to_string(time) +
-                                            " s the interpolated transform is not invertible");
+            const Transform node = object.gltf ? compose(object.before[k], worlds[object.nodes[k]]) : object.before[k];
+            if (place_instance(instance, compose(compose(node, keyed), object.after[k]))) continue;
+            if (object.gltf)
+                throw Error(scene_name, object.name + ": " + object.file + ": node " + std::to_string(object.nodes[k]) +
+                                            ": at " + std::to_string(time) +
+                                            " s the animated transform is not invertible");
+            throw Error(scene_name, object.name + "/transform: at " + std::to_string(time) +
+                                        " s the interpolated transform is not invertible");
         }
     }
     if (animation.camera.empty()) return;

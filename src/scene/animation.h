@@ -6,11 +6,13 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <span>
 #include <string>
 #include <vector>
 
+#include "scene/gltf_animation.h"
 #include "scene/transform.h"
 
 namespace sombra {
@@ -33,16 +35,22 @@ struct CameraKey {
     std::optional<float> focus_distance;
 };
 
-// An object whose transform is keyed: it is stored as instanced meshes
-// (scene/scene.h) so that a new moment moves its instances and keeps its
-// meshes' structures. Its instance k (Scene::instances[first_instance + k])
-// is before[k], then the keyed transform, then after[k]: a glTF file's own
-// placement of the mesh, and the object's "instances" entry.
+// An object whose transform is keyed, or a glTF part whose nodes are
+// animated: it is stored as instanced meshes (scene/scene.h) so that a new
+// moment moves its instances and keeps its meshes' structures. Its instance
+// k (Scene::instances[first_instance + k]) is before[k], then (with `gltf`)
+// node nodes[k]'s world transform at that moment, then the keyed
+// transform, then after[k]: a glTF file's own placement of the mesh (with
+// `gltf`: EXT_mesh_gpu_instancing's, before the node), the object's
+// transform, and its "instances" entry.
 struct AnimatedObject {
     std::string name;  // the scene file's pointer, for messages
     std::uint32_t first_instance = 0;
     std::vector<TransformKey> keys;  // times increasing, at least one
     std::vector<Transform> before, after;
+    std::shared_ptr<const GltfNodeAnimation> gltf{};  // none: no glTF animation
+    std::vector<std::uint32_t> nodes{};               // with `gltf`: one per instance
+    std::string file{};                               // with `gltf`: the glTF file, for messages
 };
 
 struct SceneAnimation {
@@ -69,8 +77,8 @@ PolarParts polar_decompose(const Transform& m);
 Transform compose_polar(const PolarParts& parts);
 
 // Moves `scene` to `time` seconds: its animated objects' instances and its
-// camera. Throws Error(scene_name, …) naming the object whose transform
-// at that moment cannot be inverted.
+// camera. Throws Error(scene_name, …) naming the object (and the glTF node)
+// whose transform at that moment cannot be inverted.
 void set_scene_time(Scene& scene, double time, const std::string& scene_name);
 
 }  // namespace sombra

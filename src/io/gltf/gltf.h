@@ -19,6 +19,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <map>
+#include <memory>
 #include <optional>
 #include <span>
 #include <string>
@@ -75,8 +76,11 @@ struct Unsupported {
 // which component types and counts each may have (glTF 2.0 §3.7.2.1, with
 // KHR_mesh_quantization's additions when the file uses it).
 // EXT_mesh_gpu_instancing's TRANSLATION and SCALE read as Position, its
-// ROTATION (float or normalised signed integers) as Rotation.
-enum class Semantic { Position, Normal, Tangent, Texcoord, Color, Rotation };
+// ROTATION (float or normalised signed integers) as Rotation. Animation
+// samplers' inputs (SCALAR float) read as KeyTimes, their translation and
+// scale outputs (VEC3 float) as KeyVector, rotations (VEC4 float or
+// normalised integers) as KeyRotation.
+enum class Semantic { Position, Normal, Tangent, Texcoord, Color, Rotation, KeyTimes, KeyVector, KeyRotation };
 
 struct AccessorReader {
     const tinygltf::Model& model;
@@ -196,6 +200,23 @@ std::optional<Transform> trs_transform(Vec3 translation, double x, double y, dou
 // quaternion and each scale non-zero, and that the node has a mesh. Throws
 // Error(file, "node N: EXT_mesh_gpu_instancing: ...") or the accessor's error.
 std::vector<Transform> gpu_instances(const AccessorReader& r, const tinygltf::Node& node, int index, std::size_t room);
+
+// The file's animations (spec §22, glTF 2.0 §3.11), all of them on one
+// clock: their translation, rotation and scale channels with their samplers
+// read and checked. `order` lists the nodes the scene reaches, parents
+// first. Channels of morph target weights, or without a node, are counted
+// in `skipped`. Nothing when no channel animates a node. Throws
+// Error(file, "animation A: channel C: ...") or ("... sampler S: ...").
+std::shared_ptr<GltfNodeAnimation> read_animations(const AccessorReader& r, const std::vector<std::uint32_t>& order,
+                                                   std::map<std::string, std::size_t>& skipped);
+
+// Which nodes move (a channel targets them or an ancestor: 1) and every
+// node's world transform at time 0; nothing moves without an animation.
+struct Motion {
+    std::vector<char> moving;
+    std::vector<Transform> at_start;
+};
+Motion motion_of(const GltfNodeAnimation* animation, std::size_t node_count);
 
 // A JSON number that must be an integer in [lo, hi] (tinygltf's own
 // conversion of a huge double to int is undefined behaviour).

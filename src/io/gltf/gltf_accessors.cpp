@@ -198,17 +198,30 @@ std::string type_problem(const View& v, Semantic semantic, bool quantized) {
             want = 4;
             ok = is_float || (is_signed && v.normalized);
             break;
+        case Semantic::KeyTimes:
+            want = 1;
+            ok = is_float;
+            break;
+        case Semantic::KeyVector:
+            want = 3;
+            ok = is_float;
+            break;
+        case Semantic::KeyRotation:
+            want = 4;
+            ok = is_float || (small_int && v.normalized);
+            break;
     }
     if (v.components != want)
         return std::string("type ") + type_name(v.type) + " where " +
                (semantic == Semantic::Color ? "VEC3 or VEC4"
-                                            : type_name(want == 2   ? TINYGLTF_TYPE_VEC2
+                                            : type_name(want == 1   ? TINYGLTF_TYPE_SCALAR
+                                                        : want == 2 ? TINYGLTF_TYPE_VEC2
                                                         : want == 3 ? TINYGLTF_TYPE_VEC3
                                                                     : TINYGLTF_TYPE_VEC4)) +
                " is expected";
     if (!ok)
         return std::string(v.normalized ? "normalized " : "") + component_name(t) + " components are not allowed here" +
-               (quantized || !small_int ? "" : " (without KHR_mesh_quantization)");
+               (quantized || !small_int || semantic >= Semantic::KeyTimes ? "" : " (without KHR_mesh_quantization)");
     return {};
 }
 

@@ -206,10 +206,21 @@ constexpr Member kCamera[] = {{"name", T::String},
                               {"orthographic", T::Object, &kOrthographicShape}};
 constexpr Shape kCameraShape{kCamera};
 
-// Skins and animations are not read (sombra uses the rest pose): their
-// names only, as for every object the file names.
+// Skins are not read (sombra uses the bind pose): their names only, as
+// for every object the file names.
 constexpr Member kNamed[] = {{"name", T::String}};
 constexpr Shape kNamedShape{kNamed};
+
+// animation (spec §22)
+constexpr Member kTarget[] = {{"node", T::Index}, {"path", T::String}};
+constexpr Shape kTargetShape{kTarget};
+constexpr Member kChannel[] = {{"sampler", T::Index}, {"target", T::Object, &kTargetShape}};
+constexpr Shape kChannelShape{kChannel};
+constexpr Member kAnimationSampler[] = {{"input", T::Index}, {"output", T::Index}, {"interpolation", T::String}};
+constexpr Shape kAnimationSamplerShape{kAnimationSampler};
+constexpr Member kAnimation[] = {
+    {"name", T::String}, {"channels", T::Objects, &kChannelShape}, {"samplers", T::Objects, &kAnimationSamplerShape}};
+constexpr Shape kAnimationShape{kAnimation};
 
 // KHR_lights_punctual's lights
 constexpr Member kSpot[] = {{"innerConeAngle", T::Number}, {"outerConeAngle", T::Number}};
@@ -243,7 +254,7 @@ constexpr Member kRoot[] = {{"asset", T::Object, &kAssetShape},
                             {"samplers", T::Objects, &kSamplerShape},
                             {"cameras", T::Objects, &kCameraShape},
                             {"skins", T::Objects, &kNamedShape},
-                            {"animations", T::Objects, &kNamedShape}};
+                            {"animations", T::Objects, &kAnimationShape}};
 constexpr Shape kRootShape{kRoot};
 
 // "an array of 3 numbers", for the message.

@@ -242,10 +242,26 @@ LoadedMesh load_gltf(const std::filesystem::path& path, Diagnostics& diag) {
     const gltf::AccessorReader reader{model, file, uses(gltf::kQuantization)};
     const std::vector<NodePlacement> placements = walk_nodes(model, file, diag);
     gltf::Materials materials = gltf::convert_materials(model, file, diag);
+    std::map<std::string, std::size_t> skipped;  // what was skipped → how often
+
+    // Animations (spec §22): a node moves when a channel targets it or an
+    // ancestor. What it draws is an instanced part (even when drawn once),
+    // placed as at time 0; so are its camera and lights.
+    std::vector<std::uint32_t> order;
+    for (const NodePlacement& in : placements) order.push_back(std::uint32_t(in.node));
+    std::shared_ptr<const GltfNodeAnimation> animation = gltf::read_animations(reader, order, skipped);
+    const gltf::Motion motion = gltf::motion_of(animation.get(), model.nodes.size());
+    const std::vector<char>& animated = motion.moving;
+    const auto world_of = [&](const NodePlacement& in) {
+        return animated[std::size_t(in.node)] ? motion.at_start[std::size_t(in.node)] : in.world;
+    };
 
     // How often each mesh is drawn: once per node, or once per instance of
-    // a node with EXT_mesh_gpu_instancing. Nodes scaled to nothing are invisible.
-    const auto visible = [](const NodePlacement& in) { return std::fabs(determinant3(in.world)) > 0.0f; };
+    // a node with EXT_mesh_gpu_instancing. Nodes scaled to nothing are
+    // invisible (unless animated: they may grow).
+    const auto visible = [&](const NodePlacement& in) {
+        return animated[std::size_t(in.node)] || std::fabs(determinant3(in.world)) > 0.0f;
+    };
     std::map<int, std::vector<Transform>> gpu;  // node → its instances, in its own coordinates
     std::vector<std::size_t> drawings(model.meshes.size(), 0);
     std::vector<bool> named(model.meshes.size(), false);  // by any node: its accessors are checked
@@ -283,7 +299,6 @@ LoadedMesh load_gltf(const std::filesystem::path& path, Diagnostics& diag) {
             throw Error(file, "the scene places more than " + std::to_string(kMaxInstancedTriangles) + " triangles");
     }
 
-    std::map<std::string, std::size_t> skipped;  // what was skipped → how often
     MeshBuilder builder(file);
     std::map<int, Primitives> decoded;   // mesh → its primitives, read once
     std::map<int, std::size_t> part_of;  // instanced mesh → its index in parts
@@ -296,7 +311,7 @@ LoadedMesh load_gltf(const std::filesystem::path& path, Diagnostics& diag) {
         const tinygltf::Node& node = model.nodes[std::size_t(in.node)];
         if (node.skin >= 0) ++skipped["skins (the bind pose is used)"];
         if (node.camera >= 0 && (!camera || node.camera < camera->first))
-            if (std::optional<ModelCamera> c = place_camera(model, node.camera, in.world, file, diag))
+            if (std::optional<ModelCamera> c = place_camera(model, node.camera, world_of(in), file, diag))
                 camera = {node.camera, *c};
         if (const auto it = node.extensions.find(gltf::kLights); it != node.extensions.end() && it->second.IsObject()) {
             const std::optional<int> light =
@@ -304,7 +319,7 @@ LoadedMesh load_gltf(const std::filesystem::path& path, Diagnostics& diag) {
             if (!light) throw Error(file, node_name(in.node) + ": " + gltf::kLights + " names no light");
             std::string type;
             if (std::optional<PunctualLight> l = gltf::punctual_light(model, *light, file, type, diag)) {
-                switch (transform_light(*l, in.world)) {
+                switch (transform_light(*l, world_of(in))) {
                     case LightPlacement::Ok: break;
                     case LightPlacement::NonFinitePosition:
                         throw Error(file, node_name(in.node) + ": its light's position is not finite");
@@ -323,7 +338,8 @@ LoadedMesh load_gltf(const std::filesystem::path& path, Diagnostics& diag) {
         const auto local = gpu.find(in.node);
         const bool gpu_instanced = node.extensions.count(gltf::kGpuInstancing) > 0;
         if (gpu_instanced && local == gpu.end()) continue;  // no instances (count 0 is the accessor's error)
-        if (drawings[std::size_t(node.mesh)] == 1) {
+        const bool moves = animated[std::size_t(in.node)] != 0;
+        if (drawings[std::size_t(node.mesh)] == 1 && !moves) {
             const Transform world = gpu_instanced ? compose(local->second[0], in.world) : in.world;
             any_triangles = append_mesh(builder, primitives, world, file) || any_triangles;
             continue;
@@ -335,14 +351,23 @@ LoadedMesh load_gltf(const std::filesystem::path& path, Diagnostics& diag) {
         }
         InstancedPart& part = parts[index->second].part;
         part.origins.push_back({part.instances.size(), node_name(in.node), gpu_instanced});
+        const Transform world = world_of(in);
+        if (moves && !(std::fabs(determinant3(world)) > 0.0f))
+            throw Error(file, node_name(in.node) + ": its animated transform at time 0 is not invertible");
+        // In a file with animations every part follows its nodes (a static node's pose is its rest pose).
+        const auto add = [&](const Transform& before) {
+            part.instances.push_back(compose(before, world));
+            if (!animation) return;
+            part.nodes.push_back(std::uint32_t(in.node));
+            part.local.push_back(before);
+        };
         if (!gpu_instanced) {
-            part.instances.push_back(in.world);
+            add(Transform{});
             continue;
         }
         // The instance's T · R · S first, then the node's transform (the extension's order).
-        for (const Transform& t : local->second) part.instances.push_back(compose(t, in.world));
+        for (const Transform& t : local->second) add(t);
     }
-    if (!model.animations.empty()) ++skipped["animations (the rest pose is used)"];
     if (!any_triangles) {
         std::string list;
         for (const auto& [what, count] : skipped) list += (list.empty() ? "; skipped " : ", ") + what;
@@ -370,6 +395,9 @@ LoadedMesh load_gltf(const std::filesystem::path& path, Diagnostics& diag) {
     gltf::apply_textures(model, path, materials.texture_refs, out.materials, out.textures, diag);
     out.lights = std::move(lights);
     if (camera) out.camera = camera->second;
+    const bool any_moving = std::any_of(out.instanced.begin(), out.instanced.end(),
+                                        [](const InstancedPart& p) { return !p.nodes.empty(); });
+    if (any_moving) out.animation = std::move(animation);
     return out;
 }
 

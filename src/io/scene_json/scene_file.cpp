@@ -178,7 +178,25 @@ void add_parts(SceneBuilder& builder, const LoadedMesh& loaded, const ObjectSpec
                 spec.instances.empty() ? spec.transform : compose(spec.transform, spec.instances[j]);
             for (const Transform& t : part.instances) world.push_back(compose(t, object));
         }
-        if (!spec.keys.empty()) {
+        if (!part.nodes.empty()) {
+            // Animated in the file (spec §22): its node's pose at each moment, then the object's
+            // transform (keyed or fixed), then the object's instances.
+            AnimatedObject moving{spec.pointer,
+                                  static_cast<std::uint32_t>(builder.scene().instances.size()),
+                                  spec.keys.empty() ? std::vector<TransformKey>{{0.0, spec.transform}} : spec.keys,
+                                  {},
+                                  {},
+                                  loaded.animation,
+                                  {},
+                                  mesh_name};
+            for (std::size_t j = 0; j < copies; ++j)
+                for (std::size_t k = 0; k < n; ++k) {
+                    moving.before.push_back(part.local[k]);
+                    moving.nodes.push_back(part.nodes[k]);
+                    moving.after.push_back(spec.instances.empty() ? Transform{} : spec.instances[j]);
+                }
+            animation.objects.push_back(std::move(moving));
+        } else if (!spec.keys.empty()) {
             // Keyed: the file's placement acts before the keyed transform, the object's instances after.
             AnimatedObject moving{
                 spec.pointer, static_cast<std::uint32_t>(builder.scene().instances.size()), spec.keys, {}, {}};
@@ -375,8 +393,9 @@ LoadedScene load_scene_text(const std::string& text, const fs::path& path, Diagn
     out.scene = builder.finish();
     if (find_member(root, "animation") || !animation.objects.empty() || !animation.camera.empty()) {
         out.scene.animation = std::move(animation);
-        // Placed as every later moment will be, so that the first frame is
-        // the same scene however it is reached (spec §22).
+        // Placed as every later moment will be (glTF parts were placed as at
+        // time 0), so that the first frame is the same scene however it is
+        // reached (spec §22).
         set_scene_time(out.scene, start_time, s.name);
     }
     return out;
