@@ -142,7 +142,7 @@ nlohmann::json& accessor_of(GltfFile& f, const char* attribute) {
     return f.doc["accessors"][attributes_of(f)[attribute].get<std::size_t>()];
 }
 // Replaces an attribute by one Vec3 array.
-void replace_vec3(GltfFile& f, const char* attribute, std::vector<Vec3> values) {
+void replace_vec3(GltfFile& f, const char* attribute, const std::vector<Vec3>& values) {
     attributes_of(f)[attribute] = f.add_array(values, gltf_test::kFloat, values.size(), "VEC3");
 }
 std::vector<Vec3> with_one(Vec3 v) {
