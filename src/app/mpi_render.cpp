@@ -71,7 +71,8 @@ void place(RenderOutput& image, const RenderJob& job, const PixelWindow& w, cons
         std::vector<float>& target = *targets[k];
         if (target.empty()) target.resize(width * static_cast<std::size_t>(job.settings.height) * c);
         for (int row = 0; row < w.height; ++row) {
-            const std::size_t to = ((static_cast<std::size_t>(w.y0 + row)) * width + static_cast<std::size_t>(w.x0)) * c;
+            const std::size_t to =
+                ((static_cast<std::size_t>(w.y0 + row)) * width + static_cast<std::size_t>(w.x0)) * c;
             std::memcpy(&target[to], &floats[at], static_cast<std::size_t>(w.width) * c * sizeof(float));
             at += static_cast<std::size_t>(w.width) * c;
         }
@@ -218,8 +219,8 @@ RenderOutput MpiRun::render(RenderJob job, RenderProgress& progress) const {
                 const std::lock_guard<std::mutex> lock(placing);
                 place(out, job, w, floats);
             }
-            progress.samples_done.fetch_add(
-                static_cast<std::uint64_t>(w.width) * static_cast<std::uint64_t>(w.height) * block_samples_per_pixel);
+            progress.samples_done.fetch_add(static_cast<std::uint64_t>(w.width) * static_cast<std::uint64_t>(w.height) *
+                                            block_samples_per_pixel);
         }
         int b = next.fetch_add(1);
         if (b >= blocks) {

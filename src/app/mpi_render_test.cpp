@@ -81,7 +81,8 @@ TEST_F(Mpi, StatsSayProcessesAndCountRaysOverAllRanks) {
     const auto three = nlohmann::json::parse(read_text(dir_ / "three.json"));
     EXPECT_EQ(one["processes"], 1);
     EXPECT_EQ(three["processes"], 3);
-    for (const char* count : {"camera_rays", "shadow_rays", "bounce_rays"}) EXPECT_EQ(three[count], one[count]) << count;
+    for (const char* count : {"camera_rays", "shadow_rays", "bounce_rays"})
+        EXPECT_EQ(three[count], one[count]) << count;
 }
 
 TEST_F(Mpi, FramesSpreadOverRanksEqualOneProcess) {
@@ -115,7 +116,8 @@ TEST_F(Mpi, AFailingInputEndsEveryRankWithOneLine) {
 }
 
 TEST_F(Mpi, OptionsThatCannotBeSplitAreRefused) {
-    for (const std::string options : {"--time 1 -o out.png", "--noise-threshold 0.1 -o out.png", "--shard 0/2 -o out.exr"}) {
+    for (const std::string options :
+         {"--time 1 -o out.png", "--noise-threshold 0.1 -o out.png", "--shard 0/2 -o out.exr"}) {
         const RunResult r = mpirun(2, "render s.json -q " + options);
         EXPECT_NE(r.status, 0) << options;
         EXPECT_NE(r.err.find("sombra: error: command line: "), std::string::npos) << r.err;
