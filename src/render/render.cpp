@@ -178,8 +178,10 @@ RenderOutput render_image(const RenderJob& job, RenderProgress& progress) {
             for (int i = 0; i < rs.width; ++i)
                 if (!shard_owns(job.shard, rs.width, i, j)) acc.finish(acc.index(i, j));
     arena.execute([&] {
-        const tbb::blocked_range2d<int> image(area.y0, area.y0 + area.height, kTileSize, area.x0, area.x0 + area.width,
-                                              kTileSize);
+        // A window (an MPI block, 32 × 32) in 8 × 8 tiles: 16 of them, enough for a rank's threads.
+        const int tile_size = job.window ? kTileSize / 2 : kTileSize;
+        const tbb::blocked_range2d<int> image(area.y0, area.y0 + area.height, tile_size, area.x0, area.x0 + area.width,
+                                              tile_size);
         for (std::uint32_t pass_end = std::min(step, spp);; pass_end = std::min(pass_end + step, spp)) {
             const auto pass_start = Clock::now();
             std::atomic<bool> any_left{false};
