@@ -19,6 +19,7 @@ packages=(
   libwebp-dev            # WebP textures (EXT_texture_webp; the tests encode with it too)
   assimp-testmodels      # tests: real and deliberately broken glTF 2.0 files (/usr/share/assimp/models/glTF2)
   libgtest-dev libgmock-dev  # tests
+  libopenmpi-dev openmpi-bin  # mpirun -np K sombra render (optional: the build works without it)
   libembree-dev          # --accel embree, the BVH's yardstick (optional: the build works without it)
   python3-matplotlib python3-numpy  # tools/bench.sh: the big benchmark mesh and the cost-growth plot
   pybind11-dev python3-pybind11 python3-pytest  # the Python module (src/python/) and its pytest tests

@@ -100,14 +100,16 @@ protected:
 
     // Runs sombra with `args` (already shell-quoted) in the temp folder, with
     // kTimeoutSeconds of time and at most `memory_kib` of address space
-    // (0: default_memory_kib(); a run given less should use few threads).
-    RunResult run(const std::string& args, long memory_kib = 0) {
+    // (0: default_memory_kib(); a run given less should use few threads),
+    // `env` ("NAME=VALUE ...") added to its environment.
+    RunResult run(const std::string& args, long memory_kib = 0, const std::string& env = "") {
         if (memory_kib == 0) memory_kib = default_memory_kib();
         const fs::path out = dir_ / "stdout.txt", err = dir_ / "stderr.txt";
         std::string cmd = "cd " + shell_quote(dir_.string()) + " && ";
         if (!kSanitized) cmd += "ulimit -v " + std::to_string(memory_kib) + " && ";
-        cmd += "exec timeout -k 5 " + std::to_string(kTimeoutSeconds) + " " + shell_quote(SOMBRA_EXE) + " " + args +
-               " >" + shell_quote(out.string()) + " 2>" + shell_quote(err.string()) + " </dev/null";
+        cmd += "exec " + (env.empty() ? std::string() : "env " + env + " ") + "timeout -k 5 " +
+               std::to_string(kTimeoutSeconds) + " " + shell_quote(SOMBRA_EXE) + " " + args + " >" +
+               shell_quote(out.string()) + " 2>" + shell_quote(err.string()) + " </dev/null";
         const auto start = std::chrono::steady_clock::now();
         const int raw = std::system(cmd.c_str());
         RunResult r;

@@ -14,6 +14,7 @@
 #include "accel/accel.h"
 #include "app/display_server.h"
 #include "app/interrupt.h"
+#include "app/mpi_render.h"
 #include "app/prepare.h"
 #include "app/progress.h"
 #include "app/shards.h"
@@ -66,10 +67,12 @@ void stream_passes_to(DisplayConnection& display, RenderJob& job) {
 }
 
 // One image of the run: rendered, written to `output`, its counters added
-// to `stats`. Returns the exit status (non-zero when interrupted).
+// to `stats`. Returns the exit status (non-zero when interrupted). Under
+// mpirun a still is rendered by all ranks and written by rank 0 alone.
 int render_frame(const CliOptions& o, const Scene& scene, const Accel& accel, const RenderSettings& settings,
                  const std::filesystem::path& output, Clock::time_point start, InterruptWatcher& interrupt,
-                 RenderProgress& progress, RunStats& stats) {
+                 RenderProgress& progress, RunStats& stats, const MpiRun& mpi) {
+    const bool distributed = mpi.active() && !o.first_frame;
     RenderJob job = make_render_job(scene, accel, settings, o.threads, light_selection(o));
     job.limits = sampling_limits(o, start);
     job.aovs = o.aovs;
@@ -90,12 +93,12 @@ int render_frame(const CliOptions& o, const Scene& scene, const Accel& accel, co
     const auto render_start = Clock::now();
     RenderOutput rendered;
     {
-        const bool show = !o.quiet && isatty(STDERR_FILENO);
+        const bool show = !o.quiet && isatty(STDERR_FILENO) && mpi.rank() == 0;
         ProgressBar bar(progress,
                         shard_pixel_count(job.shard, settings.width, settings.height) *
                             static_cast<std::uint64_t>(settings.spp),
                         show, job.limits.deadline);
-        rendered = render_image(job, progress);
+        rendered = distributed ? mpi.render(job, progress) : render_image(job, progress);
     }
     stats.render_seconds += seconds_since(render_start);
     if (display && !rendered.cancelled)
@@ -105,6 +108,7 @@ int render_frame(const CliOptions& o, const Scene& scene, const Accel& accel, co
         std::cerr << "sombra: error: " << signal_name(sig) << ": interrupted, nothing written\n";
         return interrupted_exit_status(sig);
     }
+    if (distributed && mpi.rank() != 0) return 0;  // rank 0 has the image
     interrupt.set_phase(InterruptWatcher::Phase::Writing);
 
     const auto write_start = Clock::now();
@@ -128,27 +132,39 @@ int render_frame(const CliOptions& o, const Scene& scene, const Accel& accel, co
 }  // namespace
 
 // The frames a run renders (spec §22): --frames' range (every Nth of it
-// under --shard I/N), --frame, or the scene's first frame.
-std::vector<std::int64_t> frames_to_render(const CliOptions& o, const Scene& scene) {
+// under --shard I/N or as rank I of N under mpirun), --frame, or the
+// scene's first frame.
+std::vector<std::int64_t> frames_to_render(const CliOptions& o, const Scene& scene, int rank, int ranks) {
     if (o.first_frame) {
         std::vector<std::int64_t> frames;
-        const std::int64_t step = o.sharded ? o.shard_count : 1;
-        for (std::int64_t f = *o.first_frame + (o.sharded ? o.shard_index : 0); f <= *o.last_frame; f += step)
-            frames.push_back(f);
+        const int index = o.sharded ? o.shard_index : rank;
+        const std::int64_t step = o.sharded ? o.shard_count : ranks;
+        for (std::int64_t f = *o.first_frame + index; f <= *o.last_frame; f += step) frames.push_back(f);
         return frames;
     }
     if (o.frame) return {*o.frame};
     return {scene.animation ? scene.animation->first_frame : 0};
 }
 
-int run_render(const CliOptions& o) {
+int run_render(const CliOptions& options) {
     const auto start = Clock::now();
     RenderProgress progress;
     InterruptWatcher interrupt(progress);  // first: before any other thread starts
-    return reporting_errors(o, [&] {
+    // Under a launcher (mpirun -np K, K > 1), checked before MPI starts.
+    if (const LaunchedRanks launched = launched_ranks(); launched.size > 1) {
+        if (const auto problem = mpi_option_problem(options)) {
+            if (launched.rank == 0) std::cerr << "sombra: error: command line: " << *problem << '\n';
+            return 2;
+        }
+    }
+    const MpiRun mpi;  // starts MPI only under a launcher
+    CliOptions o = options;
+    o.threads = mpi.threads_per_rank(o.threads);
+    const bool writes = mpi.rank() == 0 || o.first_frame;  // under mpirun frames are written by their rank
+    const int exit_status = reporting_errors(o, [&] {
         // Fail before a long render, not after it.
-        check_output_path(o.output);
-        if (!o.stats_json.empty()) check_side_file_path(o.stats_json);
+        if (writes) check_output_path(o.output);
+        if (!o.stats_json.empty() && mpi.rank() == 0) check_side_file_path(o.stats_json);
 
         RunStats stats;
         Diagnostics diag;
@@ -167,7 +183,7 @@ int run_render(const CliOptions& o) {
 
         // Every frame, the first included, is placed by set_scene_time, so
         // that --frame F and frame F of --frames are the same scene bit for bit.
-        const std::vector<std::int64_t> frames = frames_to_render(o, scene);
+        const std::vector<std::int64_t> frames = frames_to_render(o, scene, mpi.rank(), mpi.size());
         const auto time_of = [&](std::int64_t frame) { return frame_time(scene, frame); };
         if (scene.animation && !frames.empty()) set_scene_time(scene, time_of(frames.front()), o.input);
         const auto build_start = Clock::now();
@@ -183,14 +199,27 @@ int run_render(const CliOptions& o) {
                 stats.build_seconds += seconds_since(refit_start);
             }
             const std::string output = o.first_frame ? frame_file_name(o.output, frames[i]) : o.output;
-            if (const int status = render_frame(o, scene, accel, settings, output, start, interrupt, progress, stats);
+            if (const int status =
+                    render_frame(o, scene, accel, settings, output, start, interrupt, progress, stats, mpi);
                 status != 0)
                 return status;
         }
+        if (mpi.active() && o.first_frame) {
+            // Each rank rendered its frames; rank 0 reports the rays of all.
+            const RayCounters all =
+                mpi.sum({stats.camera_rays, stats.shadow_rays, stats.bounce_rays, stats.nonfinite_samples});
+            stats.camera_rays = all.camera_rays;
+            stats.shadow_rays = all.shadow_rays;
+            stats.bounce_rays = all.bounce_rays;
+            stats.nonfinite_samples = all.nonfinite_samples;
+        }
+        if (mpi.rank() != 0) return 0;
 
         stats.triangles = stored_triangle_count(scene);
         stats.instanced_triangles = drawn_triangle_count(scene);
-        stats.frames = frames.size();
+        stats.frames = o.first_frame && !o.sharded ? static_cast<std::uint64_t>(*o.last_frame - *o.first_frame + 1)
+                                                   : frames.size();
+        stats.processes = mpi.size();
         stats.width = settings.width;
         stats.height = settings.height;
         stats.threads = o.threads > 0 ? o.threads : tbb::info::default_concurrency();
@@ -205,6 +234,9 @@ int run_render(const CliOptions& o) {
         if (!o.quiet) std::cerr << summary_line(stats, o.output) << '\n';
         return 0;
     });
+    // One rank's failure ends every rank, before rank 0 could write an image.
+    if (exit_status != 0 && mpi.active()) mpi.abort(exit_status);
+    return exit_status;
 }
 
 int run_sombra(int argc, const char* const* argv) {

@@ -23,6 +23,7 @@ void write_stats_json(const std::filesystem::path& path, const RunStats& s) {
                                       : nlohmann::ordered_json(s.spp_reached)},
         {"passes", s.passes},
         {"threads", s.threads},
+        {"processes", s.processes},
         {"accel", s.accel},
         {"integrator", s.integrator},
         {"max_depth", s.max_depth},

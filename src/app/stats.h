@@ -19,7 +19,8 @@ struct RunStats {
     double spp_reached = 0;
     bool spp_uniform = true;
     int passes = 0;
-    int threads = 0;  // worker threads actually used
+    int threads = 0;    // worker threads actually used
+    int processes = 1;  // MPI ranks (mpirun -np K, spec §21); rays are counted over all of them
     std::string accel;
     std::string integrator;  // "direct" or "path"
     int max_depth = 0;

@@ -58,12 +58,11 @@ Vec3 trace_sample(const RenderJob& job, const IntegratorContext& ctx, std::uint6
     return trace_direct(ctx, ray, counters, record...);
 }
 
-// Adds samples count … end − 1 of pixel (i, j) to the accumulation; a pixel
-// that has reached the spp is done.
-void sample_pixel(const RenderJob& job, const IntegratorContext& ctx, Accumulation& acc, int i, int j,
-                  std::uint32_t end, RayCounters& counters) {
+// Adds samples count … end − 1 of image pixel (i, j), entry `pixel` of the
+// accumulation, to it; a pixel that has reached the spp is done.
+void sample_pixel(const RenderJob& job, const IntegratorContext& ctx, Accumulation& acc, std::size_t pixel, int i,
+                  int j, std::uint32_t end, RayCounters& counters) {
     const RenderSettings& s = job.settings;
-    const std::size_t pixel = acc.index(i, j);
     const std::uint64_t key = pixel_key(s.seed, i, j, s.width);
     const bool first_hits = job.aovs.needs_first_hit();
     for (std::uint32_t k = acc.count(pixel); k < end; ++k) {
@@ -157,7 +156,9 @@ Vec3 trace_pixel_sample(const RenderJob& job, int i, int j, int k, RayCounters& 
 RenderOutput render_image(const RenderJob& job, RenderProgress& progress) {
     using Clock = std::chrono::steady_clock;
     const RenderSettings& rs = job.settings;
-    Accumulation acc(rs.width, rs.height, job.limits.noise_threshold > 0, job.aovs);
+    // The pixels rendered: the window's, or the whole image's.
+    const PixelWindow area = job.window.value_or(PixelWindow{0, 0, rs.width, rs.height});
+    Accumulation acc(area.width, area.height, job.limits.noise_threshold > 0, job.aovs);
     tbb::combinable<RayCounters> per_thread;
     const IntegratorContext ctx = make_integrator_context(job);
     const auto spp = static_cast<std::uint32_t>(rs.spp);
@@ -177,7 +178,10 @@ RenderOutput render_image(const RenderJob& job, RenderProgress& progress) {
             for (int i = 0; i < rs.width; ++i)
                 if (!shard_owns(job.shard, rs.width, i, j)) acc.finish(acc.index(i, j));
     arena.execute([&] {
-        const tbb::blocked_range2d<int> image(0, rs.height, kTileSize, 0, rs.width, kTileSize);
+        // A window (an MPI block, 32 × 32) in 8 × 8 tiles: 16 of them, enough for a rank's threads.
+        const int tile_size = job.window ? kTileSize / 2 : kTileSize;
+        const tbb::blocked_range2d<int> image(area.y0, area.y0 + area.height, tile_size, area.x0, area.x0 + area.width,
+                                              tile_size);
         for (std::uint32_t pass_end = std::min(step, spp);; pass_end = std::min(pass_end + step, spp)) {
             const auto pass_start = Clock::now();
             std::atomic<bool> any_left{false};
@@ -191,10 +195,10 @@ RenderOutput render_image(const RenderJob& job, RenderProgress& progress) {
                     for (int i = tile.cols().begin(); i < tile.cols().end(); ++i) {
                         // Checked per pixel too: at thousands of samples a tile can take seconds.
                         if (progress.cancel.load(std::memory_order_relaxed)) return;
-                        const std::size_t pixel = acc.index(i, j);
+                        const std::size_t pixel = acc.index(i - area.x0, j - area.y0);
                         if (acc.done(pixel)) continue;
                         const std::uint32_t before = acc.count(pixel);
-                        sample_pixel(job, ctx, acc, i, j, pass_end, counters);
+                        sample_pixel(job, ctx, acc, pixel, i, j, pass_end, counters);
                         samples += acc.count(pixel) - before;
                         left = left || !acc.done(pixel);
                     }
@@ -221,10 +225,10 @@ RenderOutput render_image(const RenderJob& job, RenderProgress& progress) {
     out.film = acc.take_image();
     // Over the pixels rendered: a shard's others have no samples by design.
     out.min_pixel_spp = std::numeric_limits<std::uint32_t>::max();
-    for (int j = 0; j < rs.height; ++j)
-        for (int i = 0; i < rs.width; ++i) {
+    for (int j = area.y0; j < area.y0 + area.height; ++j)
+        for (int i = area.x0; i < area.x0 + area.width; ++i) {
             if (job.shard.count > 1 && !shard_owns(job.shard, rs.width, i, j)) continue;
-            const std::uint32_t n = acc.count(acc.index(i, j));
+            const std::uint32_t n = acc.count(acc.index(i - area.x0, j - area.y0));
             ++out.pixels;
             out.samples += n;
             out.min_pixel_spp = std::min(out.min_pixel_spp, n);

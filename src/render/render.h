@@ -73,6 +73,11 @@ inline std::uint64_t shard_pixel_count(const ShardSpec& shard, int width, int he
     return n;
 }
 
+// A rectangle of the image: pixels x0 ≤ i < x0 + width, y0 ≤ j < y0 + height.
+struct PixelWindow {
+    int x0 = 0, y0 = 0, width = 0, height = 0;
+};
+
 struct RenderJob {
     const Scene* scene = nullptr;  // geometry must be the mesh `accel` was built over
     const Accel* accel = nullptr;
@@ -83,6 +88,10 @@ struct RenderJob {
     AovSet aovs;      // the AOVs to gather beside the image
     int threads = 0;  // worker threads; 0 = all hardware threads
     ShardSpec shard;  // the pixels to render; the others stay black with no samples
+    // Set: only the window's pixels, each exactly as in the whole image, and
+    // the output (film, AOVs, counts) is the window's size: one block of an
+    // MPI render (app/mpi_render.cpp). Not with a shard or a noise threshold.
+    std::optional<PixelWindow> window;
     // Called on the render's thread after each pass that ran to its end (not
     // after a cancelled one) with what the passes have gathered and the
     // number of passes so far: the viewer publishes the image from here.

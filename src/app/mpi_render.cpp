@@ -1,0 +1,255 @@
+#include "app/mpi_render.h"
+
+#include <tbb/info.h>
+#include <algorithm>
+#include <array>
+#include <atomic>
+#include <chrono>
+#include <csignal>
+#include <cstdint>
+#include <cstdlib>
+#include <cstring>
+#include <mutex>
+#include <thread>
+#include <vector>
+
+#ifdef SOMBRA_HAVE_MPI
+#include <mpi.h>
+#endif
+
+namespace sombra {
+
+namespace {
+
+// The first of `names` set in the environment, as a number; `fallback` otherwise.
+int env_int(std::initializer_list<const char*> names, int fallback) {
+    for (const char* name : names)
+        if (const char* value = std::getenv(name)) return std::atoi(value);
+    return fallback;
+}
+
+#ifdef SOMBRA_HAVE_MPI
+
+constexpr int kReadyTag = 1;   // a worker's first request: no pixels yet
+constexpr int kResultTag = 2;  // a block's floats, and a request for the next
+constexpr int kWorkTag = 3;    // rank 0's answer: a block number, or −1 = no more
+
+// Block b of the image (kShardBlock × kShardBlock, row by row, as shards count them).
+PixelWindow block_window(int b, int width, int height) {
+    const int per_row = (width + kShardBlock - 1) / kShardBlock;
+    const int x0 = (b % per_row) * kShardBlock, y0 = (b / per_row) * kShardBlock;
+    return {x0, y0, std::min(kShardBlock, width - x0), std::min(kShardBlock, height - y0)};
+}
+
+int block_count(int width, int height) {
+    return ((width + kShardBlock - 1) / kShardBlock) * ((height + kShardBlock - 1) / kShardBlock);
+}
+
+// A block's output's images, in a fixed order both ends know: RGB, then the AOVs asked.
+std::array<std::vector<float>*, 6> images_of(RenderOutput& r) {
+    return {&r.film.rgb, &r.aovs.albedo, &r.aovs.normal, &r.aovs.depth, &r.aovs.position, &r.aovs.spp};
+}
+
+std::vector<float> pack(RenderOutput& block) {
+    std::vector<float> floats;
+    for (const std::vector<float>* image : images_of(block)) floats.insert(floats.end(), image->begin(), image->end());
+    return floats;
+}
+
+// Copies a block's packed floats into the whole image's arrays, each
+// allocated on first use with the channels the block's own has.
+void place(RenderOutput& image, const RenderJob& job, const PixelWindow& w, const std::vector<float>& floats) {
+    const std::array<std::size_t, 6> channels{3, 3, 3, 1, 3, 1};
+    const AovSet& a = job.aovs;
+    const std::array<bool, 6> present{true, a.albedo, a.normal, a.depth, a.position, a.spp};
+    const std::size_t width = static_cast<std::size_t>(job.settings.width);
+    std::size_t at = 0;
+    const auto targets = images_of(image);
+    for (std::size_t k = 0; k < targets.size(); ++k) {
+        if (!present[k]) continue;
+        const std::size_t c = channels[k];
+        std::vector<float>& target = *targets[k];
+        if (target.empty()) target.resize(width * static_cast<std::size_t>(job.settings.height) * c);
+        for (int row = 0; row < w.height; ++row) {
+            const std::size_t to =
+                ((static_cast<std::size_t>(w.y0 + row)) * width + static_cast<std::size_t>(w.x0)) * c;
+            std::memcpy(&target[to], &floats[at], static_cast<std::size_t>(w.width) * c * sizeof(float));
+            at += static_cast<std::size_t>(w.width) * c;
+        }
+    }
+}
+
+RenderOutput render_block(RenderJob& job, int b, RenderProgress& progress) {
+    job.window = block_window(b, job.settings.width, job.settings.height);
+    return render_image(job, progress);
+}
+
+// Test hook: SOMBRA_TEST_KILL_RANK=R makes rank R die by SIGKILL after its
+// first block, as a crashed node would (app/mpi_render_test.cpp).
+void maybe_die_for_test(int rank) {
+    const char* victim = std::getenv("SOMBRA_TEST_KILL_RANK");
+    if (victim && std::atoi(victim) == rank) std::raise(SIGKILL);
+}
+
+RayCounters reduce_counters(const RayCounters& mine) {
+    std::array<std::uint64_t, 4> local{mine.camera_rays, mine.shadow_rays, mine.bounce_rays, mine.nonfinite_samples};
+    std::array<std::uint64_t, 4> total{};
+    MPI_Reduce(local.data(), total.data(), 4, MPI_UINT64_T, MPI_SUM, 0, MPI_COMM_WORLD);
+    return {total[0], total[1], total[2], total[3]};
+}
+
+#endif
+
+}  // namespace
+
+LaunchedRanks launched_ranks() {
+    return {env_int({"OMPI_COMM_WORLD_RANK", "PMI_RANK", "PMIX_RANK"}, 0),
+            env_int({"OMPI_COMM_WORLD_SIZE", "PMI_SIZE"}, 1)};
+}
+
+std::optional<std::string> mpi_option_problem(const CliOptions& o) {
+#ifndef SOMBRA_HAVE_MPI
+    (void)o;
+    return "this sombra was built without MPI: run it without mpirun, or rebuild with Open MPI";
+#else
+    if (o.sharded) return "--shard and mpirun cannot go together: mpirun already splits the work";
+    if (!o.display_server.empty()) return "--display-server and mpirun cannot go together";
+    if (!o.first_frame && o.time_budget)
+        return "--time and mpirun cannot go together on one image: the budget is per process (use --spp)";
+    if (!o.first_frame && o.noise_threshold)
+        return "--noise-threshold and mpirun cannot go together on one image: a pixel's stopping reads its "
+               "neighbours, which another rank renders (it works with --frames)";
+    return std::nullopt;
+#endif
+}
+
+int MpiRun::threads_per_rank(int asked) const {
+    if (asked > 0 || !active()) return asked;
+    const int local = std::max(1, env_int({"OMPI_COMM_WORLD_LOCAL_SIZE", "MPI_LOCALNRANKS"}, 1));
+    return std::max(1, tbb::info::default_concurrency() / local);
+}
+
+#ifdef SOMBRA_HAVE_MPI
+
+MpiRun::MpiRun() {
+    if (launched_ranks().size <= 1) return;
+    // Only this (the main) thread calls MPI; rank 0's render thread does not.
+    int provided = 0;
+    MPI_Init_thread(nullptr, nullptr, MPI_THREAD_FUNNELED, &provided);
+    MPI_Comm_rank(MPI_COMM_WORLD, &rank_);
+    MPI_Comm_size(MPI_COMM_WORLD, &size_);
+}
+
+MpiRun::~MpiRun() {
+    if (active()) MPI_Finalize();
+}
+
+void MpiRun::abort(int status) const {
+    MPI_Abort(MPI_COMM_WORLD, status);
+    std::_Exit(status);  // not reached: MPI_Abort does not return
+}
+
+RayCounters MpiRun::sum(const RayCounters& mine) const {
+    if (!active()) return mine;
+    const RayCounters total = reduce_counters(mine);
+    return rank_ == 0 ? total : mine;
+}
+
+RenderOutput MpiRun::render(RenderJob job, RenderProgress& progress) const {
+    const int width = job.settings.width, height = job.settings.height;
+    const int blocks = block_count(width, height);
+    RenderOutput out;
+    if (rank_ != 0) {
+        // A worker: ask, render, send back (which asks again), until told −1.
+        MPI_Send(nullptr, 0, MPI_FLOAT, 0, kReadyTag, MPI_COMM_WORLD);
+        for (bool first = true;; first = false) {
+            int b = -1;
+            MPI_Recv(&b, 1, MPI_INT, 0, kWorkTag, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
+            if (b < 0) break;
+            RenderOutput block = render_block(job, b, progress);
+            if (block.cancelled) {
+                out.cancelled = true;
+                return out;
+            }
+            out.counters += block.counters;
+            if (first) maybe_die_for_test(rank_);
+            const std::vector<float> floats = pack(block);
+            MPI_Send(floats.data(), static_cast<int>(floats.size()), MPI_FLOAT, 0, kResultTag, MPI_COMM_WORLD);
+        }
+        out.counters = sum(out.counters);
+        return out;
+    }
+
+    // Rank 0: a thread renders blocks from the same counter the workers'
+    // requests draw from, while this one answers them (MPI_THREAD_FUNNELED).
+    out.film = Film(width, height);
+    std::atomic<int> next{0};
+    std::mutex placing;
+    RayCounters local;
+    std::thread renderer([&, job]() mutable {
+        for (int b = next.fetch_add(1); b < blocks; b = next.fetch_add(1)) {
+            RenderOutput block = render_block(job, b, progress);
+            if (block.cancelled) return;
+            local += block.counters;
+            const std::vector<float> floats = pack(block);
+            const std::lock_guard<std::mutex> lock(placing);
+            place(out, job, *job.window, floats);
+        }
+    });
+    std::vector<int> assigned(static_cast<std::size_t>(size_), -1);
+    std::vector<float> floats;
+    const std::uint64_t block_samples_per_pixel = static_cast<std::uint64_t>(job.settings.spp);
+    for (int stopped = 0; stopped < size_ - 1 && !progress.cancel.load();) {
+        int arrived = 0;
+        MPI_Status status;
+        MPI_Iprobe(MPI_ANY_SOURCE, MPI_ANY_TAG, MPI_COMM_WORLD, &arrived, &status);
+        if (!arrived) {
+            // Polling with a nap, not a blocking receive: Open MPI's spins a core.
+            std::this_thread::sleep_for(std::chrono::microseconds(200));
+            continue;
+        }
+        int count = 0;
+        MPI_Get_count(&status, MPI_FLOAT, &count);
+        floats.resize(static_cast<std::size_t>(count));
+        const int source = status.MPI_SOURCE;
+        MPI_Recv(floats.data(), count, MPI_FLOAT, source, status.MPI_TAG, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
+        if (status.MPI_TAG == kResultTag) {
+            const PixelWindow w = block_window(assigned[static_cast<std::size_t>(source)], width, height);
+            {
+                const std::lock_guard<std::mutex> lock(placing);
+                place(out, job, w, floats);
+            }
+            progress.samples_done.fetch_add(static_cast<std::uint64_t>(w.width) * static_cast<std::uint64_t>(w.height) *
+                                            block_samples_per_pixel);
+        }
+        int b = next.fetch_add(1);
+        if (b >= blocks) {
+            b = -1;
+            ++stopped;
+        }
+        assigned[static_cast<std::size_t>(source)] = b;
+        MPI_Send(&b, 1, MPI_INT, source, kWorkTag, MPI_COMM_WORLD);
+    }
+    renderer.join();
+    out.cancelled = progress.cancel.load();
+    if (out.cancelled) return out;
+    out.counters = sum(local);
+    // Every pixel took the spp (no time budget or threshold here).
+    out.pixels = static_cast<std::uint64_t>(width) * static_cast<std::uint64_t>(height);
+    out.samples = out.pixels * block_samples_per_pixel;
+    out.min_pixel_spp = out.max_pixel_spp = static_cast<std::uint32_t>(job.settings.spp);
+    out.passes = 1;
+    return out;
+}
+
+#else
+
+MpiRun::MpiRun() = default;
+MpiRun::~MpiRun() = default;
+void MpiRun::abort(int status) const { std::_Exit(status); }
+RayCounters MpiRun::sum(const RayCounters& mine) const { return mine; }
+RenderOutput MpiRun::render(RenderJob job, RenderProgress& progress) const { return render_image(job, progress); }
+
+#endif
+
+}  // namespace sombra
