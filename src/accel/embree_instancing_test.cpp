@@ -19,6 +19,7 @@
 
 #include "accel/accel.h"
 #include "accel/accel_test_util.h"
+#include "accel/embree_image_compare.h"
 #include "io/scene_json/scene_file.h"
 #include "render/render.h"
 #include "scene/scene_builder.h"
@@ -225,31 +226,9 @@ TEST(EmbreeInstancing, ImageEqualsTheBvhImage) {
     std::filesystem::remove_all(dir);
     const Scene& scene = loaded.scene;
     ASSERT_EQ(scene.instances.size(), 3u);
-    RenderJob job;
-    job.scene = &scene;
-    job.settings = loaded.settings;
-    job.camera = make_camera(scene.camera, job.settings.width, job.settings.height);
-    job.lights = make_light_set(scene, make_constant_environment(scene.background), false);
-    std::vector<RenderOutput> images;
-    for (const AccelKind kind : {AccelKind::Bvh, AccelKind::Embree}) {
-        const Accel accel = make_accel(scene, kind);
-        job.accel = &accel;
-        RenderProgress progress;
-        images.push_back(render_image(job, progress));
-    }
-    const std::vector<float>& a = images[0].film.rgb;
-    const std::vector<float>& b = images[1].film.rgb;
-    ASSERT_EQ(a.size(), b.size());
-    const std::size_t pixels = a.size() / 3;
-    std::size_t differing = 0, lit = 0;
-    for (std::size_t p = 0; p < pixels; ++p) {
-        bool same = true;
-        for (int c = 0; c < 3; ++c)
-            same = same && std::fabs(a[3 * p + c] - b[3 * p + c]) <=
-                               1e-3f * std::max({std::fabs(a[3 * p + c]), std::fabs(b[3 * p + c]), 1e-2f});
-        differing += !same;
-        lit += a[3 * p] + a[3 * p + 1] + a[3 * p + 2] > 0.05f;
-    }
+    const testing::ImageAgreement r = testing::compare_bvh_with_embree(scene, loaded.settings);
+    const std::size_t pixels = r.pixels, differing = r.differing, lit = r.lit;
+    ASSERT_GT(pixels, 0u);
     std::printf("[ embree     ] instanced bunnies: %zu of %zu pixels differ\n", differing, pixels);
     EXPECT_GT(lit, pixels / 10);
     EXPECT_LE(differing * 500, pixels);  // identical in at least 99.8 % of pixels

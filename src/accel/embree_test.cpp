@@ -14,6 +14,7 @@
 #include "accel/accel.h"
 #include "accel/accel_test_util.h"
 #include "accel/embree_backend.h"
+#include "accel/embree_image_compare.h"
 #include "io/mesh_file.h"
 #include "io/scene_json/scene_file.h"
 #include "render/render.h"
@@ -257,13 +258,6 @@ INSTANTIATE_TEST_SUITE_P(Models, EmbreeOnModel,
 // Two radiances agree when every channel does to 1e-3 relative: far below
 // what an 8-bit PNG shows, far above the rounding of a slightly different t
 // or barycentric. A different triangle or shadow changes a pixel by much more.
-bool same_pixel(const float* a, const float* b) {
-    for (int c = 0; c < 3; ++c) {
-        if (std::fabs(a[c] - b[c]) > 1e-3f * std::max({std::fabs(a[c]), std::fabs(b[c]), 1e-2f})) return false;
-    }
-    return true;
-}
-
 class EmbreeOnScene : public ::testing::TestWithParam<std::string> {};
 
 TEST_P(EmbreeOnScene, ImageEqualsTheBvhImage) {
@@ -272,33 +266,16 @@ TEST_P(EmbreeOnScene, ImageEqualsTheBvhImage) {
     Diagnostics diag;
     const LoadedScene loaded = load_scene_file(path, diag);
     const Scene& scene = loaded.scene;
-    RenderJob job;
-    job.scene = &scene;
-    job.settings = loaded.settings;
-    job.settings.width = 192;
-    job.settings.height = loaded.settings.height * 192 / loaded.settings.width;
-    job.camera = make_camera(scene.camera, job.settings.width, job.settings.height);
-    job.lights = make_light_set(scene, make_constant_environment(scene.background), false);
-    std::vector<RenderOutput> images;
-    for (const AccelKind kind : {AccelKind::Bvh, AccelKind::Embree}) {
-        const Accel accel = make_accel(scene, kind);
-        job.accel = &accel;
-        RenderProgress progress;
-        images.push_back(render_image(job, progress));
-    }
-    const std::vector<float>& a = images[0].film.rgb;
-    const std::vector<float>& b = images[1].film.rgb;
-    ASSERT_EQ(a.size(), b.size());
-    const std::size_t pixels = a.size() / 3;
-    std::size_t differing = 0, lit = 0;
-    for (std::size_t p = 0; p < pixels; ++p) {
-        differing += !same_pixel(&a[3 * p], &b[3 * p]);
-        lit += a[3 * p] + a[3 * p + 1] + a[3 * p + 2] > 0.05f;
-    }
+    RenderSettings settings = loaded.settings;
+    settings.width = 192;
+    settings.height = loaded.settings.height * 192 / loaded.settings.width;
+    const testing::ImageAgreement r = testing::compare_bvh_with_embree(scene, settings);
+    const std::size_t pixels = r.pixels, differing = r.differing, lit = r.lit;
+    ASSERT_GT(pixels, 0u);
     std::printf("[ embree     ] %-12s %zu of %zu pixels differ\n", GetParam().c_str(), differing, pixels);
     EXPECT_GT(lit, pixels / 10);          // the picture shows something
     EXPECT_LE(differing * 1000, pixels);  // identical in at least 99.9 % of pixels
-    EXPECT_EQ(images[0].counters.camera_rays, images[1].counters.camera_rays);
+    EXPECT_EQ(r.bvh_camera_rays, r.embree_camera_rays);
 }
 
 INSTANTIATE_TEST_SUITE_P(Scenes, EmbreeOnScene, ::testing::Values("bunny", "dragon", "cornell", "phong", "manylights"));
