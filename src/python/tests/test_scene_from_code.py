@@ -47,7 +47,8 @@ def write_obj(path, positions, indices, normals, uvs):
             f.write(f"f {a}/{a}/{a} {b}/{b}/{b} {c}/{c}/{c}\n")
 
 
-def code_scene(positions, indices, normals, uvs):
+def dressed_scene():
+    """A code scene with the materials, lights, camera and settings, no meshes."""
     s = sombra.Scene()
     for name, m in MATERIALS.items():
         s.add_material(name, m)
@@ -55,6 +56,11 @@ def code_scene(positions, indices, normals, uvs):
         s.add_light(light)
     s.camera = CAMERA
     s.render_settings = RENDER
+    return s
+
+
+def code_scene(positions, indices, normals, uvs):
+    s = dressed_scene()
     s.add_mesh(positions, indices, normals=normals, uvs=uvs, material="floor")
     s.add_mesh(positions * 0.3, indices, normals=normals, material="gold", transform=TRANSFORM)
     return s
@@ -89,13 +95,7 @@ def test_instances_render_as_the_same_instances_from_a_file_and_count_once(tmp_p
                                "instances": placed}]}
     (tmp_path / "scene.json").write_text(json.dumps(scene_file))
     from_file = sombra.load(tmp_path / "scene.json")
-    s = sombra.Scene()
-    for name, m in MATERIALS.items():
-        s.add_material(name, m)
-    for light in LIGHTS:
-        s.add_light(light)
-    s.camera = CAMERA
-    s.render_settings = RENDER
+    s = dressed_scene()
     s.add_mesh(positions, indices, normals=normals, uvs=uvs, material="floor")
     s.add_mesh(positions * 0.3, indices, normals=normals, material="gold", transform=TRANSFORM, instances=placed)
     one, quad = len(indices), 2
