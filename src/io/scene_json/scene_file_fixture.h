@@ -10,6 +10,7 @@
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <vector>
 
 #include "io/scene_json/scene_file.h"
 
@@ -47,6 +48,21 @@ protected:
             return e.what();
         }
         return "";
+    }
+
+    // Scene text that must fail to load, and the start of its message after
+    // the scene's path (e.g. ": /lights/0/direction: direction is zero").
+    struct ErrorCase {
+        std::string text, expected;
+    };
+    // Each case fails with one message starting with the scene's path and its `expected`.
+    void expect_errors(const std::vector<ErrorCase>& cases) {
+        const std::string name = scene_path.string();
+        for (const ErrorCase& c : cases) {
+            SCOPED_TRACE(c.text);
+            const std::string message = error_of(c.text);
+            EXPECT_EQ(message.rfind(name + c.expected, 0), 0u) << message;
+        }
     }
 
     Diagnostics diag;
