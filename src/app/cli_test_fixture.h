@@ -104,14 +104,21 @@ protected:
     // `env` ("NAME=VALUE ...") added to its environment.
     RunResult run(const std::string& args, long memory_kib = 0, const std::string& env = "") {
         if (memory_kib == 0) memory_kib = default_memory_kib();
-        const fs::path out = dir_ / "stdout.txt", err = dir_ / "stderr.txt";
         std::string cmd = "cd " + shell_quote(dir_.string()) + " && ";
         if (!kSanitized) cmd += "ulimit -v " + std::to_string(memory_kib) + " && ";
         cmd += "exec " + (env.empty() ? std::string() : "env " + env + " ") + "timeout -k 5 " +
-               std::to_string(kTimeoutSeconds) + " " + shell_quote(SOMBRA_EXE) + " " + args + " >" +
-               shell_quote(out.string()) + " 2>" + shell_quote(err.string()) + " </dev/null";
+               std::to_string(kTimeoutSeconds) + " " + shell_quote(SOMBRA_EXE) + " " + args;
+        return run_shell(cmd);
+    }
+
+    // Runs the shell command `cmd` with its output captured and no input:
+    // its exit status, stdout, stderr and wall time.
+    RunResult run_shell(const std::string& cmd) {
+        const fs::path out = dir_ / "stdout.txt", err = dir_ / "stderr.txt";
+        const std::string full =
+            cmd + " >" + shell_quote(out.string()) + " 2>" + shell_quote(err.string()) + " </dev/null";
         const auto start = std::chrono::steady_clock::now();
-        const int raw = std::system(cmd.c_str());
+        const int raw = std::system(full.c_str());
         RunResult r;
         r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;

@@ -42,20 +42,10 @@ protected:
     // words `env` ("NAME=VALUE ..."); as root (CI), in a container without
     // ptrace, and (under ASan) not counting Open MPI's own leaks at exit.
     RunResult mpirun(int ranks, const std::string& args, const std::string& env = "") {
-        const fs::path out = dir_ / "mpi-stdout.txt", err = dir_ / "mpi-stderr.txt";
-        const std::string cmd = "cd " + shell_quote(dir_.string()) +
-                                " && OMPI_MCA_btl_vader_single_copy_mechanism=none ASAN_OPTIONS=detect_leaks=0 " + env +
-                                " timeout -k 5 60 mpirun --allow-run-as-root --oversubscribe -np " +
-                                std::to_string(ranks) + " " + shell_quote(SOMBRA_EXE) + " " + args + " >" +
-                                shell_quote(out.string()) + " 2>" + shell_quote(err.string()) + " </dev/null";
-        const int raw = std::system(cmd.c_str());
-        RunResult r;
-        r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
-        r.out = read_text(out);
-        r.err = read_text(err);
-        fs::remove(out);
-        fs::remove(err);
-        return r;
+        return run_shell("cd " + shell_quote(dir_.string()) +
+                         " && OMPI_MCA_btl_vader_single_copy_mechanism=none ASAN_OPTIONS=detect_leaks=0 " + env +
+                         " timeout -k 5 60 mpirun --allow-run-as-root --oversubscribe -np " + std::to_string(ranks) +
+                         " " + shell_quote(SOMBRA_EXE) + " " + args);
     }
 };
 
