@@ -1,6 +1,7 @@
 // Spec §22 in scene files: the "animation" clock and keyed "transform" and
 // "camera" values.
 #include <cmath>
+#include <initializer_list>
 #include <string>
 
 #include "io/scene_json/scene_json.h"
@@ -34,6 +35,25 @@ const Json& read_keys(const SceneJson& s, const Json& v, std::string_view pointe
     return keys;
 }
 
+// The keys of a keyed value, each an object with an increasing "time" and,
+// unless `members` is empty, no other member than those;
+// read_key(key, its pointer, its time) reads the rest of one.
+template <class Key, class ReadKey>
+std::vector<Key> read_keyed(const SceneJson& s, const Json& v, std::string_view pointer,
+                            std::initializer_list<std::string_view> members, ReadKey read_key) {
+    const Json& keys = read_keys(s, v, pointer);
+    const std::string keys_pointer = json_child(pointer, "keys");
+    std::vector<Key> out;
+    for (std::size_t i = 0; i < keys.size(); ++i) {
+        const std::string p = json_child(keys_pointer, i);
+        expect_object(s, keys[i], p);
+        if (members.size() > 0) expect_keys(s, keys[i], p, members);
+        const double time = read_key_time(s, keys[i], p, i, out.empty() ? 0.0 : out.back().time);
+        out.push_back(read_key(keys[i], p, time));
+    }
+    return out;
+}
+
 }  // namespace
 
 SceneClock read_animation(const SceneJson& s, const Json& v, std::string_view pointer) {
@@ -56,37 +76,29 @@ SceneClock read_animation(const SceneJson& s, const Json& v, std::string_view po
 }
 
 std::vector<TransformKey> read_transform_keys(const SceneJson& s, const Json& v, std::string_view pointer) {
-    const Json& keys = read_keys(s, v, pointer);
-    const std::string keys_pointer = json_child(pointer, "keys");
-    std::vector<TransformKey> out;
-    for (std::size_t i = 0; i < keys.size(); ++i) {
-        const std::string p = json_child(keys_pointer, i);
-        expect_object(s, keys[i], p);
-        expect_keys(s, keys[i], p, {"time", "transform"});
-        const double time = read_key_time(s, keys[i], p, i, out.empty() ? 0.0 : out.back().time);
-        out.push_back(
-            {time, read_transform(s, require_member(s, keys[i], p, "transform"), json_child(p, "transform"))});
-    }
-    return out;
+    return read_keyed<TransformKey>(
+        s, v, pointer, {"time", "transform"}, [&](const Json& key, const std::string& p, double time) {
+            return TransformKey{time,
+                                read_transform(s, require_member(s, key, p, "transform"), json_child(p, "transform"))};
+        });
 }
 
 std::vector<CameraKey> read_camera_keys(const SceneJson& s, const Json& v, std::string_view pointer) {
-    const Json& keys = read_keys(s, v, pointer);
-    const std::string keys_pointer = json_child(pointer, "keys");
-    std::vector<CameraKey> out;
-    for (std::size_t i = 0; i < keys.size(); ++i) {
-        const std::string p = json_child(keys_pointer, i);
-        expect_object(s, keys[i], p);
-        const double time = read_key_time(s, keys[i], p, i, out.empty() ? 0.0 : out.back().time);
+    // The camera's own reader checks its members (read_camera).
+    return read_keyed<CameraKey>(s, v, pointer, {}, [&](const Json& key, const std::string& p, double time) {
         // The rest of the key is a camera object of the look-at form (spec §22).
-        Json camera = keys[i];
+        Json camera = key;
         camera.erase("time");
         const CameraSpec spec = read_camera(s, camera, p);
         if (!spec.look_at) json_fail(s, p, "a camera key is a look-at camera: 'origin', 'look_at', 'up', 'fov'");
-        out.push_back(CameraKey{time, spec.look_at->origin, spec.look_at->look_at, spec.look_at->up,
-                                spec.look_at->fov_degrees, spec.aperture_radius, spec.focus_distance});
-    }
-    return out;
+        return CameraKey{time,
+                         spec.look_at->origin,
+                         spec.look_at->look_at,
+                         spec.look_at->up,
+                         spec.look_at->fov_degrees,
+                         spec.aperture_radius,
+                         spec.focus_distance};
+    });
 }
 
 }  // namespace sombra
