@@ -11,6 +11,8 @@
 
 #include <tbb/parallel_for.h>
 
+#include "accel/bvh_build_refs.h"
+
 namespace sombra {
 namespace {
 
@@ -21,32 +23,19 @@ constexpr int kBins = 16;
 constexpr int kMaxSahDepth = 40;
 constexpr int kStackSize = 128;
 
-struct Box {
-    Vec3 lo{kInf}, hi{-kInf};
-    void grow(const Box& b) {
-        lo = min(lo, b.lo);
-        hi = max(hi, b.hi);
-    }
-    void grow(Vec3 p) {
-        lo = min(lo, p);
-        hi = max(hi, p);
-    }
-    float half_area() const {
-        if (!(lo.x <= hi.x)) return 0.0f;
-        const Vec3 e = hi - lo;
-        return e.x * e.y + e.y * e.z + e.z * e.x;
-    }
-    Vec3 center() const { return 0.5f * (lo + hi); }
-};
+// The BVH build's box (bvh_build_refs.h); its centre, for binning.
+using bvh_build::Box;
+Vec3 center(const Box& b) { return 0.5f * (b.bmin + b.bmax); }
 
 // The world box of `mesh` placed by `to_world`: its own box's eight corners
 // carried over (an affine map keeps the mesh inside them).
 Box world_box(const Box& object_box, const Transform& to_world) {
     Box box;
-    if (!(object_box.lo.x <= object_box.hi.x)) return box;
+    if (!(object_box.bmin.x <= object_box.bmax.x)) return box;
     for (int corner = 0; corner < 8; ++corner) {
-        const Vec3 c{corner & 1 ? object_box.hi.x : object_box.lo.x, corner & 2 ? object_box.hi.y : object_box.lo.y,
-                     corner & 4 ? object_box.hi.z : object_box.lo.z};
+        const Vec3 c{corner & 1 ? object_box.bmax.x : object_box.bmin.x,
+                     corner & 2 ? object_box.bmax.y : object_box.bmin.y,
+                     corner & 4 ? object_box.bmax.z : object_box.bmin.z};
         box.grow(transform_point(to_world, c));
     }
     return box;
@@ -69,10 +58,10 @@ struct TreeBuilder {
         Box bounds, centers;
         for (std::uint32_t i = begin; i < end; ++i) {
             bounds.grow(boxes[order[i]]);
-            centers.grow(boxes[order[i]].center());
+            centers.grow(center(boxes[order[i]]));
         }
-        nodes[node].bmin = bounds.lo;
-        nodes[node].bmax = bounds.hi;
+        nodes[node].bmin = bounds.bmin;
+        nodes[node].bmax = bounds.bmax;
         if (end - begin == 1) {
             nodes[node].left_or_instance = order[begin];
             nodes[node].is_leaf = 1;
@@ -90,7 +79,7 @@ struct TreeBuilder {
     // the right one starts: the cheapest binned SAH plane, or the median
     // along the widest axis when no plane separates the centres (or deep).
     std::uint32_t split(std::uint32_t begin, std::uint32_t end, const Box& centers, int depth) {
-        const Vec3 extent = centers.hi - centers.lo;
+        const Vec3 extent = centers.bmax - centers.bmin;
         int best_axis = -1, best_bin = 0;
         float best_cost = kInf;
         for (int axis = 0; axis < 3 && depth < kMaxSahDepth; ++axis) {
@@ -98,7 +87,7 @@ struct TreeBuilder {
             std::array<Box, kBins> bin_box;
             std::array<std::uint32_t, kBins> bin_count{};
             for (std::uint32_t i = begin; i < end; ++i) {
-                const int b = bin_of(boxes[order[i]].center(), centers, axis);
+                const int b = bin_of(center(boxes[order[i]]), centers, axis);
                 bin_box[b].grow(boxes[order[i]]);
                 ++bin_count[b];
             }
@@ -126,7 +115,7 @@ struct TreeBuilder {
         }
         if (best_axis >= 0) {
             const auto it = std::partition(order.begin() + begin, order.begin() + end, [&](std::uint32_t i) {
-                return bin_of(boxes[i].center(), centers, best_axis) < best_bin;
+                return bin_of(center(boxes[i]), centers, best_axis) < best_bin;
             });
             return static_cast<std::uint32_t>(it - order.begin());
         }
@@ -134,14 +123,14 @@ struct TreeBuilder {
         const std::uint32_t mid = begin + (end - begin) / 2;
         std::nth_element(order.begin() + begin, order.begin() + mid, order.begin() + end,
                          [&](std::uint32_t a, std::uint32_t b) {
-                             const float ca = boxes[a].center()[axis], cb = boxes[b].center()[axis];
+                             const float ca = center(boxes[a])[axis], cb = center(boxes[b])[axis];
                              return ca < cb || (ca == cb && a < b);
                          });
         return mid;
     }
 
     static int bin_of(Vec3 center, const Box& centers, int axis) {
-        const float f = (center[axis] - centers.lo[axis]) / (centers.hi[axis] - centers.lo[axis]);
+        const float f = (center[axis] - centers.bmin[axis]) / (centers.bmax[axis] - centers.bmin[axis]);
         return std::clamp(static_cast<int>(f * kBins), 0, kBins - 1);
     }
 };
@@ -226,7 +215,7 @@ void build_tree(InstanceLevel& level, const Scene& scene) {
     std::vector<std::uint32_t> order;
     order.reserve(boxes.size());
     for (std::size_t i = 0; i < boxes.size(); ++i)
-        if (boxes[i].lo.x <= boxes[i].hi.x) order.push_back(static_cast<std::uint32_t>(i));
+        if (boxes[i].bmin.x <= boxes[i].bmax.x) order.push_back(static_cast<std::uint32_t>(i));
     if (order.empty()) return;
     level.nodes.reserve(2 * order.size() - 1);
     level.nodes.resize(1);
