@@ -141,10 +141,10 @@ Vec3 trace_path_recorded(const IntegratorContext& ctx, const Ray& camera_ray, Sa
         const BsdfPoint bsdf_point = make_bsdf_point(si.n_g, si.n_s, si.outside);
         // Every vertex draws the same dimensions whether it uses them or
         // not, so that dimension k means the same thing on every path.
-        const float u_choice = samples.next_1d();
         const SampleStream::Pair u_light = samples.next_2d();
-        const float u_lobe = samples.next_1d();
+        const float u_choice = samples.next_1d();
         const SampleStream::Pair u_bsdf = samples.next_2d();
+        const float u_lobe = samples.next_1d();
         const float u_roulette = samples.next_1d();
 
         const ShadingView view{si, material, bsdf_point, wo};

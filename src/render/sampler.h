@@ -215,7 +215,10 @@ inline PixelSample pixel_sample(std::uint32_t index, std::uint32_t count, std::u
 // 2-D draw the dimensions (0, 1) of the next group, the one pair of the four
 // that is a (0, 2)-sequence (the pair (2, 3) is stratified only in its 1-D
 // projections: see sampler_test.cpp). The path integrator's draws per
-// vertex, 1-D, 2-D, 1-D, 2-D, 1-D, so use two groups. `count` only chooses
+// vertex, 2-D, 1-D, 2-D, 1-D, 1-D, use two groups: a light's point then
+// the choice of that light, a BSDF direction then its lobe, so that each
+// choice is dimension 2 of its point's group and the two are stratified
+// together. `count` only chooses
 // this mode: a sample's numbers do not depend on how many samples the pixel
 // takes (spec §18). With one sample per pixel every draw is an independent
 // uniform hash, as in version 1, so that 1-spp images stay bit for bit.
