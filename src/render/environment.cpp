@@ -13,8 +13,6 @@ namespace {
 constexpr float kPi = 3.14159265358979323846f;
 constexpr double kPiD = 3.14159265358979323846;
 
-bool has_map(const Environment& env) { return env.image.width > 0; }
-
 // World to map frame, R_y(−θ)·d, and back, R_y(θ)·m; R_y(α) maps
 // (x, z) to (cos α·x + sin α·z, −sin α·x + cos α·z).
 Vec3 world_to_map(const Environment& env, Vec3 d) {
@@ -119,6 +117,8 @@ Environment make_map_environment(HdrImage image, float scale, float rotate_y_deg
         env.distribution = make_distribution_2d(sampling_weights(env.image), env.image.width, env.image.height);
     return env;
 }
+
+bool has_map(const Environment& env) { return env.image.width > 0; }
 
 bool is_black(const Environment& env) {
     if (!has_map(env)) return !(max_component(env.constant) > 0.0f);

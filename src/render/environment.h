@@ -35,6 +35,9 @@ Environment make_constant_environment(Vec3 radiance);
 // guarantees it); scale ≥ 0.
 Environment make_map_environment(HdrImage image, float scale, float rotate_y_degrees);
 
+// True for an image environment, false for a constant colour.
+bool has_map(const Environment& env);
+
 // True when no direction receives any radiance: the environment then needs
 // no sampling, and sample_environment returns false.
 bool is_black(const Environment& env);

@@ -2,8 +2,9 @@
 // "from x, where are you and how much arrives" and never trace rays
 // themselves (the integrator casts the shadow ray up to the returned
 // distance). Point lights are delta lights, each visited at every vertex;
-// emissive triangles and the environment are sampled one at a time: the
-// environment in proportion to its share of the power, and among the
+// emissive triangles and the environment are sampled one at a time: an
+// environment map in proportion to its share of the power (a constant one
+// rarely: see make_light_set), and among the
 // emitters in proportion to power or, in scenes of many emitters, by a light
 // tree that weighs each by what it can send to the shading point
 // (render/light_tree.h).
@@ -106,7 +107,9 @@ std::uint32_t emitter_light(const LightSet& lights, std::uint32_t triangle, std:
 // `environment` lights the scene when `sample_environment_light` (under path
 // tracing) and is otherwise only seen.
 // Emitter power = luminance(ke) · area · π (twice for two-sided emitters);
-// the environment's = its power proxy · π R², R the scene's bounding radius.
+// the environment's = its power proxy · π R², R the scene's bounding radius,
+// except that a constant environment beside emitters is chosen with
+// probability 0.01 (BSDF sampling serves it better).
 LightSet make_light_set(const Scene& scene, Environment environment, bool sample_environment_light,
                         LightSelection selection = LightSelection::Automatic);
 

@@ -51,6 +51,34 @@ TEST(Lights, EmittersArePickedInProportionToPower) {
     EXPECT_NEAR(sum, 1.0, 1e-6);
 }
 
+TEST(Lights, AConstantEnvironmentBesideEmittersIsChosenOnceInAHundred) {
+    // A constant environment is left to BSDF sampling (its exact density on
+    // a diffuse surface) but keeps a 1 % share of the light samples, so that
+    // both strategies still count it; alone, it takes them all. A map keeps
+    // its share of the power.
+    const Scene scene = two_emitters_and_a_floor();
+    const LightSet lights = make_light_set(scene, make_constant_environment(Vec3{0.2f}), true);
+    ASSERT_EQ(lights.choice_probability.size(), 3u);
+    EXPECT_NEAR(lights.choice_probability.back(), 0.01, 1e-6);
+    EXPECT_NEAR(lights.choice_probability[0] + lights.choice_probability[1], 0.99, 1e-6);
+
+    TriangleMesh floor_only;
+    add_triangle(floor_only, {-10, 0, -10}, {-10, 0, 10}, {10, 0, 10}, 0);
+    SceneBuilder b;
+    testing::add_world_mesh(b, floor_only, {Material{}});
+    const LightSet alone = make_light_set(b.finish(), make_constant_environment(Vec3{0.2f}), true);
+    ASSERT_EQ(alone.choice_probability.size(), 1u);
+    EXPECT_EQ(alone.choice_probability[0], 1.0f);
+
+    HdrImage grey{2, 1, std::vector<float>(6, 0.2f)};
+    const LightSet mapped = make_light_set(scene, make_map_environment(grey, 1.0f, 0.0f), true);
+    const float r = 0.5f * length(Vec3{20.0f, 40.0f, 20.0f});  // the scene's bounding radius
+    const double p_env = 4 * std::numbers::pi * 0.2 * std::numbers::pi * r * r;
+    const double p_bright = 10.0 * mapped.emitter_areas[0] * std::numbers::pi * 2;
+    EXPECT_NEAR(mapped.choice_probability.back() / mapped.choice_probability[0], p_env / p_bright,
+                1e-3 * p_env / p_bright);
+}
+
 TEST(Lights, SampledDensityEqualsTheDensityOfTheSampledPoint) {
     const Scene scene = two_emitters_and_a_floor();
     const LightSet lights = make_light_set(scene, make_constant_environment(Vec3{0.2f}), true);
