@@ -47,6 +47,16 @@ private:
              << (c_.job.settings.spp == 1 ? "  (the centre: one sample per pixel)" : "") << "\n";
         out_ << "  image plane            s = " << readable(r_.s) << ", t = " << readable(r_.t)
              << "  (s = 1 − 2(i + x)/W, t = 1 − 2(j + y)/H)\n";
+        if (cam.orthographic) {
+            // Spec §24: parallel rays from the camera's plane, along f.
+            out_ << "  origin                 o + s·l + t·u = " << readable(r_.origin)
+                 << "  (orthographic, o = " << readable(cam.origin) << ")\n";
+            out_ << "  direction d            f = " << readable(r_.direction) << "\n";
+            out_ << "      with l = " << readable(cam.left) << ", u = " << readable(cam.up)
+                 << " (the view's half-width " << readable(length(cam.left)) << " and half-height "
+                 << readable(length(cam.up)) << ")\n";
+            return;
+        }
         if (!r_.lens) {
             out_ << "  origin o               " << readable(r_.origin) << "\n";
             out_ << "  direction d            s·l + t·u + f = " << readable(r_.direction) << "\n";

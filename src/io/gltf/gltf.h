@@ -199,6 +199,14 @@ std::optional<Transform> trs_transform(Vec3 translation, double x, double y, dou
 // at most `room` instances, values finite), each rotation a non-zero
 // quaternion and each scale non-zero, and that the node has a mesh. Throws
 // Error(file, "node N: EXT_mesh_gpu_instancing: ...") or the accessor's error.
+// The camera `index` placed by `world` (its scale ignored, as glTF says),
+// or nothing (with a warning) when it is degenerate. znear and zfar are
+// not used (nothing is clipped), for either kind. An orthographic camera's
+// xmag is not used either: its half-width is ymag times the image's aspect
+// (spec §24), and a ymag that is not a finite positive number is an error.
+std::optional<ModelCamera> place_camera(const tinygltf::Model& model, int index, const Transform& world,
+                                        const std::string& file, Diagnostics& diag);
+
 std::vector<Transform> gpu_instances(const AccessorReader& r, const tinygltf::Node& node, int index, std::size_t room);
 
 // The file's animations (spec §22, glTF 2.0 §3.11), all of them on one

@@ -200,37 +200,6 @@ struct PartBuild {
     InstancedPart part;  // all but the mesh
 };
 
-// The camera `index` placed by `world`, or nothing (with a warning) when it
-// is orthographic or degenerate.
-std::optional<ModelCamera> place_camera(const tinygltf::Model& model, int index, const Transform& world,
-                                        const std::string& file, Diagnostics& diag) {
-    if (index < 0 || static_cast<std::size_t>(index) >= model.cameras.size())
-        throw Error(file, "a node names camera " + std::to_string(index) + ", but the file has " +
-                              std::to_string(model.cameras.size()));
-    const tinygltf::Camera& c = model.cameras[std::size_t(index)];
-    if (c.type != "perspective") {
-        diag.warn(file, "camera " + std::to_string(index) + " is " + c.type +
-                            ", not perspective: the model is framed automatically");
-        return std::nullopt;
-    }
-    const double yfov = c.perspective.yfov * 180.0 / std::numbers::pi;
-    ModelCamera cam;
-    cam.origin = transform_point(world, Vec3{0.0f});
-    const Vec3 forward = transform_vector(world, Vec3{0, 0, -1});
-    const Vec3 up = transform_vector(world, Vec3{0, 1, 0});
-    cam.forward = normalize(forward);
-    cam.up = normalize(up - dot(up, cam.forward) * cam.forward);
-    cam.yfov_degrees = static_cast<float>(yfov);
-    cam.aspect = c.perspective.aspectRatio > 0 ? static_cast<float>(c.perspective.aspectRatio) : 0.0f;
-    if (!(yfov > 0 && yfov < 180) || !std::isfinite(cam.aspect) || !is_finite(cam.origin) || !is_finite(cam.forward) ||
-        !is_finite(cam.up)) {
-        diag.warn(file, "camera " + std::to_string(index) +
-                            " is unusable (field of view, aspect or placement): the model is framed automatically");
-        return std::nullopt;
-    }
-    return cam;
-}
-
 }  // namespace
 
 LoadedMesh load_gltf(const std::filesystem::path& path, Diagnostics& diag) {
@@ -311,7 +280,7 @@ LoadedMesh load_gltf(const std::filesystem::path& path, Diagnostics& diag) {
         const tinygltf::Node& node = model.nodes[std::size_t(in.node)];
         if (node.skin >= 0) ++skipped["skins (the bind pose is used)"];
         if (node.camera >= 0 && (!camera || node.camera < camera->first))
-            if (std::optional<ModelCamera> c = place_camera(model, node.camera, world_of(in), file, diag))
+            if (std::optional<ModelCamera> c = gltf::place_camera(model, node.camera, world_of(in), file, diag))
                 camera = {node.camera, *c};
         if (const auto it = node.extensions.find(gltf::kLights); it != node.extensions.end() && it->second.IsObject()) {
             const std::optional<int> light =
