@@ -124,7 +124,14 @@ private:
         out_ << "  x        " << readable(h.position) << "\n";
         out_ << "  n_g      " << readable(h.n_g) << "  (geometric normal, turned to face the ray)\n";
         const MaterialTextures& maps = c_.scene.materials[h.material].textures;
-        const bool mapped = h.has_uv && (maps.normal_map.is_set() || maps.bump_map.is_set());
+        // As resolve_material decides (render/shading.cpp): a map on uv set 0
+        // needs the hit's uv, one on another set (glTF texCoord) its own.
+        const TextureRef& map = maps.normal_map.is_set() ? maps.normal_map : maps.bump_map;
+        Vec2 map_uv;
+        const bool mapped =
+            map.is_set() && (map.uv_set == 0 ? h.has_uv
+                                             : interpolate_uv_set(surface_mesh(c_.scene, h.instance), map.uv_set,
+                                                                  h.triangle, h.b1, h.b2, map_uv));
         const bool smooth = has_vertex_normals(surface_mesh(c_.scene, h.instance), h.triangle);
         out_ << "  n_s      " << readable(h.n_s)
              << (mapped           ? "  (shading normal: after the material's normal or bump map)"
