@@ -4,8 +4,10 @@
 // TEXCOORD_0, slot by slot (base colour, metallic-roughness, normal,
 // emission, occlusion), each texture keeping its own set, with bilinear and
 // mip-mapped lookups (the footprint is the set's), for a mesh drawn once
-// and one drawn by two nodes (instanced); a primitive without the set a
-// texture reads shows the constant alone, with one warning.
+// and one drawn by two nodes (instanced), with the base colour's alpha as a
+// cut-out, and with the textured emission lighting a floor (light sampling
+// reads it too); a primitive without the set a texture reads shows the
+// constant alone, with one warning.
 #include <gtest/gtest.h>
 
 #include <string>
@@ -47,7 +49,7 @@ nlohmann::json& info(nlohmann::json& m, const std::string& slot) {
 // and the others set 1 − slot_set; drawn by one node, or by two (then an
 // instanced mesh).
 GltfFile quad(const std::vector<Vec2>& set0, const std::vector<Vec2>& set1, const std::string& slot, int slot_set,
-              bool two_nodes) {
+              bool two_nodes, bool mask = false) {
     GltfFile f;
     nlohmann::json attributes = {{"POSITION", f.add_positions({{-1, -1, 0}, {1, -1, 0}, {1, 1, 0}, {-1, 1, 0}})},
                                  {"NORMAL", f.add_normals(std::vector<Vec3>(4, Vec3{0, 0, 1}))},
@@ -57,6 +59,7 @@ GltfFile quad(const std::vector<Vec2>& set0, const std::vector<Vec2>& set1, cons
     nlohmann::json m = {{"pbrMetallicRoughness", {{"metallicFactor", 0.8}, {"roughnessFactor", 0.9}}},
                         {"emissiveFactor", {0.3, 0.2, 0.1}}};
     for (const char* s : kSlots) info(m, s) = {{"index", 0}, {"texCoord", s == slot ? slot_set : 1 - slot_set}};
+    if (mask) m["alphaMode"] = "MASK", m["alphaCutoff"] = 0.45;
     f.doc["materials"] = {m};
     f.doc["images"] = {{{"uri", "tex.png"}}};
     f.doc["textures"] = {{{"source", 0}}};
@@ -81,13 +84,19 @@ protected:
                 for (int c = 0; c < 4; ++c) texels.push_back(std::uint16_t((37 * i + 71 * j + 113 * c + 29) % 256));
         testing::write_png_file(dir.path / "tex.png", 8, 8, 4, 8, texels);
     }
-    // `f` rendered, lit by a point light and seen at a slant, with `filter`.
+    // `f` rendered, path-traced, over a floor that its emission lights too
+    // (light sampling reads the texture), lit by a point light and seen at a
+    // slant, with `filter`.
     Film render(const GltfFile& f, const std::string& filter, std::size_t* warnings = nullptr) {
         f.save(dir.path / "q.gltf");
-        dir.write("s.json", R"({"render": {"width": 32, "height": 24, "spp": 2, "texture_filter": ")" + filter +
-                                R"("}, "camera": {"origin": [0.6, -0.8, 3], "look_at": [0, 0, 0], "fov": 50},
+        dir.write("floor.obj", "v -3 -1.2 -3\nv 3 -1.2 -3\nv 3 -1.2 3\nv -3 -1.2 3\nf 4 3 2 1\n");
+        dir.write(
+            "s.json",
+            R"({"render": {"width": 32, "height": 24, "spp": 2, "integrator": "path", "max_depth": 2, "texture_filter": ")" +
+                filter +
+                R"("}, "camera": {"origin": [0.6, -0.8, 3], "look_at": [0, 0, 0], "fov": 50},
                 "lights": [{"position": [1, 2, 3], "intensity": [20, 20, 20]}],
-                "objects": [{"file": "q.gltf"}]})");
+                "objects": [{"file": "q.gltf"}, {"file": "floor.obj"}]})");
         Diagnostics diag;
         const LoadedScene loaded = load_scene_file(dir.path / "s.json", diag);
         if (warnings) *warnings = diag.warnings.size();
@@ -100,21 +109,23 @@ protected:
 
 TEST_F(GltfTexcoord, EachTextureReadsItsOwnSetBitForBit) {
     for (const bool two_nodes : {false, true})
-        for (const char* filter : {"bilinear", "mipmap"})
-            for (const char* slot : kSlots) {
-                SCOPED_TRACE(std::string(slot) + ", " + filter + (two_nodes ? ", instanced" : ""));
-                // `slot` reads the other map through TEXCOORD_1, the rest the
-                // plain map through TEXCOORD_0; then the sets swapped.
-                const Film a = render(quad(kPlain, other(), slot, 1, two_nodes), filter);
-                const Film b = render(quad(other(), kPlain, slot, 0, two_nodes), filter);
-                ASSERT_EQ(a.rgb.size(), b.rgb.size());
-                EXPECT_TRUE(a.rgb == b.rgb);
-                // Not vacuous: with every slot on the plain map the image differs
-                // (occlusion aside, which the renderer does not use).
-                if (std::string(slot) == "occlusionTexture") continue;
-                const Film plain = render(quad(kPlain, other(), slot, 0, two_nodes), filter);
-                EXPECT_FALSE(a.rgb == plain.rgb);
-            }
+        for (const bool mask : {false, true})
+            for (const char* filter : {"bilinear", "mipmap"})
+                for (const char* slot : kSlots) {
+                    SCOPED_TRACE(std::string(slot) + ", " + filter + (two_nodes ? ", instanced" : "") +
+                                 (mask ? ", cut out" : ""));
+                    // `slot` reads the other map through TEXCOORD_1, the rest the
+                    // plain map through TEXCOORD_0; then the sets swapped.
+                    const Film a = render(quad(kPlain, other(), slot, 1, two_nodes, mask), filter);
+                    const Film b = render(quad(other(), kPlain, slot, 0, two_nodes, mask), filter);
+                    ASSERT_EQ(a.rgb.size(), b.rgb.size());
+                    EXPECT_TRUE(a.rgb == b.rgb);
+                    // Not vacuous: with every slot on the plain map the image
+                    // differs (occlusion aside, which the renderer does not use).
+                    if (std::string(slot) == "occlusionTexture") continue;
+                    const Film plain = render(quad(kPlain, other(), slot, 0, two_nodes, mask), filter);
+                    EXPECT_FALSE(a.rgb == plain.rgb);
+                }
 }
 
 TEST_F(GltfTexcoord, AMissingSetLeavesTheConstantWithOneWarning) {
