@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include "render/ray_cone.h"
+
 namespace sombra {
 namespace {
 
@@ -132,6 +134,16 @@ TEST(Camera, OrthographicSeesTheImageTheWayRoundThePinholeDoes) {
             EXPECT_GT(dot(off, p.left) * dot(dir, p.left), 0);
             EXPECT_GT(dot(off, p.up) * dot(dir, p.up), 0);
         }
+}
+
+TEST(Camera, OrthographicRayConesArePixelWideAndDoNotSpread) {
+    // 200 × 100 pixels over a 6 × 3 view: each pixel 0.03 on a side.
+    const Camera c = make_camera(orthographic_spec({1, 2, 5}, {1, 2, 0}, {0, 1, 0}, 1.5f), 200, 100);
+    const RayCone cone =
+        camera_ray_cone(camera_pixel_area(c.left, c.up, 200, 100), camera_ray(c, 0.3f, -0.2f).dir, true);
+    EXPECT_NEAR(cone.width, 0.03f, 1e-6f);
+    EXPECT_EQ(cone.spread, 0.0f);
+    EXPECT_NEAR(cone_width(cone, 100.0f), 0.03f, 1e-6f);
 }
 
 TEST(Camera, OrthographicHasNoLensEvenWithAnAperture) {
