@@ -41,6 +41,11 @@ public:
                            {"t", number(r_.t)},
                            {"origin", vec(r_.origin)},
                            {"direction", vec(r_.direction)}};
+        if (c_.job.camera.orthographic) {
+            const Camera& cam = c_.job.camera;
+            j["camera_ray"]["orthographic"] = {{"half_width", number(length(cam.left))},
+                                               {"half_height", number(length(cam.up))}};
+        }
         if (r_.lens) {
             const Camera& cam = c_.job.camera;
             j["camera_ray"]["lens"] = {{"sample", {number(r_.lens_u), number(r_.lens_v)}},

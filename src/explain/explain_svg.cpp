@@ -211,6 +211,10 @@ private:
 
     void camera() {
         const Camera& cam = c_.job.camera;
+        if (cam.orthographic) {
+            orthographic_camera(cam);
+            return;
+        }
         const float k = 0.08f * view_.extent() / std::max(length(cam.forward), 1e-12f);
         Vec3 corners[4];
         for (int i = 0; i < 4; ++i)
@@ -222,6 +226,25 @@ private:
         line(corners[3], corners[2], "#333", 1);
         line(corners[2], corners[0], "#333", 1);
         label(cam.origin, "camera", "#333", 4, 18);
+    }
+
+    // The rectangle the parallel rays leave (its true size) and a box along
+    // their direction, where a pinhole camera has its pyramid.
+    void orthographic_camera(const Camera& cam) {
+        const Vec3 depth = 0.08f * view_.extent() * cam.forward;
+        Vec3 near[4], far[4];
+        for (int i = 0; i < 4; ++i) {
+            near[i] = cam.origin + (i & 1 ? 1.0f : -1.0f) * cam.left + (i & 2 ? 1.0f : -1.0f) * cam.up;
+            far[i] = near[i] + depth;
+            line(near[i], far[i], "#333", 1);
+        }
+        for (const Vec3* r : {near, far}) {
+            line(r[0], r[1], "#333", 1);
+            line(r[1], r[3], "#333", 1);
+            line(r[3], r[2], "#333", 1);
+            line(r[2], r[0], "#333", 1);
+        }
+        label(cam.origin, "camera (orthographic)", "#333", 4, 18);
     }
 
     void lights() {

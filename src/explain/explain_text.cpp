@@ -47,6 +47,16 @@ private:
              << (c_.job.settings.spp == 1 ? "  (the centre: one sample per pixel)" : "") << "\n";
         out_ << "  image plane            s = " << readable(r_.s) << ", t = " << readable(r_.t)
              << "  (s = 1 − 2(i + x)/W, t = 1 − 2(j + y)/H)\n";
+        if (cam.orthographic) {
+            // Spec §24: parallel rays from the camera's plane, along f.
+            out_ << "  origin                 o + s·l + t·u = " << readable(r_.origin)
+                 << "  (orthographic, o = " << readable(cam.origin) << ")\n";
+            out_ << "  direction d            f = " << readable(r_.direction) << "\n";
+            out_ << "      with l = " << readable(cam.left) << ", u = " << readable(cam.up)
+                 << " (the view's half-width " << readable(length(cam.left)) << " and half-height "
+                 << readable(length(cam.up)) << ")\n";
+            return;
+        }
         if (!r_.lens) {
             out_ << "  origin o               " << readable(r_.origin) << "\n";
             out_ << "  direction d            s·l + t·u + f = " << readable(r_.direction) << "\n";
@@ -114,7 +124,14 @@ private:
         out_ << "  x        " << readable(h.position) << "\n";
         out_ << "  n_g      " << readable(h.n_g) << "  (geometric normal, turned to face the ray)\n";
         const MaterialTextures& maps = c_.scene.materials[h.material].textures;
-        const bool mapped = h.has_uv && (maps.normal_map.is_set() || maps.bump_map.is_set());
+        // As resolve_material decides (render/shading.cpp): a map on uv set 0
+        // needs the hit's uv, one on another set (glTF texCoord) its own.
+        const TextureRef& map = maps.normal_map.is_set() ? maps.normal_map : maps.bump_map;
+        Vec2 map_uv;
+        const bool mapped =
+            map.is_set() && (map.uv_set == 0 ? h.has_uv
+                                             : interpolate_uv_set(surface_mesh(c_.scene, h.instance), map.uv_set,
+                                                                  h.triangle, h.b1, h.b2, map_uv));
         const bool smooth = has_vertex_normals(surface_mesh(c_.scene, h.instance), h.triangle);
         out_ << "  n_s      " << readable(h.n_s)
              << (mapped           ? "  (shading normal: after the material's normal or bump map)"

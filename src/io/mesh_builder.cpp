@@ -244,7 +244,7 @@ void MeshBuilder::reserve_triangles(std::size_t count) {
 void MeshBuilder::add_face(std::span<const std::uint32_t> position_corners,
                            std::span<const std::uint32_t> normal_corners, std::uint32_t material,
                            std::span<const std::uint32_t> uv_corners, std::span<const std::uint32_t> tangent_corners,
-                           std::span<const std::uint32_t> color_corners) {
+                           std::span<const std::uint32_t> color_corners, const ExtraUvCorners& extra_uv_corners) {
     const std::size_t n = position_corners.size();
     if (n < 3) {
         ++skipped_small_faces;
@@ -255,12 +255,17 @@ void MeshBuilder::add_face(std::span<const std::uint32_t> position_corners,
     uv_corners = start_corners(uv_corners, n, has_uvs_, mesh_.uv_indices, before);
     tangent_corners = start_corners(tangent_corners, n, has_tangents_, mesh_.tangent_indices, before);
     color_corners = start_corners(color_corners, n, has_colors_, mesh_.color_indices, before);
+    ExtraUvCorners extra = extra_uv_corners;
+    for (std::size_t k = 0; k < extra.size(); ++k)
+        extra[k] = start_corners(extra[k], n, has_extra_uvs_[k], mesh_.extra_uvs[k].indices, before);
     auto emit = [&](std::uint32_t a, std::uint32_t b, std::uint32_t c) {
         mesh_.triangles.push_back({position_corners[a], position_corners[b], position_corners[c]});
         push_corners(mesh_.normal_indices, has_normals_, normal_corners, a, b, c);
         push_corners(mesh_.uv_indices, has_uvs_, uv_corners, a, b, c);
         push_corners(mesh_.tangent_indices, has_tangents_, tangent_corners, a, b, c);
         push_corners(mesh_.color_indices, has_colors_, color_corners, a, b, c);
+        for (std::size_t k = 0; k < extra.size(); ++k)
+            push_corners(mesh_.extra_uvs[k].indices, has_extra_uvs_[k], extra[k], a, b, c);
         mesh_.material_ids.push_back(material);
     };
     if (n == 3) {
@@ -305,6 +310,8 @@ void MeshBuilder::drop_non_finite_positions(Diagnostics& diag) {
     for (std::vector<Index3>* indices :
          {&mesh_.normal_indices, &mesh_.uv_indices, &mesh_.tangent_indices, &mesh_.color_indices})
         if (!indices->empty()) per_corner.push_back(indices);
+    for (UvSet& set : mesh_.extra_uvs)
+        if (!set.indices.empty()) per_corner.push_back(&set.indices);
     std::size_t out = 0;
     for (std::size_t t = 0; t < mesh_.triangles.size(); ++t) {
         const Index3& tri = mesh_.triangles[t];
@@ -345,6 +352,10 @@ TriangleMesh MeshBuilder::finish_mesh(std::size_t material_count, bool& uses_def
     mesh_.normals = std::move(normals);
     mesh_.uvs = std::move(uvs);
     if (!has_uvs_) mesh_.uvs.clear();
+    for (std::size_t k = 0; k < extra_uvs.size(); ++k) {
+        mesh_.extra_uvs[k].uvs = std::move(extra_uvs[k]);
+        if (!has_extra_uvs_[k]) mesh_.extra_uvs[k].uvs.clear();
+    }
     mesh_.tangents = std::move(tangents);
     mesh_.colors = std::move(colors);
     if (!has_colors_) mesh_.colors.clear();

@@ -75,9 +75,10 @@ struct MeshBuilder {
     // The file's vertices and normals, in file order; the loader fills these.
     std::vector<Vec3> positions;
     std::vector<Vec3> normals;
-    std::vector<Vec2> uvs;                // texture coordinates, in file order
-    std::vector<VertexTangent> tangents;  // glTF only, like the rest
-    std::vector<Rgba> colors;             // glTF only, like the rest
+    std::vector<Vec2> uvs;                                 // texture coordinates, in file order
+    std::array<std::vector<Vec2>, kUvSets - 1> extra_uvs;  // sets 1, 2, …: glTF only, like the rest
+    std::vector<VertexTangent> tangents;                   // glTF only, like the rest
+    std::vector<Rgba> colors;                              // glTF only, like the rest
 
     // Faces with fewer than 3 corners that the loader saw but could not add.
     std::size_t skipped_small_faces = 0;
@@ -89,11 +90,13 @@ struct MeshBuilder {
     // face has no normals, else one per corner, each < normals.size() or
     // kNoNormal; `material` an index into finish()'s list, or kNoMaterial.
     // `uv_corners`, `tangent_corners` and `color_corners` likewise: empty, or
-    // one per corner, < uvs.size() (tangents, colors) or kNoUv (kNoTangent, kNoColor).
+    // one per corner, < uvs.size() (tangents, colors) or kNoUv (kNoTangent,
+    // kNoColor); extra_uv_corners[k − 1] for set k (< extra_uvs[k − 1].size()).
+    using ExtraUvCorners = std::array<std::span<const std::uint32_t>, kUvSets - 1>;
     void add_face(std::span<const std::uint32_t> position_corners, std::span<const std::uint32_t> normal_corners,
                   std::uint32_t material, std::span<const std::uint32_t> uv_corners = {},
                   std::span<const std::uint32_t> tangent_corners = {},
-                  std::span<const std::uint32_t> color_corners = {});
+                  std::span<const std::uint32_t> color_corners = {}, const ExtraUvCorners& extra_uv_corners = {});
 
     // The finished mesh. Normals and tangent directions are unit length; zero
     // or non-finite ones are removed (their corners get kNoNormal, kNoTangent).
@@ -119,6 +122,7 @@ private:
     TriangleMesh mesh_;
     bool has_normals_ = false;
     bool has_uvs_ = false;
+    std::array<bool, kUvSets - 1> has_extra_uvs_{};
     bool has_tangents_ = false;
     bool has_colors_ = false;
     std::size_t overlap_fans_ = 0;

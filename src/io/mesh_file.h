@@ -20,14 +20,16 @@
 
 namespace sombra {
 
-// A pinhole camera that a model file places (glTF), in the file's
-// coordinates: at `origin`, looking along `forward`, with `up` (both unit,
-// perpendicular), a vertical field of view, and the image aspect (width /
-// height) the file asks for, 0 when it leaves that to the image.
+// A camera that a model file places (glTF), in the file's coordinates: at
+// `origin`, looking along `forward`, with `up` (both unit, perpendicular),
+// and either a pinhole's vertical field of view and the image aspect (width
+// / height) the file asks for, 0 when it leaves that to the image, or
+// (ymag > 0) an orthographic view's half-height (spec §24).
 struct ModelCamera {
     Vec3 origin, forward, up;
     float yfov_degrees = 45;
     float aspect = 0;
+    float ymag = 0;
 };
 
 // A mesh a file draws several times (glTF: a mesh several nodes use, or

@@ -113,6 +113,10 @@ LoadedScene make_quicklook_scene(const std::filesystem::path& model, Diagnostics
     if (loaded.camera) {
         const ModelCamera& c = *loaded.camera;
         camera.look_at = CameraLookAt{c.origin, c.origin + c.forward, c.up, c.yfov_degrees};
+        if (c.ymag > 0) {
+            camera.projection = CameraSpec::Projection::Orthographic;
+            camera.ortho_half_height = c.ymag;
+        }
         if (c.aspect > 0) {
             const float height = std::round(static_cast<float>(out.settings.width) / c.aspect);
             out.settings.height = static_cast<int>(std::clamp(height, 1.0f, static_cast<float>(kMaxImageSide)));

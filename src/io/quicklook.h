@@ -14,9 +14,10 @@ namespace sombra {
 // above, at the distance where the bounding sphere fits the frame; a key, a fill and a rim light
 // scaled to the model's size so the lit side shows mid-grey to light tones;
 // the model's own MTL materials, or neutral grey. Assumes +y is up. A glTF
-// file's first perspective camera replaces the framing (its aspect ratio
-// sets the default image's height), and its point lights, when it has any,
-// replace the three lights (spec §7, §13).
+// file's first camera, perspective (its aspect ratio sets the default
+// image's height) or orthographic (spec §24: ymag and the image's aspect),
+// replaces the framing, and its point lights, when it has any, replace the
+// three lights (spec §7, §13).
 LoadedScene make_quicklook_scene(const std::filesystem::path& model, Diagnostics& diag);
 
 }  // namespace sombra

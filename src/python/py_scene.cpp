@@ -75,19 +75,27 @@ py::dict settings_dict(const RenderSettings& r) {
 
 py::list vec3_list(Vec3 v) { return py::cast(std::vector<float>{v.x, v.y, v.z}); }
 
-// The camera as a scene file's "camera" object would give it (spec §3, §17).
+// The camera as a scene file's "camera" object would give it (spec §3, §17);
+// a glTF file's orthographic camera (spec §24), which scene files cannot
+// write, as "orthographic": {"ymag": half-height} in place of "fov".
 py::dict camera_dict(const CameraSpec& c) {
     py::dict d;
+    const bool orthographic = c.projection == CameraSpec::Projection::Orthographic;
     if (c.look_at) {
         d["origin"] = vec3_list(c.look_at->origin);
         d["look_at"] = vec3_list(c.look_at->look_at);
         d["up"] = vec3_list(c.look_at->up);
-        d["fov"] = c.look_at->fov_degrees;
+        if (!orthographic) d["fov"] = c.look_at->fov_degrees;
     } else if (c.basis) {
         d["origin"] = vec3_list(c.basis->origin);
         d["left"] = vec3_list(c.basis->left);
         d["up"] = vec3_list(c.basis->up);
         d["forward"] = vec3_list(c.basis->forward);
+    }
+    if (orthographic) {
+        py::dict o;
+        o["ymag"] = c.ortho_half_height;
+        d["orthographic"] = o;
     }
     if (c.aperture_radius > 0) d["aperture_radius"] = c.aperture_radius;
     if (c.focus_distance) d["focus_distance"] = *c.focus_distance;

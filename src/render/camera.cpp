@@ -36,9 +36,32 @@ Camera make_pinhole(const CameraSpec& spec, int width, int height) {
     return Camera{look.origin, to_float(l), to_float(u), to_float(f)};
 }
 
+// The orthographic basis of either form: l and u scaled to the view's
+// half-width and half-height, f unit.
+Camera make_orthographic(const CameraSpec& spec, int width, int height) {
+    const double aspect = static_cast<double>(width) / static_cast<double>(height);
+    const double half_height = spec.ortho_half_height;
+    Vec3d f, up;
+    if (spec.basis) {
+        f = to_double(spec.basis->forward);
+        up = to_double(spec.basis->up);
+    } else {
+        f = to_double(spec.look_at->look_at) - to_double(spec.look_at->origin);
+        up = to_double(spec.look_at->up);
+    }
+    f = scaled_unit(f, 1.0);
+    const Vec3d l = scaled_unit(cross(up, f), half_height * aspect);
+    const Vec3d u = scaled_unit(cross(f, l), half_height);
+    Camera camera{spec.basis ? spec.basis->origin : spec.look_at->origin, to_float(l), to_float(u), to_float(f)};
+    camera.orthographic = true;
+    return camera;
+}
+
 }  // namespace
 
 Camera make_camera(const CameraSpec& spec, int width, int height) {
+    // Parallel rays have no lens: a glTF orthographic camera has no aperture.
+    if (spec.projection == CameraSpec::Projection::Orthographic) return make_orthographic(spec, width, height);
     Camera camera = make_pinhole(spec, width, height);
     if (!(spec.aperture_radius > 0.0f)) return camera;
     const double r = spec.aperture_radius;

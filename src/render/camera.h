@@ -22,6 +22,10 @@ struct Camera {
     float lens_radius = 0;
     float focus_distance = 1;
     Vec3 lens_left{0.0f}, lens_up{0.0f}, unit_forward{0.0f};
+    // Orthographic (spec §24): the ray for (s, t) leaves o + s·l + t·u along
+    // forward (unit), so |left| and |up| are the view's half-width and
+    // half-height; never with a lens (lens_radius 0).
+    bool orthographic = false;
 };
 
 // Resolves either form of the scene's camera. The look-at form depends on the
@@ -30,9 +34,14 @@ struct Camera {
 // validated (scene_file.h does), exactly one form set.
 Camera make_camera(const CameraSpec& spec, int width, int height);
 
-// The pinhole ray through image-plane point (s, t); its direction is not normalised.
+// The pinhole ray through image-plane point (s, t); its direction is not
+// normalised. An orthographic camera's ray for (s, t) starts where the
+// pinhole's image-plane offset s·l + t·u puts it, so both see the image the
+// same way round.
 inline Ray camera_ray(const Camera& camera, float s, float t) {
-    return Ray{camera.origin, s * camera.left + t * camera.up + camera.forward};
+    const Vec3 offset = s * camera.left + t * camera.up;
+    if (camera.orthographic) return Ray{camera.origin + offset, camera.forward};
+    return Ray{camera.origin, offset + camera.forward};
 }
 
 // A point on the unit disc from (u1, u2) ∈ [0, 1)², by Shirley and Chiu's

@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include "render/ray_cone.h"
+
 namespace sombra {
 namespace {
 
@@ -87,6 +89,69 @@ TEST(Camera, BasisFormIgnoresTheResolution) {
     expect_near(a.left, b.left);
     expect_near(a.up, b.up);
     expect_near(a.forward, b.forward);
+}
+
+CameraSpec orthographic_spec(Vec3 origin, Vec3 target, Vec3 up, float half_height) {
+    CameraSpec spec = look_at_spec(origin, target, up, 45);
+    spec.projection = CameraSpec::Projection::Orthographic;
+    spec.ortho_half_height = half_height;
+    return spec;
+}
+
+TEST(Camera, OrthographicRaysAreParallelFromTheCamerasPlane) {
+    // Spec §24: half-height ymag, half-width ymag·W/H, rays along −z of the
+    // camera from its z = 0 plane; here the camera looks down −z from z = 5.
+    const Camera c = make_camera(orthographic_spec({1, 2, 5}, {1, 2, 0}, {0, 1, 0}, 1.5f), 200, 100);
+    EXPECT_TRUE(c.orthographic);
+    EXPECT_EQ(c.lens_radius, 0.0f);
+    for (float s : {-1.0f, -0.25f, 0.0f, 1.0f})
+        for (float t : {-1.0f, 0.5f, 1.0f}) {
+            const Ray r = camera_ray(c, s, t);
+            expect_near(r.dir, {0, 0, -1});
+            // s = +1 is the left edge (−x looking down −z), t = +1 the top.
+            expect_near(r.origin, {1 - 3.0f * s, 2 + 1.5f * t, 5});
+            // The lens path gives the same ray: there is no lens.
+            const Ray l = camera_ray(c, s, t, 0.9f, 0.1f);
+            expect_near(l.origin, r.origin);
+            expect_near(l.dir, r.dir);
+        }
+}
+
+TEST(Camera, OrthographicSeesTheImageTheWayRoundThePinholeDoes) {
+    // From the same place, the ray through each image-plane point aims (for
+    // the pinhole) or sits (orthographic) on the same side of the axis.
+    const Vec3 origin{3, -1, 2}, target{0, 0.3f, -4}, up{0.1f, 1, 0};
+    const Camera p = make_camera(look_at_spec(origin, target, up, 50), 640, 480);
+    const Camera o = make_camera(orthographic_spec(origin, target, up, 2), 640, 480);
+    expect_near(o.forward, normalize(p.forward));
+    expect_near(normalize(o.left), normalize(p.left));
+    expect_near(normalize(o.up), normalize(p.up));
+    EXPECT_NEAR(length(o.left), 2.0f * 640 / 480, 1e-5);
+    for (float s : {-1.0f, 1.0f})
+        for (float t : {-1.0f, 1.0f}) {
+            const Ray a = camera_ray(p, s, t), b = camera_ray(o, s, t);
+            const Vec3 off = b.origin - origin, dir = a.dir - p.forward;
+            EXPECT_GT(dot(off, p.left) * dot(dir, p.left), 0);
+            EXPECT_GT(dot(off, p.up) * dot(dir, p.up), 0);
+        }
+}
+
+TEST(Camera, OrthographicRayConesArePixelWideAndDoNotSpread) {
+    // 200 × 100 pixels over a 6 × 3 view: each pixel 0.03 on a side.
+    const Camera c = make_camera(orthographic_spec({1, 2, 5}, {1, 2, 0}, {0, 1, 0}, 1.5f), 200, 100);
+    const RayCone cone =
+        camera_ray_cone(camera_pixel_area(c.left, c.up, 200, 100), camera_ray(c, 0.3f, -0.2f).dir, true);
+    EXPECT_NEAR(cone.width, 0.03f, 1e-6f);
+    EXPECT_EQ(cone.spread, 0.0f);
+    EXPECT_NEAR(cone_width(cone, 100.0f), 0.03f, 1e-6f);
+}
+
+TEST(Camera, OrthographicHasNoLensEvenWithAnAperture) {
+    CameraSpec spec = orthographic_spec({0, 0, 0}, {0, 0, -1}, {0, 1, 0}, 1);
+    spec.aperture_radius = 0.5f;
+    const Camera c = make_camera(spec, 10, 10);
+    EXPECT_EQ(c.lens_radius, 0.0f);
+    expect_near(camera_ray(c, 0.5f, 0.5f, 0.2f, 0.7f).dir, {0, 0, -1});
 }
 
 }  // namespace

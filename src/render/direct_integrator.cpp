@@ -58,7 +58,8 @@ Vec3 trace_direct_recorded(const IntegratorContext& ctx, const Ray& ray, RayCoun
         if (needs_resolved_material(scene, si)) {
             // Textures are read at the hit, filtered over the ray cone's
             // footprint when mip-mapping (render/ray_cone.h).
-            const RayCone cone = ctx.ray_cones ? camera_ray_cone(ctx.camera_pixel_area, ray.dir) : RayCone{};
+            const RayCone cone =
+                ctx.ray_cones ? camera_ray_cone(ctx.camera_pixel_area, ray.dir, ctx.orthographic_camera) : RayCone{};
             const float footprint =
                 cone.active() ? surface_footprint(cone, hit.t * length(ray.dir), ray.dir, si.n_g) : 0.0f;
             Material textured;

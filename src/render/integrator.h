@@ -42,6 +42,7 @@ struct IntegratorContext {
     // textures' levels. False: every lookup at full resolution.
     bool ray_cones = false;
     Vec3 camera_pixel_area{0.0f};
+    bool orthographic_camera = false;  // the cones are the pixel's width, not spreading
 };
 
 // Linear RGB radiance arriving at the ray's origin along -ray.dir (ray.dir

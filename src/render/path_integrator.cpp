@@ -81,7 +81,8 @@ Vec3 trace_path_recorded(const IntegratorContext& ctx, const Ray& camera_ray, Sa
     Vec3 previous_normal{0.0f};  // its shading normal: the light tree's choice depends on both
     Ray ray = camera_ray;
     // The current ray's cone for choosing mip levels (render/ray_cone.h).
-    RayCone cone = ctx.ray_cones ? camera_ray_cone(ctx.camera_pixel_area, camera_ray.dir) : RayCone{};
+    RayCone cone =
+        ctx.ray_cones ? camera_ray_cone(ctx.camera_pixel_area, camera_ray.dir, ctx.orthographic_camera) : RayCone{};
     Material textured;  // the hit's material when it has textures (render/shading.h)
     // The weight of an emitter or the environment reached by a BSDF-sampled
     // bounce whose density was bsdf_pdf, where next-event estimation would

@@ -53,7 +53,10 @@ inline Vec3 camera_pixel_area(Vec3 left, Vec3 up, int width, int height) {
 // to the image plane): γ² = |pixel_area · dir| / |dir|³, the pixel's solid
 // angle seen along dir, so that off-axis pixels, which look smaller, get
 // narrower cones.
-inline RayCone camera_ray_cone(Vec3 pixel_area, Vec3 dir) {
+// An orthographic camera's rays are parallel: each cone keeps the pixel's
+// width (the square root of its area) and never spreads.
+inline RayCone camera_ray_cone(Vec3 pixel_area, Vec3 dir, bool orthographic) {
+    if (orthographic) return RayCone{std::sqrt(length(pixel_area)), 0.0f};
     const float len = length(dir);
     return RayCone{0.0f, std::sqrt(std::fabs(dot(pixel_area, dir)) / (len * len * len))};
 }

@@ -131,6 +131,7 @@ IntegratorContext make_integrator_context(const RenderJob& job) {
         ctx.ray_cones = true;
         ctx.camera_pixel_area =
             camera_pixel_area(job.camera.left, job.camera.up, job.settings.width, job.settings.height);
+        ctx.orthographic_camera = job.camera.orthographic;
     }
     return ctx;
 }

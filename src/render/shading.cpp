@@ -16,16 +16,18 @@ Rgba lookup(const Scene& scene, const TextureRef& ref, Vec2 uv, float uv_footpri
     return eval_texture_ref_filtered(scene.textures, ref, uv, uv_footprint);
 }
 
-// How many uv units one world unit is on si's triangle (√ of its uv area
-// over its world area), or 0 when either is degenerate.
-float uv_per_world(const Scene& scene, const SurfaceInteraction& si) {
+// How many uv units of set `set` one world unit is on si's triangle (√ of
+// its uv area over its world area), or 0 when either is degenerate or the
+// triangle lacks the set.
+float uv_per_world(const Scene& scene, const SurfaceInteraction& si, unsigned set) {
     const TriangleMesh& mesh = surface_mesh(scene, si.instance);
+    Vec2 t[3];
+    if (!uv_set_corners(mesh, set, si.triangle, t)) return 0.0f;
     const Index3& p = mesh.triangles[si.triangle];
-    const Index3& t = mesh.uv_indices[si.triangle];
     const Vec3 e1 = vector_to_world(scene, si.instance, mesh.positions[p[1]] - mesh.positions[p[0]]);
     const Vec3 e2 = vector_to_world(scene, si.instance, mesh.positions[p[2]] - mesh.positions[p[0]]);
     const float world = length(cross(e1, e2));
-    const Vec2 t0 = mesh.uvs[t[0]], t1 = mesh.uvs[t[1]], t2 = mesh.uvs[t[2]];
+    const Vec2 t0 = t[0], t1 = t[1], t2 = t[2];
     const float uv = std::fabs((t1.x - t0.x) * (t2.y - t0.y) - (t1.y - t0.y) * (t2.x - t0.x));
     const float scale = std::sqrt(uv / world);
     return std::isfinite(scale) ? scale : 0.0f;
@@ -35,14 +37,16 @@ Vec3 clamp_rgb(Vec3 c, float hi) {
     return {std::clamp(c.x, 0.0f, hi), std::clamp(c.y, 0.0f, hi), std::clamp(c.z, 0.0f, hi)};
 }
 
-// The position derivatives of a triangle's uv parameterisation, or false
-// when its uvs are degenerate (zero area in uv, or non-finite).
-bool position_derivatives(const TriangleMesh& mesh, std::uint32_t triangle, Vec3& dpdu, Vec3& dpdv) {
+// The position derivatives of a triangle's uv parameterisation (set
+// `set`), or false when its uvs are degenerate (zero area in uv, or
+// non-finite) or missing.
+bool position_derivatives(const TriangleMesh& mesh, std::uint32_t triangle, unsigned set, Vec3& dpdu, Vec3& dpdv) {
+    Vec2 t[3];
+    if (!uv_set_corners(mesh, set, triangle, t)) return false;
     const Index3& p = mesh.triangles[triangle];
-    const Index3& t = mesh.uv_indices[triangle];
     const Vec3 e1 = mesh.positions[p[1]] - mesh.positions[p[0]];
     const Vec3 e2 = mesh.positions[p[2]] - mesh.positions[p[0]];
-    const Vec2 t0 = mesh.uvs[t[0]], t1 = mesh.uvs[t[1]], t2 = mesh.uvs[t[2]];
+    const Vec2 t0 = t[0], t1 = t[1], t2 = t[2];
     const float du1 = t1.x - t0.x, dv1 = t1.y - t0.y, du2 = t2.x - t0.x, dv2 = t2.y - t0.y;
     const float det = du1 * dv2 - dv1 * du2;
     if (!(std::fabs(det) > 1e-12f) || !std::isfinite(det)) return false;
@@ -62,8 +66,9 @@ Vec3 keep_above(Vec3 n, Vec3 n_g) {
 }
 
 // position_derivatives at si's triangle, in world space.
-bool world_position_derivatives(const Scene& scene, const SurfaceInteraction& si, Vec3& dpdu, Vec3& dpdv) {
-    if (!position_derivatives(surface_mesh(scene, si.instance), si.triangle, dpdu, dpdv)) return false;
+bool world_position_derivatives(const Scene& scene, const SurfaceInteraction& si, unsigned set, Vec3& dpdu,
+                                Vec3& dpdv) {
+    if (!position_derivatives(surface_mesh(scene, si.instance), si.triangle, set, dpdu, dpdv)) return false;
     dpdu = vector_to_world(scene, si.instance, dpdu);
     dpdv = vector_to_world(scene, si.instance, dpdv);
     return true;
@@ -73,10 +78,11 @@ bool world_position_derivatives(const Scene& scene, const SurfaceInteraction& si
 // as apply_normal_map takes them: the vertex tangent t and
 // handedness·(n × t) where the triangle's corners all have one (glTF
 // TANGENT, spec §12) and it is not along n, else the triangle's uv
-// derivatives dpdu, dpdv. False when neither exists. In an instance the
+// derivatives dpdu, dpdv (of uv set `set`). False when neither exists. In an instance the
 // tangent is carried to world space and a mirror flips its handedness, as
 // for a flattened copy (scene/corner_attributes.h).
-bool tangent_frame(const Scene& scene, const SurfaceInteraction& si, Vec3 n, Vec3& along_u, Vec3& along_v) {
+bool tangent_frame(const Scene& scene, const SurfaceInteraction& si, unsigned set, Vec3 n, Vec3& along_u,
+                   Vec3& along_v) {
     Vec3 t;
     float handedness = 1;
     if (interpolate_tangent(surface_mesh(scene, si.instance), si.triangle, si.b1, si.b2, t, handedness)) {
@@ -91,7 +97,7 @@ bool tangent_frame(const Scene& scene, const SurfaceInteraction& si, Vec3 n, Vec
             return true;
         }
     }
-    return world_position_derivatives(scene, si, along_u, along_v);
+    return world_position_derivatives(scene, si, set, along_u, along_v);
 }
 
 // The unit tangent-space normal a normal map's texel encodes, its x and y
@@ -105,29 +111,49 @@ bool normal_map_value(const Rgba& texel, float scale, Vec3& n_map) {
     return true;
 }
 
-// A normal or bump map's shading normal at si (si.has_uv), or si.n_s.
-Vec3 mapped_normal(const Scene& scene, const MaterialTextures& t, const SurfaceInteraction& si) {
+// The uv of `ref`'s set at si and the footprint's width there (0: full
+// resolution, as under `surface_footprint` 0): si's own for set 0, else
+// interpolated here; false when si's triangle lacks that set ≥ 1 (the
+// texture is then not applied: glTF's texCoord naming a missing set).
+bool uv_of(const Scene& scene, const SurfaceInteraction& si, const TextureRef& ref, float surface_footprint, Vec2& uv,
+           float& uv_footprint) {
+    if (ref.uv_set == 0) {
+        uv = si.uv;
+        uv_footprint = si.uv_footprint;
+        return true;
+    }
+    if (!interpolate_uv_set(surface_mesh(scene, si.instance), ref.uv_set, si.triangle, si.b1, si.b2, uv)) return false;
+    uv_footprint = surface_footprint > 0.0f ? surface_footprint * uv_per_world(scene, si, ref.uv_set) : 0.0f;
+    return true;
+}
+
+// A normal or bump map's shading normal at si (where it has the map's uv
+// set), or si.n_s.
+Vec3 mapped_normal(const Scene& scene, const MaterialTextures& t, const SurfaceInteraction& si,
+                   float surface_footprint) {
     // The maps perturb the surface's front (its winding normal's side); seen
     // from the back the same sheet shows the mirror image: the result is
     // turned back to the side the ray came from.
     const Vec3 front = si.outside ? si.n_s : -si.n_s;
     Vec3 n = front;
+    const TextureRef& map = t.normal_map.is_set() ? t.normal_map : t.bump_map;
+    Vec2 uv;
+    float uv_footprint = 0;
+    if (!uv_of(scene, si, map, surface_footprint, uv, uv_footprint)) return si.n_s;
     if (t.normal_map.is_set()) {
         Vec3 along_u, along_v, n_map;
-        if (!tangent_frame(scene, si, front, along_u, along_v)) return si.n_s;
-        if (normal_map_value(lookup(scene, t.normal_map, si.uv, si.uv_footprint), t.normal_scale, n_map))
+        if (!tangent_frame(scene, si, map.uv_set, front, along_u, along_v)) return si.n_s;
+        if (normal_map_value(lookup(scene, t.normal_map, uv, uv_footprint), t.normal_scale, n_map))
             n = apply_normal_map(front, along_u, along_v, n_map);
     } else {
         Vec3 dpdu, dpdv;
-        if (!world_position_derivatives(scene, si, dpdu, dpdv)) return si.n_s;
+        if (!world_position_derivatives(scene, si, map.uv_set, dpdu, dpdv)) return si.n_s;
         const Texture& h = scene.textures[t.bump_map.texture];
         // Central differences one texel apart around the hit.
         const float du = 1.0f / static_cast<float>(h.width), dv = 1.0f / static_cast<float>(h.height);
-        const auto height = [&](float u, float v) { return lookup(scene, t.bump_map, Vec2{u, v}, si.uv_footprint)[0]; };
-        const float dhdu =
-            t.bump_scale * (height(si.uv.x + 0.5f * du, si.uv.y) - height(si.uv.x - 0.5f * du, si.uv.y)) / du;
-        const float dhdv =
-            t.bump_scale * (height(si.uv.x, si.uv.y + 0.5f * dv) - height(si.uv.x, si.uv.y - 0.5f * dv)) / dv;
+        const auto height = [&](float u, float v) { return lookup(scene, t.bump_map, Vec2{u, v}, uv_footprint)[0]; };
+        const float dhdu = t.bump_scale * (height(uv.x + 0.5f * du, uv.y) - height(uv.x - 0.5f * du, uv.y)) / du;
+        const float dhdv = t.bump_scale * (height(uv.x, uv.y + 0.5f * dv) - height(uv.x, uv.y - 0.5f * dv)) / dv;
         n = apply_bump(front, dpdu, dpdv, dhdu, dhdv);
     }
     if (!si.outside) n = -n;
@@ -167,22 +193,28 @@ const Material& resolve_material(const Scene& scene, SurfaceInteraction& si, Mat
                          interpolate_color(surface_mesh(scene, si.instance), si.triangle, si.b1, si.b2, vertex_color);
     if (!m.textured && !colored) return m;
     copy_parameters(m, scratch);
-    if (surface_footprint > 0.0f && si.has_uv) si.uv_footprint = surface_footprint * uv_per_world(scene, si);
+    if (surface_footprint > 0.0f && si.has_uv) si.uv_footprint = surface_footprint * uv_per_world(scene, si, 0);
     if (colored) scratch.base_color = m.base_color * rgb_of(vertex_color);
     const MaterialTextures& t = m.textures;
     for (const RgbTextureSlot& slot : kRgbTextureSlots) {
         const TextureRef& ref = t.*slot.texture;
-        if (!ref.is_set()) continue;
-        const Vec3 value = scratch.*slot.value * rgb_of(lookup(scene, ref, si.uv, si.uv_footprint));
+        Vec2 uv;
+        float uv_footprint = 0;
+        if (!ref.is_set() || !uv_of(scene, si, ref, surface_footprint, uv, uv_footprint)) continue;
+        const Vec3 value = scratch.*slot.value * rgb_of(lookup(scene, ref, uv, uv_footprint));
         scratch.*slot.value = clamp_rgb(value, slot.reflectance ? 1.0f : std::numeric_limits<float>::max());
     }
     for (const ScalarTextureSlot& slot : kScalarTextureSlots) {
         const TextureRef& ref = t.*slot.texture;
-        if (!ref.is_set()) continue;
+        Vec2 uv;
+        float uv_footprint = 0;
+        if (!ref.is_set() || !uv_of(scene, si, ref, surface_footprint, uv, uv_footprint)) continue;
         scratch.*slot.value =
-            std::clamp(m.*slot.value * lookup(scene, ref, si.uv, si.uv_footprint)[ref.channel & 3u], 0.0f, 1.0f);
+            std::clamp(m.*slot.value * lookup(scene, ref, uv, uv_footprint)[ref.channel & 3u], 0.0f, 1.0f);
     }
-    if (si.has_uv && (t.normal_map.is_set() || t.bump_map.is_set())) si.n_s = mapped_normal(scene, t, si);
+    // A map on set 0 needs the hit's uv; one on another set finds its own.
+    const TextureRef& map = t.normal_map.is_set() ? t.normal_map : t.bump_map;
+    if (map.is_set() && (si.has_uv || map.uv_set != 0)) si.n_s = mapped_normal(scene, t, si, surface_footprint);
     return scratch;
 }
 
@@ -195,7 +227,14 @@ Vec3 emission_at(const Scene& scene, const Material& material, std::uint32_t tri
     if (instance != kNoInstance) y = transform_point(scene.instances[instance].world_to_object, y);
     Vec2 uv{0.0f, 0.0f};
     float b1 = 0, b2 = 0;
-    if (mesh.has_uvs() && point_barycentrics(mesh, triangle, y, b1, b2)) interpolate_uv(mesh, triangle, b1, b2, uv);
+    if (ref.uv_set != 0) {
+        // A set the triangle lacks leaves the constant alone (as resolve_material does).
+        if (!point_barycentrics(mesh, triangle, y, b1, b2) ||
+            !interpolate_uv_set(mesh, ref.uv_set, triangle, b1, b2, uv))
+            return material.ke;
+    } else if (mesh.has_uvs() && point_barycentrics(mesh, triangle, y, b1, b2)) {
+        interpolate_uv(mesh, triangle, b1, b2, uv);
+    }
     return clamp_rgb(material.ke * rgb_of(lookup(scene, ref, uv, 0.0f)), std::numeric_limits<float>::max());
 }
 

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 #include "core/error.h"
 #include "scene/scene.h"
@@ -204,6 +205,7 @@ void set_scene_time(Scene& scene, double time, const std::string& scene_name) {
     }
     if (animation.camera.empty()) return;
     const CameraSpec camera = interpolate_camera(animation.camera, time);
+    const std::pair projection{scene.camera.projection, scene.camera.ortho_half_height};
     // Each key was checked as a camera; a blend of two can still lose its
     // frame (look_at meeting origin, up turning along the view): refused
     // as the scene file's reader refuses such a key (1e-3 of parallel).
@@ -215,6 +217,9 @@ void set_scene_time(Scene& scene, double time, const std::string& scene_name) {
                                     " s the blended camera has no frame (look_at meets origin, or up lies along "
                                     "the view)");
     scene.camera = camera;
+    // Keys are look-at cameras; the projection stays the scene's own.
+    scene.camera.projection = projection.first;
+    scene.camera.ortho_half_height = projection.second;
 }
 
 }  // namespace sombra

@@ -91,6 +91,22 @@ TEST(Animation, ACameraBlendWithoutAFrameIsRefused) {
     EXPECT_THROW(set_scene_time(scene, 1.0, "s.json"), Error);
 }
 
+TEST(Animation, AMovingCameraKeepsItsProjection) {
+    // Keys are look-at cameras; an orthographic scene camera (a glTF
+    // file's, spec §24) stays orthographic with its half-height.
+    Scene scene;
+    scene.camera.projection = CameraSpec::Projection::Orthographic;
+    scene.camera.ortho_half_height = 2.5f;
+    SceneAnimation animation;
+    animation.camera = {CameraKey{0.0, {0, 0, 5}, {0, 0, 0}, {0, 1, 0}, 40, 0, std::nullopt},
+                        CameraKey{2.0, {2, 0, 5}, {0, 0, 0}, {0, 1, 0}, 40, 0, std::nullopt}};
+    scene.animation = animation;
+    set_scene_time(scene, 1.0, "s.json");
+    EXPECT_EQ(scene.camera.look_at->origin, (Vec3{1, 0, 5}));
+    EXPECT_EQ(scene.camera.projection, CameraSpec::Projection::Orthographic);
+    EXPECT_EQ(scene.camera.ortho_half_height, 2.5f);
+}
+
 TEST(Animation, SetSceneTimeMovesInstancesAndRefusesASingularMoment) {
     Scene scene;
     scene.instanced_meshes.emplace_back();

@@ -71,6 +71,9 @@ void append_corner_attributes(TriangleMesh& out, const TriangleMesh& in, const T
                      [&](Vec3 n) { return unit(transform_vector(to_world, n)); });
     append_attribute(out.uvs, out.uv_indices, in.uvs, in.uv_indices, count, before, mirrored,
                      [](Vec2 uv) { return std::optional<Vec2>(uv); });
+    for (std::size_t k = 0; k < in.extra_uvs.size(); ++k)
+        append_attribute(out.extra_uvs[k].uvs, out.extra_uvs[k].indices, in.extra_uvs[k].uvs, in.extra_uvs[k].indices,
+                         count, before, mirrored, [](Vec2 uv) { return std::optional<Vec2>(uv); });
     append_attribute(out.tangents, out.tangent_indices, in.tangents, in.tangent_indices, count, before, mirrored,
                      [&](const VertexTangent& t) -> std::optional<VertexTangent> {
                          const std::optional<Vec3> direction = unit(transform_vector(transform, t.direction));
@@ -87,6 +90,9 @@ void append_corner_attributes(TriangleMesh& out, const TriangleMesh& in) {
     const auto as_is = [](const auto& value) { return std::optional(value); };
     append_attribute(out.normals, out.normal_indices, in.normals, in.normal_indices, count, before, false, as_is);
     append_attribute(out.uvs, out.uv_indices, in.uvs, in.uv_indices, count, before, false, as_is);
+    for (std::size_t k = 0; k < in.extra_uvs.size(); ++k)
+        append_attribute(out.extra_uvs[k].uvs, out.extra_uvs[k].indices, in.extra_uvs[k].uvs, in.extra_uvs[k].indices,
+                         count, before, false, as_is);
     append_attribute(out.tangents, out.tangent_indices, in.tangents, in.tangent_indices, count, before, false, as_is);
     append_attribute(out.colors, out.color_indices, in.colors, in.color_indices, count, before, false, as_is);
 }

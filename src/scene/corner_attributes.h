@@ -15,7 +15,7 @@ namespace sombra {
 // directions by the linear part, both renormalised (those that vanish or
 // overflow are dropped: their corners get none); a mirror flips each
 // tangent's handedness, so that bitangent = handedness·(n × t) still follows
-// the placed surface; uvs and colours are copied. Where only one side has an
+// the placed surface; uvs (every set) and colours are copied. Where only one side has an
 // attribute the other's triangles get none (kNoNormal …).
 void append_corner_attributes(TriangleMesh& out, const TriangleMesh& in, const Transform& transform);
 

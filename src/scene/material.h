@@ -50,6 +50,10 @@ struct TextureRef {
     TextureWrap wrap_u = TextureWrap::Repeat;
     TextureWrap wrap_v = TextureWrap::Repeat;
     std::uint8_t channel = 0;  // scalar parameters: 0 r, 1 g, 2 b, 3 a
+    // Which texture coordinate set the lookup reads (glTF texCoord; spec
+    // §24): 0 is TriangleMesh::uvs, k < kUvSets its extra_uvs[k − 1]. On a
+    // triangle without set k ≥ 1 the parameter keeps its constant.
+    std::uint8_t uv_set = 0;
     // Lookups read at apply_uv_transform(uv_transform, uv) when set, else at
     // the hit's uv itself (so untransformed lookups never pay for, nor round
     // through, an identity map).

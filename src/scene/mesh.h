@@ -33,6 +33,18 @@ struct VertexTangent {
     float handedness = 1;
 };
 
+// Texture coordinate sets a mesh may carry (glTF TEXCOORD_0 … TEXCOORD_3;
+// spec §24): TriangleMesh::uvs is set 0, extra_uvs the others.
+inline constexpr unsigned kUvSets = 4;
+
+// One texture coordinate set beyond the first: values and per-corner
+// indices as TriangleMesh::uvs and uv_indices are (both empty, or one
+// entry a triangle, each an index into uvs or kNoUv).
+struct UvSet {
+    std::vector<Vec2> uvs;
+    std::vector<Index3> indices;
+};
+
 struct TriangleMesh {
     std::vector<Vec3> positions;
     std::vector<Index3> triangles;  // corners, indices into positions
@@ -50,6 +62,10 @@ struct TriangleMesh {
     // triangles.size() with each entry an index into uvs or kNoUv.
     std::vector<Vec2> uvs;
     std::vector<Index3> uv_indices;
+    // Sets 1 … kUvSets − 1: extra_uvs[k − 1] is set k. Only textures that
+    // name their set read them (render/shading.cpp), so meshes without
+    // (every OBJ and PLY, most glTF files) keep them empty and cost nothing.
+    std::array<UvSet, kUvSets - 1> extra_uvs;
 
     // Vertex tangents (glTF TANGENT), the same convention: either both empty,
     // or tangent_indices.size() == triangles.size() with each entry an index
@@ -138,6 +154,29 @@ inline bool interpolate_uv(const TriangleMesh& mesh, std::uint32_t triangle, flo
     const Vec2 t0 = mesh.uvs[ti[0]], t1 = mesh.uvs[ti[1]], t2 = mesh.uvs[ti[2]];
     const float b0 = 1.0f - b1 - b2;
     uv = {b0 * t0.x + b1 * t1.x + b2 * t2.x, b0 * t0.y + b1 * t1.y + b2 * t2.y};
+    return true;
+}
+
+// The texture coordinates of set `set` (< kUvSets) at `triangle`'s corners,
+// or false when some corner has none (set 0: mesh.uvs, else extra_uvs).
+inline bool uv_set_corners(const TriangleMesh& mesh, unsigned set, std::uint32_t triangle, Vec2 (&corners)[3]) {
+    const std::vector<Vec2>& uvs = set == 0 ? mesh.uvs : mesh.extra_uvs[set - 1].uvs;
+    const std::vector<Index3>& indices = set == 0 ? mesh.uv_indices : mesh.extra_uvs[set - 1].indices;
+    if (indices.empty() || (set == 0 && !may_be_complete(mesh.complete_uvs, triangle))) return false;
+    const Index3& ti = indices[triangle];
+    if (ti[0] == kNoUv || ti[1] == kNoUv || ti[2] == kNoUv) return false;
+    for (int k = 0; k < 3; ++k) corners[k] = uvs[ti[k]];
+    return true;
+}
+
+// interpolate_uv for set `set` (< kUvSets; 0 is interpolate_uv itself).
+inline bool interpolate_uv_set(const TriangleMesh& mesh, unsigned set, std::uint32_t triangle, float b1, float b2,
+                               Vec2& uv) {
+    if (set == 0) return interpolate_uv(mesh, triangle, b1, b2, uv);
+    Vec2 t[3];
+    if (!uv_set_corners(mesh, set, triangle, t)) return false;
+    const float b0 = 1.0f - b1 - b2;
+    uv = {b0 * t[0].x + b1 * t[1].x + b2 * t[2].x, b0 * t[0].y + b1 * t[1].y + b2 * t[2].y};
     return true;
 }
 

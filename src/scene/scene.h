@@ -37,6 +37,14 @@ struct CameraSpec {
     // aperture_radius > 0).
     float aperture_radius = 0;
     std::optional<float> focus_distance;
+    // An orthographic camera (a glTF file's, spec §24): parallel rays along
+    // the forward axis, leaving the plane through the origin across it; the
+    // view's half-height is ortho_half_height, its half-width that times the
+    // image aspect (W/H). The look-at form's fov and the lens are unused.
+    // Scene files have only perspective cameras.
+    enum class Projection : std::uint8_t { Perspective, Orthographic };
+    Projection projection = Projection::Perspective;
+    float ortho_half_height = 1;
 };
 
 // An equirectangular environment map (spec §10 "environment"): it replaces

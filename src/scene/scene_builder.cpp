@@ -17,6 +17,8 @@ std::uint32_t u32(std::size_t n) { return static_cast<std::uint32_t>(n); }
 constexpr std::uint32_t kNoMaterialId = 0xffffffffu;
 
 bool has_no_geometry(const TriangleMesh& m) {
+    for (const UvSet& set : m.extra_uvs)
+        if (!set.uvs.empty() || !set.indices.empty()) return false;
     return m.positions.empty() && m.triangles.empty() && m.normals.empty() && m.normal_indices.empty() &&
            m.uvs.empty() && m.uv_indices.empty() && m.tangents.empty() && m.tangent_indices.empty() &&
            m.colors.empty() && m.color_indices.empty() && m.material_ids.empty();

@@ -16,6 +16,7 @@
 #define TINYGLTF_NO_EXTERNAL_IMAGE
 #include <tiny_gltf.h>
 
+#include <array>
 #include <cstdint>
 #include <filesystem>
 #include <map>
@@ -106,6 +107,9 @@ std::vector<std::uint32_t> read_indices(const AccessorReader& r, int index, std:
 std::span<const unsigned char> buffer_view_bytes(const tinygltf::Model& model, int index, const std::string& file,
                                                  const std::string& what);
 
+// "TEXCOORD_<set>".
+inline std::string texcoord_name(unsigned set) { return "TEXCOORD_" + std::to_string(set); }
+
 // The element count of accessor `index` (checked to exist), for Draco
 // primitives, whose accessors have no data of their own.
 std::size_t accessor_count(const AccessorReader& r, int index, const std::string& what);
@@ -113,13 +117,14 @@ std::size_t accessor_count(const AccessorReader& r, int index, const std::string
 // One triangle primitive in the file's coordinates, read and checked.
 struct PrimitiveData {
     std::vector<Vec3> positions;
-    std::vector<Vec3> normals;            // empty, or one per position
-    std::vector<Vec2> uvs;                // empty, or one per position; sombra's convention (v = 0 at the bottom)
-    std::vector<VertexTangent> tangents;  // empty, or one per position (TANGENT; not yet normalised)
-    std::vector<Rgba> colors;             // empty, or one per position (COLOR_0, clamped to [0, 1])
-    std::vector<std::uint32_t> indices;   // three per triangle, each < positions.size()
-    int material = -1;                    // index into the file's materials; -1: none
-    std::size_t clamped_colors = 0;       // colour components the file gave outside [0, 1]
+    std::vector<Vec3> normals;  // empty, or one per position
+    std::vector<Vec2> uvs;      // empty, or one per position; sombra's convention (v = 0 at the bottom)
+    std::array<std::vector<Vec2>, kUvSets - 1> extra_uvs;  // TEXCOORD_1, …: as uvs
+    std::vector<VertexTangent> tangents;                   // empty, or one per position (TANGENT; not yet normalised)
+    std::vector<Rgba> colors;                              // empty, or one per position (COLOR_0, clamped to [0, 1])
+    std::vector<std::uint32_t> indices;                    // three per triangle, each < positions.size()
+    int material = -1;                                     // index into the file's materials; -1: none
+    std::size_t clamped_colors = 0;                        // colour components the file gave outside [0, 1]
 };
 
 // Mesh `index`'s primitives (the index checked by the caller), each read
@@ -140,7 +145,7 @@ std::vector<Rgba> colors_of(const std::vector<float>& rgba, std::size_t& clamped
 
 // Decodes a KHR_draco_mesh_compression primitive with Draco: the
 // extension's bufferView holds the compressed mesh, its "attributes" object
-// maps POSITION, NORMAL, TEXCOORD_0, TANGENT and COLOR_0 to Draco attribute
+// maps POSITION, NORMAL, TEXCOORD_0 … 3, TANGENT and COLOR_0 to Draco attribute
 // ids (those the primitive lists). Throws Error.
 PrimitiveData decode_draco(const AccessorReader& r, const tinygltf::Primitive& primitive,
                            const tinygltf::Value& extension, const std::string& what);
@@ -154,6 +159,11 @@ struct Materials {
 };
 Materials convert_materials(const tinygltf::Model& model, const std::string& file, Diagnostics& diag);
 
+// Whether some texture of `refs` reads a TEXCOORD_k (1 ≤ k < kUvSets) that
+// `p` does not have: as the Khronos sample viewer does, such a texture is
+// treated as missing there, its parameter keeping its constant (spec §24).
+bool lacks_texcoord(const PrimitiveData& p, const GltfMaterialTextures& refs);
+
 // Decodes the images that `refs` (one per material) name and points each
 // material's texture slots (scene/material.h) at them in `textures`: base
 // colour (sRGB; its A channel the cut-out of MASK and BLEND materials),
@@ -165,9 +175,10 @@ Materials convert_materials(const tinygltf::Model& model, const std::string& fil
 // from buffer views (checked against their buffers), data: URIs, or files
 // beside the model (a missing one is a warning and the constant is used; a
 // path leaving the model's folder is an error). A KHR_texture_transform other
-// than the identity becomes the slot's uv transform (uv_transform_of). A
-// reference with a texCoord other than 0 (its own or the extension's) is not
-// applied: the constant is used, with one warning. Throws Error(file, ...)
+// than the identity becomes the slot's uv transform (uv_transform_of). Each
+// slot reads the uv set of its reference's texCoord (its own or the
+// extension's); one of kUvSets or more is not applied: the constant is
+// used, with one warning. Throws Error(file, ...)
 // for a broken image or a transform that overflows.
 void apply_textures(const tinygltf::Model& model, const std::filesystem::path& path,
                     const std::vector<GltfMaterialTextures>& refs, std::vector<Material>& materials,
@@ -187,6 +198,14 @@ UvTransform uv_transform_of(Vec2 offset, float rotation, Vec2 scale);
 // reads as inner = outer (with a warning unless they are equal).
 std::optional<PunctualLight> punctual_light(const tinygltf::Model& model, int index, const std::string& file,
                                             std::string& skipped_type, Diagnostics& diag);
+
+// The camera `index` placed by `world` (its scale ignored, as glTF says),
+// or nothing (with a warning) when it is degenerate. znear and zfar are
+// not used (nothing is clipped), for either kind. An orthographic camera's
+// xmag is not used either: its half-width is ymag times the image's aspect
+// (spec §24), and a ymag that is not a finite positive number is an error.
+std::optional<ModelCamera> place_camera(const tinygltf::Model& model, int index, const Transform& world,
+                                        const std::string& file, Diagnostics& diag);
 
 // T · R · S (glTF 2.0 §3.5.3) for the quaternion (x, y, z, w), normalised
 // here; nothing when its length is zero or not finite.

@@ -229,7 +229,8 @@ TEST(GltfAttributes, ZeroTangentsAreDroppedWithAWarningAndNonFiniteOnesAreAnErro
 }
 
 // The quad compressed with Draco: positions, a float GENERIC attribute for
-// TANGENT, and COLOR_0 as unsigned bytes (`normalized` as Draco records it).
+// TANGENT, COLOR_0 as unsigned bytes (`normalized` as Draco records it), and
+// a TEX_COORD attribute the primitive maps as TEXCOORD_1 (spec §24).
 GltfFile draco_quad(bool colour_marked_normalised) {
     draco::TriangleSoupMeshBuilder builder;
     builder.Start(2);
@@ -237,7 +238,9 @@ GltfFile draco_quad(bool colour_marked_normalised) {
     const int tangent = builder.AddAttribute(draco::GeometryAttribute::GENERIC, 4, draco::DT_FLOAT32);
     const int colour =
         builder.AddAttribute(draco::GeometryAttribute::COLOR, 3, draco::DT_UINT8, colour_marked_normalised);
+    const int uv = builder.AddAttribute(draco::GeometryAttribute::TEX_COORD, 2, draco::DT_FLOAT32);
     const std::uint8_t rgb[4][3] = {{255, 0, 0}, {0, 255, 0}, {0, 0, 255}, {51, 102, 153}};
+    const float uvs[4][2] = {{0.5f, 0.25f}, {2, 0.25f}, {2, 1}, {0.5f, 1}};
     for (int face = 0; face < 2; ++face) {
         const std::uint32_t* c = kQuadIndices.data() + 3 * face;
         builder.SetAttributeValuesForFace(position, draco::FaceIndex(face), &kCorners[c[0]], &kCorners[c[1]],
@@ -245,6 +248,7 @@ GltfFile draco_quad(bool colour_marked_normalised) {
         builder.SetAttributeValuesForFace(tangent, draco::FaceIndex(face), &kTangents[4 * c[0]], &kTangents[4 * c[1]],
                                           &kTangents[4 * c[2]]);
         builder.SetAttributeValuesForFace(colour, draco::FaceIndex(face), rgb[c[0]], rgb[c[1]], rgb[c[2]]);
+        builder.SetAttributeValuesForFace(uv, draco::FaceIndex(face), uvs[c[0]], uvs[c[1]], uvs[c[2]]);
     }
     const std::unique_ptr<draco::Mesh> mesh = builder.Finalize();
     draco::EncoderBuffer encoded;
@@ -257,9 +261,10 @@ GltfFile draco_quad(bool colour_marked_normalised) {
         {{"componentType", gltf_test::kFloat}, {"count", 4}, {"type", "VEC3"}},
         {{"componentType", gltf_test::kFloat}, {"count", 4}, {"type", "VEC4"}},
         {{"componentType", gltf_test::kUnsignedByte}, {"count", 4}, {"type", "VEC3"}, {"normalized", true}},
-        {{"componentType", gltf_test::kUnsignedInt}, {"count", 6}, {"type", "SCALAR"}}};
+        {{"componentType", gltf_test::kUnsignedInt}, {"count", 6}, {"type", "SCALAR"}},
+        {{"componentType", gltf_test::kFloat}, {"count", 4}, {"type", "VEC2"}}};
     f.doc["meshes"] = {{{"primitives",
-                         {{{"attributes", {{"POSITION", 0}, {"TANGENT", 1}, {"COLOR_0", 2}}},
+                         {{{"attributes", {{"POSITION", 0}, {"TANGENT", 1}, {"COLOR_0", 2}, {"TEXCOORD_1", 4}}},
                            {"indices", 3},
                            {"extensions",
                             {{"KHR_draco_mesh_compression",
@@ -267,14 +272,15 @@ GltfFile draco_quad(bool colour_marked_normalised) {
                                {"attributes",
                                 {{"POSITION", mesh->attribute(position)->unique_id()},
                                  {"TANGENT", mesh->attribute(tangent)->unique_id()},
-                                 {"COLOR_0", mesh->attribute(colour)->unique_id()}}}}}}}}}}}};
+                                 {"COLOR_0", mesh->attribute(colour)->unique_id()},
+                                 {"TEXCOORD_1", mesh->attribute(uv)->unique_id()}}}}}}}}}}}};
     f.add_node({{"mesh", 0}});
     f.set_scene({0});
     f.use_extension("KHR_draco_mesh_compression", true);
     return f;
 }
 
-TEST(GltfAttributes, DracoCarriesTangentsAndColours) {
+TEST(GltfAttributes, DracoCarriesTangentsColoursAndASecondUvSet) {
     for (const bool marked : {true, false}) {
         SCOPED_TRACE(marked ? "colours marked normalised" : "colours not marked normalised");
         Diagnostics diag;
@@ -285,6 +291,17 @@ TEST(GltfAttributes, DracoCarriesTangentsAndColours) {
         const auto colours = colors_by_position(m);
         EXPECT_EQ(colours.at({0, 0, 0}), (Rgba{1, 0, 0, 1}));
         EXPECT_EQ(colours.at({0, 1, 0}), (Rgba{51 / 255.0f, 102 / 255.0f, 153 / 255.0f, 1}));
+        // TEXCOORD_1 lands in the second set, v flipped; there is no set 0.
+        EXPECT_FALSE(m.has_uvs());
+        const UvSet& set1 = m.extra_uvs[0];
+        ASSERT_EQ(set1.indices.size(), m.triangles.size());
+        for (std::size_t t = 0; t < m.triangles.size(); ++t)
+            for (int k = 0; k < 3; ++k) {
+                const Vec3 p = m.positions[m.triangles[t][std::size_t(k)]];
+                const Vec2 uv = set1.uvs[set1.indices[t][std::size_t(k)]];
+                EXPECT_EQ(uv.x, p.x == 0 ? 0.5f : 2.0f);
+                EXPECT_EQ(uv.y, 1.0f - (p.y == 0 ? 0.25f : 1.0f));
+            }
         EXPECT_TRUE(diag.warnings.empty()) << diag.warnings.front();
     }
 }

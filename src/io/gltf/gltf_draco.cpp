@@ -4,7 +4,9 @@
 // data then (only count, type, and for the decoder's output its meaning).
 #include <draco/compression/decode.h>
 
+#include <array>
 #include <cmath>
+#include <string>
 
 #include "io/gltf/gltf.h"
 
@@ -113,10 +115,12 @@ PrimitiveData decode_draco(const AccessorReader& r, const tinygltf::Primitive& p
         primitive.attributes.count("NORMAL")
             ? read_attribute(*mesh, draco_id(attributes, "NORMAL"), 3, r.file, what, "NORMAL")
             : std::vector<float>{};
-    const std::vector<float> uvs =
-        primitive.attributes.count("TEXCOORD_0")
-            ? read_attribute(*mesh, draco_id(attributes, "TEXCOORD_0"), 2, r.file, what, "TEXCOORD_0")
-            : std::vector<float>{};
+    std::array<std::vector<float>, kUvSets> uvs;
+    for (unsigned set = 0; set < kUvSets; ++set) {
+        const std::string name = texcoord_name(set);
+        if (primitive.attributes.count(name))
+            uvs[set] = read_attribute(*mesh, draco_id(attributes, name.c_str()), 2, r.file, what, name.c_str());
+    }
     const std::vector<float> tangents =
         primitive.attributes.count("TANGENT")
             ? read_attribute(*mesh, draco_id(attributes, "TANGENT"), 4, r.file, what, "TANGENT")
@@ -136,10 +140,12 @@ PrimitiveData decode_draco(const AccessorReader& r, const tinygltf::Primitive& p
         for (std::size_t i = 0; i < points; ++i)
             out.normals[i] = {normals[3 * i], normals[3 * i + 1], normals[3 * i + 2]};
     }
-    if (!uvs.empty()) {
-        out.uvs.resize(points);
+    for (unsigned set = 0; set < kUvSets; ++set) {
+        if (uvs[set].empty()) continue;
+        std::vector<Vec2>& to = set == 0 ? out.uvs : out.extra_uvs[set - 1];
+        to.resize(points);
         // glTF's v = 0 is the image's top row, sombra's (and OBJ's) the bottom.
-        for (std::size_t i = 0; i < points; ++i) out.uvs[i] = {uvs[2 * i], 1.0f - uvs[2 * i + 1]};
+        for (std::size_t i = 0; i < points; ++i) to[i] = {uvs[set][2 * i], 1.0f - uvs[set][2 * i + 1]};
     }
     out.tangents = tangents_of(tangents);
     out.colors = colors_of(colors, out.clamped_colors);

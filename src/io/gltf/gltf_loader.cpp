@@ -4,6 +4,7 @@
 // space, a mesh drawn more often (several nodes, EXT_mesh_gpu_instancing)
 // kept once with its instances, plus the lights and the first camera.
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <map>
 #include <numbers>
@@ -143,6 +144,11 @@ void append_primitive(MeshBuilder& b, const PrimitiveData& p, const std::optiona
     const auto uv_base = static_cast<std::uint32_t>(b.uvs.size());
     const auto tangent_base = static_cast<std::uint32_t>(b.tangents.size());
     const auto color_base = static_cast<std::uint32_t>(b.colors.size());
+    std::array<std::uint32_t, kUvSets - 1> extra_base{};
+    for (std::size_t k = 0; k < extra_base.size(); ++k) {
+        extra_base[k] = static_cast<std::uint32_t>(b.extra_uvs[k].size());
+        b.extra_uvs[k].insert(b.extra_uvs[k].end(), p.extra_uvs[k].begin(), p.extra_uvs[k].end());
+    }
     if (world) {
         for (const Vec3 v : p.positions) b.positions.push_back(transform_point(*world, v));
         const Transform to_world = normal_transform(*world);
@@ -171,10 +177,13 @@ void append_primitive(MeshBuilder& b, const PrimitiveData& p, const std::optiona
     for (std::size_t t = 0; t + 2 < p.indices.size(); t += 3) {
         std::uint32_t c[3] = {p.indices[t], p.indices[t + 1], p.indices[t + 2]};
         if (mirrored) std::swap(c[1], c[2]);
-        std::uint32_t pos[3], nor[3], uv[3], tan[3], col[3];
+        std::uint32_t pos[3], nor[3], uv[3], tan[3], col[3], extra_uv[kUvSets - 1][3];
+        MeshBuilder::ExtraUvCorners extra;
+        for (std::size_t k = 0; k < extra.size(); ++k)
+            extra[k] = corners(!p.extra_uvs[k].empty(), extra_base[k], c, extra_uv[k]);
         b.add_face(corners(true, base, c, pos), corners(!p.normals.empty(), normal_base, c, nor), material,
                    corners(!p.uvs.empty(), uv_base, c, uv), corners(!p.tangents.empty(), tangent_base, c, tan),
-                   corners(!p.colors.empty(), color_base, c, col));
+                   corners(!p.colors.empty(), color_base, c, col), extra);
     }
 }
 
@@ -199,37 +208,6 @@ struct PartBuild {
     MeshBuilder builder;
     InstancedPart part;  // all but the mesh
 };
-
-// The camera `index` placed by `world`, or nothing (with a warning) when it
-// is orthographic or degenerate.
-std::optional<ModelCamera> place_camera(const tinygltf::Model& model, int index, const Transform& world,
-                                        const std::string& file, Diagnostics& diag) {
-    if (index < 0 || static_cast<std::size_t>(index) >= model.cameras.size())
-        throw Error(file, "a node names camera " + std::to_string(index) + ", but the file has " +
-                              std::to_string(model.cameras.size()));
-    const tinygltf::Camera& c = model.cameras[std::size_t(index)];
-    if (c.type != "perspective") {
-        diag.warn(file, "camera " + std::to_string(index) + " is " + c.type +
-                            ", not perspective: the model is framed automatically");
-        return std::nullopt;
-    }
-    const double yfov = c.perspective.yfov * 180.0 / std::numbers::pi;
-    ModelCamera cam;
-    cam.origin = transform_point(world, Vec3{0.0f});
-    const Vec3 forward = transform_vector(world, Vec3{0, 0, -1});
-    const Vec3 up = transform_vector(world, Vec3{0, 1, 0});
-    cam.forward = normalize(forward);
-    cam.up = normalize(up - dot(up, cam.forward) * cam.forward);
-    cam.yfov_degrees = static_cast<float>(yfov);
-    cam.aspect = c.perspective.aspectRatio > 0 ? static_cast<float>(c.perspective.aspectRatio) : 0.0f;
-    if (!(yfov > 0 && yfov < 180) || !std::isfinite(cam.aspect) || !is_finite(cam.origin) || !is_finite(cam.forward) ||
-        !is_finite(cam.up)) {
-        diag.warn(file, "camera " + std::to_string(index) +
-                            " is unusable (field of view, aspect or placement): the model is framed automatically");
-        return std::nullopt;
-    }
-    return cam;
-}
 
 }  // namespace
 
@@ -307,11 +285,12 @@ LoadedMesh load_gltf(const std::filesystem::path& path, Diagnostics& diag) {
     std::vector<PunctualLight> lights;
     bool any_triangles = false;
     std::size_t clamped_colors = 0;
+    std::size_t missing_texcoords = 0;  // primitives without a TEXCOORD_k their material's textures read
     for (const NodePlacement& in : placements) {
         const tinygltf::Node& node = model.nodes[std::size_t(in.node)];
         if (node.skin >= 0) ++skipped["skins (the bind pose is used)"];
         if (node.camera >= 0 && (!camera || node.camera < camera->first))
-            if (std::optional<ModelCamera> c = place_camera(model, node.camera, world_of(in), file, diag))
+            if (std::optional<ModelCamera> c = gltf::place_camera(model, node.camera, world_of(in), file, diag))
                 camera = {node.camera, *c};
         if (const auto it = node.extensions.find(gltf::kLights); it != node.extensions.end() && it->second.IsObject()) {
             const std::optional<int> light =
@@ -332,8 +311,12 @@ LoadedMesh load_gltf(const std::filesystem::path& path, Diagnostics& diag) {
         }
         if (node.mesh < 0 || !visible(in)) continue;
         auto [cached, first_use] = decoded.try_emplace(node.mesh);
-        if (first_use)
+        if (first_use) {
             cached->second = gltf::read_mesh(reader, node.mesh, materials.materials.size(), skipped, clamped_colors);
+            for (const std::optional<gltf::PrimitiveData>& p : cached->second)
+                if (p && p->material >= 0 && gltf::lacks_texcoord(*p, materials.texture_refs[std::size_t(p->material)]))
+                    ++missing_texcoords;
+        }
         const Primitives& primitives = cached->second;
         const auto local = gpu.find(in.node);
         const bool gpu_instanced = node.extensions.count(gltf::kGpuInstancing) > 0;
@@ -376,6 +359,10 @@ LoadedMesh load_gltf(const std::filesystem::path& path, Diagnostics& diag) {
     for (const auto& [what, count] : skipped) diag.warn(file, "skipped " + what + " (" + std::to_string(count) + ")");
     if (clamped_colors > 0)
         diag.warn(file, "COLOR_0: " + std::to_string(clamped_colors) + " components outside [0, 1] clamped");
+    if (missing_texcoords > 0)
+        diag.warn(file, std::to_string(missing_texcoords) +
+                            " primitives lack a TEXCOORD_n that their material's textures read: those textures are "
+                            "not applied there (their constants are used)");
 
     // The meshes' material ids index one list; a face without a material
     // gets the default, added once at its end.

@@ -112,7 +112,8 @@ TEST(GltfLoader, QuantizedAccessorsAreNormalised) {
     const std::vector<std::uint8_t> uv{0, 255, 255, 0, 128, 0, 0, 0};  // VEC2 padded to 4 bytes... 3 used
     const int uvv = f.add_view(uv.data(), 6);
     const int t = f.add_accessor(uvv, gltf_test::kUnsignedByte, 3, "VEC2", true);
-    f.add_mesh({{"POSITION", p}, {"TEXCOORD_0", t}});
+    // TEXCOORD_1 (spec §24) reads the same quantized data.
+    f.add_mesh({{"POSITION", p}, {"TEXCOORD_0", t}, {"TEXCOORD_1", t}});
     f.add_node({{"mesh", 0}});
     f.set_scene({0});
     f.use_extension("KHR_mesh_quantization", true);
@@ -122,6 +123,8 @@ TEST(GltfLoader, QuantizedAccessorsAreNormalised) {
     expect_near(m.mesh.positions[2], {1, 1, 0});
     expect_near(Vec3{m.mesh.uvs[0].x, m.mesh.uvs[0].y, 0}, {0, 0, 0});             // (0, 1) flipped
     expect_near(Vec3{m.mesh.uvs[2].x, m.mesh.uvs[2].y, 0}, {128 / 255.0f, 1, 0});  // (128/255, 0) flipped
+    EXPECT_EQ(m.mesh.extra_uvs[0].uvs, m.mesh.uvs);
+    EXPECT_EQ(m.mesh.extra_uvs[0].indices, m.mesh.uv_indices);
 
     // Without the extension, integer positions are a wrong component type.
     f.doc.erase("extensionsUsed");

@@ -130,7 +130,8 @@ std::pair<GltfFile, Packed> twins(const Grid& g, const std::string& index_mode, 
         f->add_accessor(n, gltf_test::kFloat, g.normals.size(), "VEC3");
         f->add_accessor(uv, gltf_test::kFloat, g.uvs.size(), "VEC2");
         f->add_accessor(i, component, g.indices.size(), "SCALAR");
-        f->add_mesh({{"POSITION", 0}, {"NORMAL", 1}, {"TEXCOORD_0", 2}}, 3);
+        // TEXCOORD_1 (spec §24) reads the compressed view too.
+        f->add_mesh({{"POSITION", 0}, {"NORMAL", 1}, {"TEXCOORD_0", 2}, {"TEXCOORD_1", 2}}, 3);
         f->add_node({{"mesh", 0}});
         f->set_scene({0});
     }
@@ -165,6 +166,8 @@ void expect_same_mesh(const LoadedMesh& a, const LoadedMesh& b, bool exact_trian
     EXPECT_EQ(a.mesh.uvs, b.mesh.uvs);
     expect_same_triangles(a.mesh.uv_indices, b.mesh.uv_indices, exact_triangles);
     expect_same_triangles(a.mesh.normal_indices, b.mesh.normal_indices, exact_triangles);
+    EXPECT_EQ(a.mesh.extra_uvs[0].uvs, b.mesh.extra_uvs[0].uvs);
+    expect_same_triangles(a.mesh.extra_uvs[0].indices, b.mesh.extra_uvs[0].indices, exact_triangles);
 }
 
 TEST(GltfMeshopt, EveryModeLoadsTheSameTrianglesAsThePlainFile) {
@@ -185,6 +188,7 @@ TEST(GltfMeshopt, EveryModeLoadsTheSameTrianglesAsThePlainFile) {
         const LoadedMesh a = load_gltf(dir.write("plain.gltf", plain.gltf()), plain_diag);
         const LoadedMesh b = load_gltf(packed.save(dir, c.name), diag);
         EXPECT_EQ(b.mesh.triangles.size(), g.indices.size() / 3);
+        EXPECT_EQ(b.mesh.extra_uvs[0].uvs, b.mesh.uvs);
         expect_same_mesh(a, b, std::string(c.mode) == "INDICES");
         EXPECT_TRUE(diag.warnings.empty()) << diag.warnings.front();
     }

@@ -28,13 +28,15 @@ PrimitiveData read_primitive(const AccessorReader& r, const tinygltf::Primitive&
         out.normals.resize(n);
         for (std::size_t i = 0; i < n; ++i) out.normals[i] = {nor[3 * i], nor[3 * i + 1], nor[3 * i + 2]};
     }
-    if (attribute("TEXCOORD_0") >= 0) {
-        const std::vector<float> uv =
-            read_floats(r, attribute("TEXCOORD_0"), Semantic::Texcoord, "TEXCOORD_0 of " + what);
-        if (uv.size() / 2 != n) throw Error(r.file, what + ": TEXCOORD_0 and POSITION differ in count");
-        out.uvs.resize(n);
+    for (unsigned set = 0; set < kUvSets; ++set) {
+        const std::string name = texcoord_name(set);
+        if (attribute(name.c_str()) < 0) continue;
+        const std::vector<float> uv = read_floats(r, attribute(name.c_str()), Semantic::Texcoord, name + " of " + what);
+        if (uv.size() / 2 != n) throw Error(r.file, what + ": " + name + " and POSITION differ in count");
+        std::vector<Vec2>& uvs = set == 0 ? out.uvs : out.extra_uvs[set - 1];
+        uvs.resize(n);
         // glTF's v = 0 is the image's top row; sombra's uvs (like OBJ's) put v = 0 at the bottom.
-        for (std::size_t i = 0; i < n; ++i) out.uvs[i] = {uv[2 * i], 1.0f - uv[2 * i + 1]};
+        for (std::size_t i = 0; i < n; ++i) uvs[i] = {uv[2 * i], 1.0f - uv[2 * i + 1]};
     }
     if (attribute("TANGENT") >= 0) {
         const std::vector<float> t = read_floats(r, attribute("TANGENT"), Semantic::Tangent, "TANGENT of " + what);
@@ -71,10 +73,15 @@ Primitives read_mesh(const AccessorReader& reader, int index, std::size_t materi
         if (p.material < -1 || p.material >= int(material_count))
             throw Error(reader.file, what + " names material " + std::to_string(p.material) + ", but the file has " +
                                          std::to_string(material_count));
+        const auto read = [](const std::string& name) {
+            for (unsigned set = 0; set < kUvSets; ++set)
+                if (name == texcoord_name(set)) return true;
+            return name == "COLOR_0";
+        };
         for (const auto& [name, accessor] : p.attributes)
             if (name.rfind("TEXCOORD_", 0) == 0 || name.rfind("COLOR_", 0) == 0 || name.rfind("JOINTS_", 0) == 0 ||
                 name.rfind("WEIGHTS_", 0) == 0)
-                if (name != "TEXCOORD_0" && name != "COLOR_0") ++skipped["attribute " + name + " (not used yet)"];
+                if (!read(name)) ++skipped["attribute " + name + " (not used yet)"];
         if (!p.targets.empty()) ++skipped["morph targets"];
         try {
             const auto draco = p.extensions.find(kDraco);
@@ -88,6 +95,16 @@ Primitives read_mesh(const AccessorReader& reader, int index, std::size_t materi
         clamped_colors += out[i]->clamped_colors;
     }
     return out;
+}
+
+bool lacks_texcoord(const PrimitiveData& p, const GltfMaterialTextures& refs) {
+    for (const GltfTextureRef* ref :
+         {&refs.base_color, &refs.metallic_roughness, &refs.normal, &refs.emissive, &refs.occlusion, &refs.specular,
+          &refs.specular_color, &refs.transmission, &refs.clearcoat, &refs.clearcoat_roughness})
+        if (ref->present() && ref->texcoord >= 1 && ref->texcoord < int(kUvSets) &&
+            p.extra_uvs[std::size_t(ref->texcoord) - 1].empty())
+            return true;
+    return false;
 }
 
 }  // namespace sombra::gltf

@@ -134,7 +134,7 @@ struct SlotMaker {
 
     TextureRef operator()(const GltfTextureRef& ref, TextureEncoding encoding, std::uint8_t channel = 0) const {
         TextureRef slot;
-        if (!ref.present() || ref.texcoord != 0) return slot;
+        if (!ref.present() || ref.texcoord < 0 || ref.texcoord >= int(kUvSets)) return slot;
         if (ref.image < 0) return slot;
         if (ref.offset.x != 0 || ref.offset.y != 0 || ref.rotation != 0 || ref.scale.x != 1 || ref.scale.y != 1) {
             slot.transformed = true;
@@ -147,6 +147,7 @@ struct SlotMaker {
         slot.wrap_u = wrap_of(ref.wrap_s);
         slot.wrap_v = wrap_of(ref.wrap_t);
         slot.channel = channel;
+        slot.uv_set = static_cast<std::uint8_t>(ref.texcoord);
         return slot;
     }
 };
@@ -162,8 +163,9 @@ void apply_textures(const tinygltf::Model& model, const std::filesystem::path& p
     const SlotMaker slot{model, file, table};
     for (std::size_t i = 0; i < refs.size() && i < materials.size(); ++i) {
         const GltfMaterialTextures& r = refs[i];
-        for (const GltfTextureRef* ref : {&r.base_color, &r.metallic_roughness, &r.normal, &r.emissive})
-            unapplied_texcoords += ref->present() && ref->texcoord != 0 ? 1 : 0;
+        for (const GltfTextureRef* ref : {&r.base_color, &r.metallic_roughness, &r.normal, &r.emissive, &r.specular,
+                                          &r.specular_color, &r.transmission, &r.clearcoat, &r.clearcoat_roughness})
+            unapplied_texcoords += ref->present() && ref->texcoord >= int(kUvSets) ? 1 : 0;
         MaterialTextures& t = materials[i].textures;
         t.base_color = slot(r.base_color, TextureEncoding::Color);
         t.roughness = slot(r.metallic_roughness, TextureEncoding::Data, 1);
@@ -190,8 +192,8 @@ void apply_textures(const tinygltf::Model& model, const std::filesystem::path& p
         materials[i].textured = any_texture(t);
     }
     if (unapplied_texcoords > 0)
-        diag.warn(file, std::to_string(unapplied_texcoords) +
-                            " texture references use a TEXCOORD other than 0: not applied (their constants are used)");
+        diag.warn(file, std::to_string(unapplied_texcoords) + " texture references use a TEXCOORD beyond " +
+                            texcoord_name(kUvSets - 1) + ": not applied (their constants are used)");
 }
 
 }  // namespace sombra::gltf

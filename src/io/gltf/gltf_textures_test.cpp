@@ -392,15 +392,26 @@ TEST(GltfTextures, IdentityTextureTransformLooksUpExactlyAsNone) {
     }
 }
 
-TEST(GltfTextures, ATexCoordOverrideInTheTransformIsStillNotApplied) {
+TEST(GltfTextures, ATexCoordOverrideInTheTransformChoosesTheSet) {
+    // Spec §24: the extension's texCoord replaces the reference's; set 1 is
+    // read, 4 (beyond TEXCOORD_3) is not applied, with a warning.
     TempFolder dir;
     write_four_by_four_png(dir.path / "grid.png");
-    transformed_quad({{"offset", {0.5, 0}}, {"texCoord", 1}}).save(dir.path / "m.gltf");
-    Diagnostics diag;
-    const LoadedMesh m = load_mesh_file(dir.path / "m.gltf", diag);
-    EXPECT_FALSE(m.materials[0].textures.base_color.is_set());
-    ASSERT_EQ(diag.warnings.size(), 1u);
-    EXPECT_NE(diag.warnings[0].find("TEXCOORD other than 0"), std::string::npos) << diag.warnings[0];
+    for (const int set : {1, 4}) {
+        SCOPED_TRACE(set);
+        transformed_quad({{"offset", {0.5, 0}}, {"texCoord", set}}).save(dir.path / "m.gltf");
+        Diagnostics diag;
+        const LoadedMesh m = load_mesh_file(dir.path / "m.gltf", diag);
+        const TextureRef& base = m.materials[0].textures.base_color;
+        EXPECT_EQ(base.is_set(), set == 1);
+        EXPECT_EQ(base.uv_set, set == 1 ? 1 : 0);
+        EXPECT_EQ(m.materials[0].textures.metallic.uv_set, 0);  // its own texCoord, 0
+        // Set 1 on a primitive that has only TEXCOORD_0 is the other warning.
+        ASSERT_EQ(diag.warnings.size(), 1u);
+        EXPECT_NE(diag.warnings[0].find(set == 1 ? "1 primitives lack a TEXCOORD_n" : "beyond TEXCOORD_3"),
+                  std::string::npos)
+            << diag.warnings[0];
+    }
 }
 
 // The warning counts texture references: metallicRoughness fills two slots
@@ -410,8 +421,8 @@ TEST(GltfTextures, TheTexCoordWarningCountsReferences) {
     two_by_two_png(dir);
     for (const bool both : {false, true}) {
         GltfFile f = textured_quad({{"uri", "tex.png"}});
-        f.doc["materials"][0]["pbrMetallicRoughness"]["metallicRoughnessTexture"]["texCoord"] = 1;
-        if (both) f.doc["materials"][0]["pbrMetallicRoughness"]["baseColorTexture"]["texCoord"] = 1;
+        f.doc["materials"][0]["pbrMetallicRoughness"]["metallicRoughnessTexture"]["texCoord"] = 4;
+        if (both) f.doc["materials"][0]["pbrMetallicRoughness"]["baseColorTexture"]["texCoord"] = 9;
         Diagnostics diag;
         load_mesh_file(dir.write("m.gltf", f.gltf()), diag);
         ASSERT_EQ(diag.warnings.size(), 1u);

@@ -169,7 +169,10 @@ class Scene:
         the look-at form (origin, look_at, up, fov) or the basis form
         (origin, left, up, forward), with aperture_radius and
         focus_distance when it has a lens. A quick look's is the framing it
-        chose (spec §7); a scene from code's is None until set. Read-only
+        chose (spec §7), or the glTF file's camera, whose orthographic kind
+        (spec §24) shows as "orthographic": {"ymag": half-height} in place
+        of "fov"; a scene from code's is None until set (perspective only,
+        as in scene files). Read-only
         for a scene read from a file or a dict: render it from elsewhere
         with ``Scene.from_dict`` and another "camera"."""
         if self._meshes is None:

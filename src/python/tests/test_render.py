@@ -126,3 +126,48 @@ def test_a_frame_of_an_animated_scene_is_the_command_lines(tmp_path):
     status, _, err = run_cli("render", tmp_path / "a.json", "-q", "--frame", 3, "-o", tmp_path / "f3.pfm")
     assert status == 0, err
     assert frames[3].tobytes() == read_pfm(tmp_path / "f3.pfm").tobytes()
+
+
+def write_orthographic_gltf(path):
+    """A unit square at z = 0 seen by an orthographic camera at z = 2 whose
+    view is 2 high (ymag 1, spec §24), with a point light beside it."""
+    import base64
+    import struct
+    positions = [(-0.5, -0.5, 0), (0.5, -0.5, 0), (0.5, 0.5, 0), (-0.5, 0.5, 0)]
+    data = b"".join(struct.pack("<3f", *p) for p in positions) + struct.pack("<6I", 0, 1, 2, 0, 2, 3)
+    doc = {
+        "asset": {"version": "2.0"},
+        "extensionsUsed": ["KHR_lights_punctual"],
+        "extensions": {"KHR_lights_punctual": {"lights": [{"type": "point", "intensity": 2000}]}},
+        "buffers": [{"byteLength": len(data),
+                     "uri": "data:application/octet-stream;base64," + base64.b64encode(data).decode()}],
+        "bufferViews": [{"buffer": 0, "byteOffset": 0, "byteLength": 48},
+                        {"buffer": 0, "byteOffset": 48, "byteLength": 24}],
+        "accessors": [{"bufferView": 0, "componentType": 5126, "count": 4, "type": "VEC3",
+                       "min": [-0.5, -0.5, 0], "max": [0.5, 0.5, 0]},
+                      {"bufferView": 1, "componentType": 5125, "count": 6, "type": "SCALAR"}],
+        "meshes": [{"primitives": [{"attributes": {"POSITION": 0}, "indices": 1}]}],
+        "cameras": [{"type": "orthographic", "orthographic": {"xmag": 1, "ymag": 1, "znear": 0.1, "zfar": 10}}],
+        "nodes": [{"mesh": 0}, {"camera": 0, "translation": [0, 0, 2]},
+                  {"translation": [0, 0, 3], "extensions": {"KHR_lights_punctual": {"light": 0}}}],
+        "scenes": [{"nodes": [0, 1, 2]}],
+        "scene": 0,
+    }
+    path.write_text(json.dumps(doc))
+
+
+def test_an_orthographic_gltf_camera_renders_as_the_command_line_does(tmp_path):
+    model = tmp_path / "ortho.gltf"
+    write_orthographic_gltf(model)
+    scene = sombra.load(model)
+    assert scene.camera["orthographic"] == {"ymag": 1.0} and "fov" not in scene.camera
+    out = tmp_path / "cli.pfm"
+    status, _, err = run_cli("render", model, "-o", out, "-q", "--width", 32, "--height", 32, "--spp", 1)
+    assert status == 0, err
+    image = sombra.render(scene, width=32, height=32, spp=1, aov=["depth"])
+    assert image["color"].tobytes() == read_pfm(out).tobytes()
+    # The square is half the view's height and width: the middle 16 × 16
+    # pixels, each 2 away along the parallel rays.
+    hit = np.isfinite(image["depth"])
+    assert hit[8:24, 8:24].all() and hit.sum() == 16 * 16
+    assert np.allclose(image["depth"][hit], 2.0)

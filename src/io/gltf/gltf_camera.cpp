@@ -1,0 +1,58 @@
+// A glTF camera placed by its node (spec §13, §24): perspective or
+// orthographic, in the file's coordinates.
+#include <cmath>
+#include <numbers>
+#include <string>
+
+#include "core/format.h"
+#include "io/gltf/gltf.h"
+#include "io/mesh_file.h"
+
+namespace sombra::gltf {
+
+std::optional<ModelCamera> place_camera(const tinygltf::Model& model, int index, const Transform& world,
+                                        const std::string& file, Diagnostics& diag) {
+    if (index < 0 || static_cast<std::size_t>(index) >= model.cameras.size())
+        throw Error(file, "a node names camera " + std::to_string(index) + ", but the file has " +
+                              std::to_string(model.cameras.size()));
+    const tinygltf::Camera& c = model.cameras[std::size_t(index)];
+    const bool orthographic = c.type == "orthographic";
+    if (c.type != "perspective" && !orthographic) {
+        diag.warn(file, "camera " + std::to_string(index) + " is " + c.type +
+                            ", neither perspective nor orthographic: the model is framed automatically");
+        return std::nullopt;
+    }
+    if (orthographic && !(std::isfinite(c.orthographic.ymag) && c.orthographic.ymag > 0))
+        throw Error(file, "/cameras/" + std::to_string(index) +
+                              "/orthographic/ymag: the view's half-height must be a finite number above 0, got " +
+                              format_number(c.orthographic.ymag));
+    ModelCamera cam;
+    cam.origin = transform_point(world, Vec3{0.0f});
+    const Vec3 forward = transform_vector(world, Vec3{0, 0, -1});
+    const Vec3 up = transform_vector(world, Vec3{0, 1, 0});
+    cam.forward = normalize(forward);
+    cam.up = normalize(up - dot(up, cam.forward) * cam.forward);
+    if (orthographic) {
+        cam.ymag = static_cast<float>(c.orthographic.ymag);
+        if (!std::isfinite(cam.ymag))
+            throw Error(file, "/cameras/" + std::to_string(index) +
+                                  "/orthographic/ymag: " + format_number(c.orthographic.ymag) + " is too large");
+    } else {
+        const double yfov = c.perspective.yfov * 180.0 / std::numbers::pi;
+        cam.yfov_degrees = static_cast<float>(yfov);
+        cam.aspect = c.perspective.aspectRatio > 0 ? static_cast<float>(c.perspective.aspectRatio) : 0.0f;
+        if (!(yfov > 0 && yfov < 180) || !std::isfinite(cam.aspect)) {
+            diag.warn(file, "camera " + std::to_string(index) +
+                                " is unusable (field of view or aspect): the model is framed automatically");
+            return std::nullopt;
+        }
+    }
+    if (!is_finite(cam.origin) || !is_finite(cam.forward) || !is_finite(cam.up)) {
+        diag.warn(file, "camera " + std::to_string(index) +
+                            " is unusable (its placement): the model is framed automatically");
+        return std::nullopt;
+    }
+    return cam;
+}
+
+}  // namespace sombra::gltf
