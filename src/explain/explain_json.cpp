@@ -103,12 +103,13 @@ private:
         return j;
     }
 
-    // The terms of f_r; a pbr material's transmission and clearcoat terms
-    // only where they are not 0 (other materials have none).
-    static Json f_terms(Vec3 diffuse, Vec3 lobe, Vec3 transmission, Vec3 coat, Vec3 f) {
+    // The terms of f_r; a pbr material's transmission, clearcoat and sheen
+    // terms only where they are not 0 (other materials have none).
+    static Json f_terms(Vec3 diffuse, Vec3 lobe, Vec3 transmission, Vec3 coat, Vec3 sheen, Vec3 f) {
         Json j{{"diffuse", vec(diffuse)}, {"lobe", vec(lobe)}, {"total", vec(f)}};
         if (transmission != Vec3{0.0f}) j["transmission"] = vec(transmission);
         if (coat != Vec3{0.0f}) j["coat"] = vec(coat);
+        if (sheen != Vec3{0.0f}) j["sheen"] = vec(sheen);
         return j;
     }
 
@@ -154,7 +155,7 @@ private:
             j["cos_s"] = number(l.cos_s);
             if (light.type == LightType::Spot) j["spot_factor"] = number(l.spot_factor);
             j["incident"] = vec(l.incident);
-            j["f_r"] = f_terms(l.f_diffuse, l.f_lobe, l.f_transmission, l.f_coat, l.f);
+            j["f_r"] = f_terms(l.f_diffuse, l.f_lobe, l.f_transmission, l.f_coat, l.f_sheen, l.f);
         }
         if (l.outcome == LightOutcome::Blocked) j["blocker"] = blocker(l.blocker);
         if (l.outcome == LightOutcome::Visible) {
@@ -181,7 +182,7 @@ private:
         j["mis_weight"] = number(l.mis_weight);
         j["cos_s"] = number(l.cos_s);
         if (!l.environment) j["cos_light"] = number(l.cos_light);
-        j["f_r"] = f_terms(l.f_diffuse, l.f_lobe, l.f_transmission, l.f_coat, l.f);
+        j["f_r"] = f_terms(l.f_diffuse, l.f_lobe, l.f_transmission, l.f_coat, l.f_sheen, l.f);
         if (l.outcome == LightOutcome::Blocked) j["blocker"] = blocker(l.blocker);
         if (l.outcome == LightOutcome::Visible) {
             j["holes"] = holes(l.holes);

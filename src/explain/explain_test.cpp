@@ -300,6 +300,38 @@ TEST(ExplainRecord, NamesThePbrTransmissionAndCoatTerms) {
     EXPECT_TRUE(j["lights"][2]["f_r"].contains("coat")) << j["lights"][2];
 }
 
+// A pbr with a sheen: the visible light from the side (ω_i grazing the
+// ground) shows the sheen term, and text and JSON name it; the light below
+// the ground, which the opaque base does not let through, has none.
+TEST(ExplainRecord, NamesThePbrSheenTerm) {
+    Scene scene = blocked_scene();
+    for (Material& m : scene.materials) {
+        m.type = MaterialType::Pbr;
+        m.base_color = Vec3{0.6f};
+        m.roughness = 0.5f;
+        m.sheen_color = Vec3{1.0f, 0.5f, 0.25f};
+        m.sheen_roughness = 0.6f;
+    }
+    const BlockedStory story(std::move(scene));
+    const SampleRecord& r = story.record;
+    ASSERT_EQ(r.vertices.size(), 1u);
+    const VertexRecord& v = r.vertices[0];
+    ASSERT_EQ(v.delta_lights.size(), 3u);
+    EXPECT_EQ(v.delta_lights[1].f_sheen, Vec3{0.0f});
+    const DeltaLightRecord& side = v.delta_lights[2];
+    EXPECT_GT(side.f_sheen.x, side.f_sheen.y);
+    EXPECT_GT(side.f_sheen.y, 0.0f);
+    const Vec3 sum = side.f_diffuse + side.f_lobe + side.f_sheen;
+    EXPECT_NEAR(side.f.x, sum.x, 1e-6f * sum.x);
+
+    const ExplainContext context{story.scene, story.job, "test.json"};
+    const std::string text = explain_text(context, r);
+    EXPECT_NE(text.find(" + sheen "), std::string::npos) << text;
+    const nlohmann::json j = nlohmann::json::parse(explain_json(context, r));
+    EXPECT_FALSE(j["lights"][1]["f_r"].contains("sheen")) << j["lights"][1];
+    EXPECT_TRUE(j["lights"][2]["f_r"].contains("sheen")) << j["lights"][2];
+}
+
 // The text says where n_s came from: vertex normals even when they equal
 // n_g (a flat floor's, as the shared scenes' plane.obj has), or none.
 TEST(ExplainRecord, SaysWhetherTheShadingNormalCameFromVertexNormals) {

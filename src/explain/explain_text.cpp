@@ -9,12 +9,13 @@ namespace sombra {
 
 namespace {
 
-// " + transmission T + coat C" for the pbr terms that are not 0 (glTF's
-// KHR_materials_transmission and KHR_materials_clearcoat); "" otherwise.
-std::string extra_terms(Vec3 transmission, Vec3 coat) {
+// " + transmission T + coat C + sheen S" for the pbr terms that are not 0
+// (glTF's KHR_materials_transmission, _clearcoat and _sheen); "" otherwise.
+std::string extra_terms(Vec3 transmission, Vec3 coat, Vec3 sheen) {
     std::string s;
     if (transmission != Vec3{0.0f}) s += " + transmission " + readable(transmission);
     if (coat != Vec3{0.0f}) s += " + coat " + readable(coat);
+    if (sheen != Vec3{0.0f}) s += " + sheen " + readable(sheen);
     return s;
 }
 
@@ -227,7 +228,7 @@ private:
         holes(l.holes, l.holes_crossed, "    the shadow ray went through ", "      ");
         out_ << "    " << incident << pad << "= " << readable(l.incident) << "\n";
         out_ << "    f_r        " << wide << "= " << readable(l.f) << " = diffuse " << readable(l.f_diffuse)
-             << " + lobe " << readable(l.f_lobe) << extra_terms(l.f_transmission, l.f_coat) << "\n";
+             << " + lobe " << readable(l.f_lobe) << extra_terms(l.f_transmission, l.f_coat, l.f_sheen) << "\n";
         out_ << "    |n_s·ω_i|  " << wide << "= " << readable(l.cos_s) << "\n";
         if (r_.path) out_ << "    β          " << wide << "= " << readable(beta) << "\n";
         out_ << "    product    " << wide << "= " << readable(l.contribution) << "\n";
@@ -261,8 +262,8 @@ private:
         }
         holes(l.holes, l.holes_crossed, "    the shadow ray went through ", "      ");
         out_ << "    f_r = " << readable(l.f) << " = diffuse " << readable(l.f_diffuse) << " + lobe "
-             << readable(l.f_lobe) << extra_terms(l.f_transmission, l.f_coat) << ", |n_s·ω_i| = " << readable(l.cos_s)
-             << "\n";
+             << readable(l.f_lobe) << extra_terms(l.f_transmission, l.f_coat, l.f_sheen)
+             << ", |n_s·ω_i| = " << readable(l.cos_s) << "\n";
         out_ << "    MIS weight w = " << readable(l.mis_weight) << " (power heuristic)\n";
         out_ << "    adds β·f_r·|n_s·ω_i|·L_e·w/pdf = " << readable(l.contribution) << "\n";
     }

@@ -127,9 +127,10 @@ inline Vec3 eval_bsdf(const Material& m, const BsdfPoint& p, Vec3 wo, Vec3 wi) {
 struct BsdfTerms {
     Vec3 diffuse, lobe;
     // pbr's KHR_materials_transmission lobe through a rough thin wall (wi on
-    // the other side of n_g), and KHR_materials_clearcoat's coat; 0 elsewhere.
-    // The sum of all four is eval_bsdf's value up to float rounding.
-    Vec3 transmission{0.0f}, coat{0.0f};
+    // the other side of n_g), KHR_materials_clearcoat's coat and
+    // KHR_materials_sheen's sheen; 0 elsewhere. The sum of all five is
+    // eval_bsdf's value up to float rounding.
+    Vec3 transmission{0.0f}, coat{0.0f}, sheen{0.0f};
 };
 BsdfTerms eval_bsdf_terms(const Material& m, const BsdfPoint& p, Vec3 wo, Vec3 wi);
 

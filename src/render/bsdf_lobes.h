@@ -1,6 +1,6 @@
 // Building blocks that the BSDFs of render/bsdf.cpp and render/bsdf_pbr.cpp
-// share: mirror reflection, the cosine-weighted hemisphere and the delta
-// mirror lobe. Internal to render/ (bsdf.h is the interface).
+// share: mirror reflection, the cosine-weighted and uniform hemispheres and
+// the delta mirror lobe. Internal to render/ (bsdf.h is the interface).
 #pragma once
 
 #include <algorithm>
@@ -21,6 +21,15 @@ inline Vec3 sample_cosine_hemisphere(float u1, float u2) {
     const float r = std::sqrt(u1);
     const float phi = 2.0f * std::numbers::pi_v<float> * u2;
     return {r * std::cos(phi), r * std::sin(phi), std::sqrt(std::max(0.0f, 1.0f - u1))};
+}
+
+// A uniformly distributed direction around +z (density 1/(2π)), z = 1 − u1 > 0
+// for u1 in [0, 1).
+inline Vec3 sample_uniform_hemisphere(float u1, float u2) {
+    const float z = 1.0f - u1;
+    const float r = std::sqrt(std::max(0.0f, 1.0f - z * z));
+    const float phi = 2.0f * std::numbers::pi_v<float> * u2;
+    return {r * std::cos(phi), r * std::sin(phi), z};
 }
 
 // The delta lobe ωi = ωo mirrored about n_s with the given weight and pdf (a

@@ -12,16 +12,26 @@ namespace sombra {
 // eval_bsdf, pdf_bsdf, sample_bsdf and is_delta_bsdf for m.type == Pbr; the
 // first two are 0 for wi on the other side of n_g unless transmits_diffusely(m).
 // With KHR_materials_clearcoat (m.clearcoat > 0) they are the coated
-// material of render/bsdf_pbr_layers.cpp, else the base's below.
+// material of render/bsdf_pbr_layers.cpp over the sheen layer's below.
 Vec3 eval_pbr(const Material& m, const BsdfPoint& p, Vec3 wo, Vec3 wi);
 float pdf_pbr(const Material& m, const BsdfPoint& p, Vec3 wo, Vec3 wi);
 bool sample_pbr(const Material& m, const BsdfPoint& p, Vec3 wo, float u_lobe, float u1, float u2, BsdfSample& out);
 bool is_delta_pbr(const Material& m);
 // eval_pbr's parts: the diffuse base (1 − m)(1 − F)·c/π, the specular lobe,
-// the transmission and the coat.
+// the transmission, the coat and the sheen.
 BsdfTerms eval_pbr_terms(const Material& m, const BsdfPoint& p, Vec3 wo, Vec3 wi);
 
-// The same for the material without its coat (glTF's core model with
+// The same for the material without its coat: with KHR_materials_sheen
+// (some sheen_color channel > 0) the sheen layer over the base of
+// render/bsdf_pbr_sheen.cpp, else the base's below, bit for bit.
+Vec3 eval_pbr_sheen(const Material& m, const BsdfPoint& p, Vec3 wo, Vec3 wi);
+float pdf_pbr_sheen(const Material& m, const BsdfPoint& p, Vec3 wo, Vec3 wi);
+bool sample_pbr_sheen(const Material& m, const BsdfPoint& p, Vec3 wo, float u_lobe, float u1, float u2,
+                      BsdfSample& out);
+bool is_delta_pbr_sheen(const Material& m);
+BsdfTerms eval_pbr_terms_sheen(const Material& m, const BsdfPoint& p, Vec3 wo, Vec3 wi);
+
+// The same for the material without coat and sheen (glTF's core model with
 // KHR_materials_specular, transmission and volume; render/bsdf_pbr.cpp).
 Vec3 eval_pbr_base(const Material& m, const BsdfPoint& p, Vec3 wo, Vec3 wi);
 float pdf_pbr_base(const Material& m, const BsdfPoint& p, Vec3 wo, Vec3 wi);

@@ -4,7 +4,9 @@
 //   coated = fresnel_coat(ior = 1.5, weight = k, base = material, layer = clearcoat_brdf)
 //          = (1 − k·F_c(n·ωo))·base + k·F_c(n·ωo)·V(α_c)·D(α_c)
 //
-// with k = clearcoat, F_c Schlick from 0.04 at the view's cos θ_o (the
+// with k = clearcoat, base the material under the coat (with its sheen,
+// render/bsdf_pbr_sheen.cpp: the extension puts the coat on top), F_c
+// Schlick from 0.04 at the view's cos θ_o (the
 // extension's NdotV, not ωo·h), clearcoat_brdf the core specular_brdf
 // (height-correlated V, GGX D) at α_c = clearcoat_roughness². The coat does
 // not transmit: light through the base (KHR_materials_transmission) is
@@ -14,7 +16,7 @@
 //
 // Sampling: the coat with probability P_c = k·F_c / (k·F_c + (1 − k·F_c)·a),
 // a = mean(base_color) (the base's albedo as far as the choice needs it),
-// kept in [0.1, 0.9]; else the base (render/bsdf_pbr.cpp) with u_lobe
+// kept in [0.1, 0.9]; else the base (render/bsdf_pbr_sheen.cpp) with u_lobe
 // rescaled. Non-delta samples weigh f·cos/pdf against the whole mixture
 // P_c·pdf_coat + (1 − P_c)·pdf_base.
 #include <algorithm>
@@ -55,10 +57,10 @@ float coat_lobe(const Material& m, Vec3 wo_l, Vec3 wi_l) {
 
 }  // namespace
 
-bool is_delta_pbr(const Material& m) { return is_delta_pbr_base(m) && (!coated(m) || smooth_coat(m)); }
+bool is_delta_pbr(const Material& m) { return is_delta_pbr_sheen(m) && (!coated(m) || smooth_coat(m)); }
 
 BsdfTerms eval_pbr_terms(const Material& m, const BsdfPoint& p, Vec3 wo, Vec3 wi) {
-    BsdfTerms t = eval_pbr_terms_base(m, p, wo, wi);
+    BsdfTerms t = eval_pbr_terms_sheen(m, p, wo, wi);
     if (!coated(m)) return t;
     const Vec3 wo_l = p.frame.to_local(wo), wi_l = p.frame.to_local(wi);
     if (wo_l.z <= 0.0f) return {Vec3{0.0f}, Vec3{0.0f}};
@@ -66,27 +68,27 @@ BsdfTerms eval_pbr_terms(const Material& m, const BsdfPoint& p, Vec3 wo, Vec3 wi
     const float under = 1.0f - blend;
     const bool above = dot(p.n_g, wi) > 0.0f;
     return {t.diffuse * under, t.lobe * under, t.transmission * under,
-            Vec3{above ? blend * coat_lobe(m, wo_l, wi_l) : 0.0f}};
+            Vec3{above ? blend * coat_lobe(m, wo_l, wi_l) : 0.0f}, t.sheen * under};
 }
 
 Vec3 eval_pbr(const Material& m, const BsdfPoint& p, Vec3 wo, Vec3 wi) {
-    if (!coated(m)) return eval_pbr_base(m, p, wo, wi);
+    if (!coated(m)) return eval_pbr_sheen(m, p, wo, wi);
     const BsdfTerms t = eval_pbr_terms(m, p, wo, wi);
-    return t.diffuse + t.lobe + t.transmission + t.coat;
+    return t.diffuse + t.lobe + t.transmission + t.coat + t.sheen;
 }
 
 float pdf_pbr(const Material& m, const BsdfPoint& p, Vec3 wo, Vec3 wi) {
-    if (!coated(m)) return pdf_pbr_base(m, p, wo, wi);
+    if (!coated(m)) return pdf_pbr_sheen(m, p, wo, wi);
     const Vec3 wo_l = p.frame.to_local(wo), wi_l = p.frame.to_local(wi);
     if (wo_l.z <= 0.0f) return 0.0f;
     const float pc = coat_probability(m, coat_blend(m, wo_l.z));
-    float pdf = (1.0f - pc) * pdf_pbr_base(m, p, wo, wi);
+    float pdf = (1.0f - pc) * pdf_pbr_sheen(m, p, wo, wi);
     if (!smooth_coat(m) && dot(p.n_g, wi) > 0.0f) pdf += pc * ggx_reflection_pdf(wo_l, wi_l, coat_alpha(m));
     return pdf;
 }
 
 bool sample_pbr(const Material& m, const BsdfPoint& p, Vec3 wo, float u_lobe, float u1, float u2, BsdfSample& out) {
-    if (!coated(m)) return sample_pbr_base(m, p, wo, u_lobe, u1, u2, out);
+    if (!coated(m)) return sample_pbr_sheen(m, p, wo, u_lobe, u1, u2, out);
     const Vec3 wo_l = p.frame.to_local(wo);
     if (wo_l.z <= 0.0f) return false;
     const float blend = coat_blend(m, wo_l.z);
@@ -100,7 +102,7 @@ bool sample_pbr(const Material& m, const BsdfPoint& p, Vec3 wo, float u_lobe, fl
         if (dot(p.n_g, wi) <= 0.0f) return false;
     } else {
         const float u_base = std::min((u_lobe - pc) / (1.0f - pc), 0x1.fffffep-1f);
-        if (!sample_pbr_base(m, p, wo, u_base, u1, u2, out)) return false;
+        if (!sample_pbr_sheen(m, p, wo, u_base, u1, u2, out)) return false;
         if (out.delta) {
             out.weight = out.weight * ((1.0f - blend) / (1.0f - pc));
             out.pdf *= 1.0f - pc;

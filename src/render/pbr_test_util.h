@@ -122,6 +122,29 @@ inline double coated(double base, double clearcoat, double coat_roughness, Dir v
     return (1 - blend) * base + blend * layer;
 }
 
+// KHR_materials_sheen's lobe, sheen_brdf = D_Charlie · sheen_visibility, for
+// V and L above the surface (N = +z), written from the extension's
+// implementation notes line by line: alpha_g = r², l(x), lambda_sheen. The
+// sheen colour multiplies it. r must be > 0.
+inline double sheen_lobe(Dir v, Dir l, double r) {
+    if (v.z <= 0 || l.z <= 0) return 0;
+    constexpr double pi = std::numbers::pi;
+    const double alpha_g = r * r, inv_r = 1 / alpha_g;
+    Dir h{v.x + l.x, v.y + l.y, v.z + l.z};
+    const double n_h = h.z / std::sqrt(dot(h, h));
+    const double distribution = (2 + inv_r) * std::pow(1 - n_h * n_h, inv_r * 0.5) / (2 * pi);
+    const double w = (1 - alpha_g) * (1 - alpha_g);
+    const auto mix = [w](double x, double y) { return x * (1 - w) + y * w; };
+    const auto fit = [&mix](double x) {
+        return mix(21.5473, 25.3245) / (1 + mix(3.82987, 3.32435) * std::pow(x, mix(0.19823, 0.16801))) +
+               mix(-1.97760, -1.27393) * x + mix(-4.32054, -4.85967);
+    };
+    const auto lambda = [&fit](double c) {
+        return std::fabs(c) < 0.5 ? std::exp(fit(c)) : std::exp(2 * fit(0.5) - fit(1 - c));
+    };
+    return distribution / ((1 + lambda(v.z) + lambda(l.z)) * (4 * v.z * l.z));
+}
+
 // The directional albedo ∫ f(V, L) cos θ_L dL for V at theta_o (radians, in
 // the xz plane), by the midpoint rule over half vectors H (θ_h, φ) on an
 // n × 2n grid: dL = 4 (V·H) dH, so sharp lobes are resolved by a fine θ_h

@@ -77,6 +77,7 @@ struct DeltaLightRecord {
     Vec3 incident;                  // point: I/|c − x|²; spot: I·s²/|c − x|²; directional: E
     Vec3 f_diffuse, f_lobe;         // f_r split into its diffuse term and its lobe (specular) term
     Vec3 f_transmission, f_coat;    // pbr's transmission (through the surface) and clearcoat terms; 0 elsewhere
+    Vec3 f_sheen;                   // pbr's sheen term (KHR_materials_sheen); 0 elsewhere
     Vec3 f;                         // f_r as the integrator evaluated it
     BlockerRecord blocker;          // when Blocked
     std::vector<HoleRecord> holes;  // when Visible: the cut-outs the shadow ray went through
@@ -103,6 +104,7 @@ struct SampledLightRecord {
     float cos_light = 0;        // |n_light·ω_i| at the sampled point of an emitting triangle (0 for the environment)
     Vec3 f_diffuse, f_lobe, f;  // f_r split and whole
     Vec3 f_transmission, f_coat;                   // pbr's transmission and clearcoat terms of f_r; 0 elsewhere
+    Vec3 f_sheen;                                  // pbr's sheen term of f_r; 0 elsewhere
     LightOutcome outcome = LightOutcome::Visible;  // Behind (f_r = 0, no shadow ray), Blocked, or Visible
     BlockerRecord blocker;
     std::vector<HoleRecord> holes;  // when Visible: the cut-outs the shadow ray went through

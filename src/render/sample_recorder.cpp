@@ -114,6 +114,7 @@ void SampleRecorder::delta_light(std::uint32_t light, LightOutcome outcome, cons
         r.f_lobe = terms.lobe;
         r.f_transmission = terms.transmission;
         r.f_coat = terms.coat;
+        r.f_sheen = terms.sheen;
         r.f = eval_bsdf(view.material, view.bsdf_point, view.wo, wi);
     }
     if (outcome == LightOutcome::Blocked && shadow) r.blocker = find_blocker(*shadow);
@@ -147,6 +148,7 @@ void SampleRecorder::sampled_light(const LightSample* ls, const ShadingView& vie
         r.f_lobe = terms.lobe;
         r.f_transmission = terms.transmission;
         r.f_coat = terms.coat;
+        r.f_sheen = terms.sheen;
         r.f = eval_bsdf(view.material, view.bsdf_point, view.wo, ls->wi);
         // Shown for blocked and zero-f samples too: what MIS would have weighed.
         r.bsdf_pdf = shadow && !blocked ? bsdf_pdf : pdf_bsdf(view.material, view.bsdf_point, view.wo, ls->wi);

@@ -66,9 +66,9 @@ struct TextureRef {
 // the material's constant (the scale, 1 when a file gives none) times the
 // texel's RGB; a textured scalar's is the constant times the chosen channel.
 struct MaterialTextures {
-    TextureRef kd, ks, kr, kt, ke, base_color, specular_color;  // RGB parameters (see kRgbTextureSlots)
-    TextureRef roughness, metallic, specular, transmission, clearcoat,
-        clearcoat_roughness;  // scalar parameters (see kScalarTextureSlots)
+    TextureRef kd, ks, kr, kt, ke, base_color, specular_color, sheen_color;  // RGB parameters (see kRgbTextureSlots)
+    TextureRef roughness, metallic, specular, transmission, clearcoat, clearcoat_roughness,
+        sheen_roughness;  // scalar parameters (see kScalarTextureSlots)
     // Tangent-space normal map (OpenGL convention, +y toward increasing v):
     // data, n = normalize((2·texel − 1) ⊙ (normal_scale, normal_scale, 1))
     // (glTF normalTexture.scale; 1 elsewhere). Wins over the bump map.
@@ -128,6 +128,12 @@ struct Material {
     // over the whole material. 0 (the default): no coat. glTF only.
     float clearcoat = 0.0f;
     float clearcoat_roughness = 0.0f;
+    // Pbr, glTF's KHR_materials_sheen: a layer of "Charlie" micro-fibres
+    // (render/bsdf_pbr_sheen.cpp) of colour sheen_color (each channel in
+    // [0, 1]) and roughness in [0, 1] (α = r²) between the base and the coat.
+    // A black colour (the default) is no layer at all. glTF only.
+    Vec3 sheen_color{0.0f};
+    float sheen_roughness = 0.0f;
     // Quad lights (§10) emit only toward the side their winding normal
     // (v1 − v0) × (v2 − v0) points to, and are black from behind.
     bool emits_front_only = false;
@@ -157,6 +163,7 @@ inline constexpr RgbTextureSlot kRgbTextureSlots[] = {
     {"ke", &Material::ke, &MaterialTextures::ke, false},
     {"base_color", &Material::base_color, &MaterialTextures::base_color, true},
     {"specular_color", &Material::specular_color, &MaterialTextures::specular_color, false},
+    {"sheen_color", &Material::sheen_color, &MaterialTextures::sheen_color, true},
 };
 struct ScalarTextureSlot {
     const char* key;
@@ -170,6 +177,7 @@ inline constexpr ScalarTextureSlot kScalarTextureSlots[] = {
     {"transmission", &Material::transmission, &MaterialTextures::transmission},
     {"clearcoat", &Material::clearcoat, &MaterialTextures::clearcoat},
     {"clearcoat_roughness", &Material::clearcoat_roughness, &MaterialTextures::clearcoat_roughness},
+    {"sheen_roughness", &Material::sheen_roughness, &MaterialTextures::sheen_roughness},
 };
 
 // The image of `ref` (set) in `table` at the hit's uv, moved by the
@@ -215,7 +223,7 @@ inline bool any_texture(const MaterialTextures& t) {
 inline void copy_parameters(const Material& from, Material& to) {
     const auto& [name, type, kd, ks, shininess, ke, kr, kt, ior, roughness, base_color, metallic, specular,
                  specular_color, transmission, thickness, attenuation_color, attenuation_distance, clearcoat,
-                 clearcoat_roughness, emits_front_only, textures, textured] = from;
+                 clearcoat_roughness, sheen_color, sheen_roughness, emits_front_only, textures, textured] = from;
     static_cast<void>(name);
     to.type = type;
     to.kd = kd;
@@ -236,6 +244,8 @@ inline void copy_parameters(const Material& from, Material& to) {
     to.attenuation_distance = attenuation_distance;
     to.clearcoat = clearcoat;
     to.clearcoat_roughness = clearcoat_roughness;
+    to.sheen_color = sheen_color;
+    to.sheen_roughness = sheen_roughness;
     to.emits_front_only = emits_front_only;
     to.textures = textures;
     to.textured = textured;

@@ -50,6 +50,7 @@ inline constexpr const char* kSpecular = "KHR_materials_specular";
 inline constexpr const char* kTransmission = "KHR_materials_transmission";
 inline constexpr const char* kVolume = "KHR_materials_volume";
 inline constexpr const char* kClearcoat = "KHR_materials_clearcoat";
+inline constexpr const char* kSheen = "KHR_materials_sheen";
 inline constexpr const char* kUnlit = "KHR_materials_unlit";
 inline constexpr const char* kTextureTransform = "KHR_texture_transform";
 inline constexpr const char* kMeshopt = "EXT_meshopt_compression";
@@ -170,7 +171,8 @@ bool lacks_texcoord(const PrimitiveData& p, const GltfMaterialTextures& refs);
 // metallic-roughness (roughness from G, metallic from B), normal, emissive,
 // KHR_materials_specular's specular (A) and specular colour (sRGB RGB),
 // KHR_materials_transmission's transmission (R), KHR_materials_clearcoat's
-// strength (R) and roughness (G),
+// strength (R) and roughness (G), KHR_materials_sheen's colour (sRGB RGB)
+// and roughness (A),
 // with the samplers' wrap modes; occlusion is ignored (spec §13). Images come
 // from buffer views (checked against their buffers), data: URIs, or files
 // beside the model (a missing one is a warning and the constant is used; a

@@ -225,6 +225,7 @@ bool supported_extension(const std::string& name) {
                                                  kTransmission,
                                                  kVolume,
                                                  kClearcoat,
+                                                 kSheen,
                                                  kUnlit,
                                                  kMeshopt,
                                                  kWebp,

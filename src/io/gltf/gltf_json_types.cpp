@@ -86,8 +86,14 @@ constexpr Member kEmissiveStrengthMembers[] = {{"emissiveStrength", T::Number}};
 constexpr Shape kEmissiveStrengthShape{kEmissiveStrengthMembers};
 constexpr Member kIorMembers[] = {{"ior", T::Number}};
 constexpr Shape kIorShape{kIorMembers};
+constexpr Member kSheenMembers[] = {{"sheenColorFactor", T::Numbers, nullptr, 3},
+                                    {"sheenColorTexture", T::Object, &kTextureInfoShape},
+                                    {"sheenRoughnessFactor", T::Number},
+                                    {"sheenRoughnessTexture", T::Object, &kTextureInfoShape}};
+constexpr Shape kSheenShape{kSheenMembers};
 constexpr Member kMaterialExtensions[] = {{kEmissiveStrength, T::Object, &kEmissiveStrengthShape},
-                                          {kIor, T::Object, &kIorShape}};
+                                          {kIor, T::Object, &kIorShape},
+                                          {kSheen, T::Object, &kSheenShape}};
 constexpr Shape kMaterialExtensionsShape{kMaterialExtensions};
 constexpr Member kMaterial[] = {{"name", T::String},
                                 {"pbrMetallicRoughness", T::Object, &kPbrShape},

@@ -27,29 +27,34 @@ GltfFile typed_quad() {
     f.doc["meshes"][0]["primitives"][0]["mode"] = 4;
     const json transform = {{"offset", {0, 0}}, {"rotation", 0}, {"scale", {1, 1}}};
     const json texture_info = {{"index", 0}, {"texCoord", 0}, {"extensions", {{"KHR_texture_transform", transform}}}};
-    f.doc["materials"] = {
-        {{"name", "m"},
-         {"pbrMetallicRoughness",
-          {{"baseColorFactor", {1, 1, 1, 1}},
-           {"baseColorTexture", texture_info},
-           {"metallicFactor", 0},
-           {"roughnessFactor", 0.5}}},
-         {"normalTexture", {{"index", 0}, {"scale", 1}}},
-         {"occlusionTexture", {{"index", 0}, {"strength", 1}}},
-         {"emissiveFactor", {0, 0, 0}},
-         {"alphaMode", "OPAQUE"},
-         {"alphaCutoff", 0.5},
-         {"doubleSided", false},
-         {"extensions",
-          {{"KHR_materials_ior", {{"ior", 1.5}}}, {"KHR_materials_emissive_strength", {{"emissiveStrength", 1}}}}}}};
+    f.doc["materials"] = {{{"name", "m"},
+                           {"pbrMetallicRoughness",
+                            {{"baseColorFactor", {1, 1, 1, 1}},
+                             {"baseColorTexture", texture_info},
+                             {"metallicFactor", 0},
+                             {"roughnessFactor", 0.5}}},
+                           {"normalTexture", {{"index", 0}, {"scale", 1}}},
+                           {"occlusionTexture", {{"index", 0}, {"strength", 1}}},
+                           {"emissiveFactor", {0, 0, 0}},
+                           {"alphaMode", "OPAQUE"},
+                           {"alphaCutoff", 0.5},
+                           {"doubleSided", false},
+                           {"extensions",
+                            {{"KHR_materials_ior", {{"ior", 1.5}}},
+                             {"KHR_materials_emissive_strength", {{"emissiveStrength", 1}}},
+                             {"KHR_materials_sheen",
+                              {{"sheenColorFactor", {0.5, 0.5, 0.5}},
+                               {"sheenRoughnessFactor", 0.5},
+                               {"sheenColorTexture", texture_info},
+                               {"sheenRoughnessTexture", {{"index", 0}}}}}}}}};
     f.doc["textures"] = {{{"sampler", 0}, {"source", 0}}};
     f.doc["samplers"] = {{{"magFilter", 9729}, {"wrapS", 10497}, {"wrapT", 33071}}};
     f.doc["images"] = {{{"uri", "missing.png"}}};  // a warning: the constant is used
     f.doc["cameras"] = {{{"type", "perspective"}, {"perspective", {{"yfov", 0.7}, {"znear", 0.1}}}}};
     f.doc["extensions"]["KHR_lights_punctual"]["lights"] = {
         {{"type", "point"}, {"color", {1, 1, 1}}, {"intensity", 10}}};
-    for (const char* name :
-         {"KHR_texture_transform", "KHR_materials_ior", "KHR_materials_emissive_strength", "KHR_lights_punctual"})
+    for (const char* name : {"KHR_texture_transform", "KHR_materials_ior", "KHR_materials_emissive_strength",
+                             "KHR_materials_sheen", "KHR_lights_punctual"})
         f.use_extension(name);
     f.add_node(
         {{"name", "quad"}, {"mesh", 0}, {"translation", {0, 0, 0}}, {"rotation", {0, 0, 0, 1}}, {"scale", {1, 1, 1}}});
@@ -99,7 +104,16 @@ const WrongType kWrongTypes[] = {
      "/extensions/KHR_lights_punctual/lights/0/intensity", "expected a number, got a string"},
     {"a string ior", [](GltfFile& f) { material(f)["extensions"]["KHR_materials_ior"]["ior"] = "1.5"; },
      "/materials/0/extensions/KHR_materials_ior/ior", "expected a number, got a string"},
+    {"a string sheenRoughnessFactor",
+     [](GltfFile& f) { material(f)["extensions"]["KHR_materials_sheen"]["sheenRoughnessFactor"] = "0.5"; },
+     "/materials/0/extensions/KHR_materials_sheen/sheenRoughnessFactor", "expected a number, got a string"},
+    {"a null in sheenColorFactor",
+     [](GltfFile& f) { material(f)["extensions"]["KHR_materials_sheen"]["sheenColorFactor"][2] = nullptr; },
+     "/materials/0/extensions/KHR_materials_sheen/sheenColorFactor/2", "expected a number, got null"},
     // array
+    {"a number for sheenColorFactor",
+     [](GltfFile& f) { material(f)["extensions"]["KHR_materials_sheen"]["sheenColorFactor"] = 1; },
+     "/materials/0/extensions/KHR_materials_sheen/sheenColorFactor", "expected an array of 3 numbers, got 1"},
     {"an object for primitives", [](GltfFile& f) { f.doc["meshes"][0]["primitives"] = primitive(f); },
      "/meshes/0/primitives", "expected an array of objects, got an object"},
     {"a number for children", [](GltfFile& f) { f.doc["nodes"][0]["children"] = 1; }, "/nodes/0/children",
@@ -126,6 +140,9 @@ const WrongType kWrongTypes[] = {
      "expected an object, got a string"},
     {"a number for a primitive's extensions", [](GltfFile& f) { primitive(f)["extensions"] = 7; },
      "/meshes/0/primitives/0/extensions", "expected an object, got 7"},
+    {"an array for sheenColorTexture",
+     [](GltfFile& f) { material(f)["extensions"]["KHR_materials_sheen"]["sheenColorTexture"] = {0}; },
+     "/materials/0/extensions/KHR_materials_sheen/sheenColorTexture", "expected an object, got an array"},
     // string
     {"a number for a scene's name", [](GltfFile& f) { f.doc["scenes"][0]["name"] = 42; }, "/scenes/0/name",
      "expected a string, got 42"},
@@ -137,6 +154,10 @@ const WrongType kWrongTypes[] = {
     {"a negative texture index",
      [](GltfFile& f) { material(f)["pbrMetallicRoughness"]["baseColorTexture"]["index"] = -1; },
      "/materials/0/pbrMetallicRoughness/baseColorTexture/index", "expected a non-negative integer, got -1"},
+    {"a negative sheenRoughnessTexture index",
+     [](GltfFile& f) { material(f)["extensions"]["KHR_materials_sheen"]["sheenRoughnessTexture"]["index"] = -2; },
+     "/materials/0/extensions/KHR_materials_sheen/sheenRoughnessTexture/index",
+     "expected a non-negative integer, got -2"},
     {"a fraction for indices", [](GltfFile& f) { primitive(f)["indices"] = 1.5; }, "/meshes/0/primitives/0/indices",
      "expected a non-negative integer, got 1.5"},
     {"an integer written as a float", [](GltfFile& f) { f.doc["nodes"][0]["mesh"] = 0.0; }, "/nodes/0/mesh",

@@ -1,7 +1,7 @@
 // glTF's material extensions beyond the core model (spec §13, §24):
-// KHR_materials_transmission, KHR_materials_volume and KHR_materials_clearcoat
-// read into the pbr material's transmission, thickness, attenuation and
-// coat, their textures into
+// KHR_materials_transmission, KHR_materials_volume, KHR_materials_clearcoat
+// and KHR_materials_sheen read into the pbr material's transmission,
+// thickness, attenuation, coat and sheen, their textures into
 // the right slots and channels, broken values refused by name, and what is
 // not supported (thicknessTexture, clearcoatNormalTexture) named in one warning.
 #include <gtest/gtest.h>
@@ -138,6 +138,65 @@ TEST(GltfMaterialExtensions, ClearcoatAndItsTextures) {
     EXPECT_FALSE(plain.textures.clearcoat.is_set());
 }
 
+TEST(GltfMaterialExtensions, SheenAndItsTextures) {
+    TempFolder dir;
+    write_texture(dir);
+    const nlohmann::json transform = {{"KHR_texture_transform", {{"scale", {2, 2}}}}};
+    GltfFile f = quad({{"extensions",
+                        {{"KHR_materials_sheen",
+                          {{"sheenColorFactor", {0.9, 0.5, 0.25}},
+                           {"sheenRoughnessFactor", 0.4},
+                           {"sheenColorTexture", {{"index", 0}}},
+                           {"sheenRoughnessTexture", {{"index", 0}, {"extensions", transform}}}}}}}});
+    f.use_extension("KHR_materials_sheen");
+    f.use_extension("KHR_texture_transform");
+    Diagnostics diag;
+    LoadedMesh mesh;
+    const Material m = load(dir, f, diag, &mesh);
+    EXPECT_TRUE(diag.warnings.empty()) << diag.warnings[0];
+    EXPECT_EQ(m.sheen_color, (Vec3{0.9f, 0.5f, 0.25f}));
+    EXPECT_FLOAT_EQ(m.sheen_roughness, 0.4f);
+    ASSERT_TRUE(m.textures.sheen_color.is_set());
+    EXPECT_EQ(mesh.textures[m.textures.sheen_color.texture].encoding, TextureEncoding::Color);  // sRGB
+    ASSERT_TRUE(m.textures.sheen_roughness.is_set());
+    EXPECT_EQ(m.textures.sheen_roughness.channel, 3);  // A
+    EXPECT_EQ(mesh.textures[m.textures.sheen_roughness.texture].encoding, TextureEncoding::Data);
+    EXPECT_FALSE(m.textures.sheen_color.transformed);
+    ASSERT_TRUE(m.textures.sheen_roughness.transformed);
+    EXPECT_FLOAT_EQ(m.textures.sheen_roughness.uv_transform.uu, 2.0f);
+    EXPECT_TRUE(m.textured);
+
+    // The defaults: colour 0 (no layer) and roughness 0; an empty extension is no sheen.
+    GltfFile empty = quad({{"extensions", {{"KHR_materials_sheen", nlohmann::json::object()}}}});
+    empty.use_extension("KHR_materials_sheen");
+    Diagnostics empty_diag;
+    const Material none = load(dir, empty, empty_diag);
+    EXPECT_TRUE(empty_diag.warnings.empty()) << empty_diag.warnings[0];
+    EXPECT_EQ(none.sheen_color, Vec3{0.0f});
+    EXPECT_EQ(none.sheen_roughness, 0.0f);
+    EXPECT_FALSE(none.textures.sheen_color.is_set());
+
+    // Outside [0, 1]: clamped, with a warning naming the member.
+    GltfFile bright = quad({{"extensions", {{"KHR_materials_sheen", {{"sheenColorFactor", {1.5, 0.5, -0.5}}}}}}});
+    bright.use_extension("KHR_materials_sheen");
+    Diagnostics bright_diag;
+    const Material clamped = load(dir, bright, bright_diag);
+    ASSERT_FALSE(bright_diag.warnings.empty());
+    EXPECT_NE(bright_diag.warnings[0].find("sheenColorFactor outside [0, 1] clamped"), std::string::npos)
+        << bright_diag.warnings[0];
+    EXPECT_EQ(clamped.sheen_color, (Vec3{1.0f, 0.5f, 0.0f}));
+}
+
+TEST(GltfMaterialExtensions, SheenIsSupportedWhenRequired) {
+    TempFolder dir;
+    GltfFile f = quad({{"extensions", {{"KHR_materials_sheen", {{"sheenColorFactor", {1, 1, 1}}}}}}});
+    f.use_extension("KHR_materials_sheen");
+    f.doc["extensionsRequired"] = {"KHR_materials_sheen"};
+    Diagnostics diag;
+    EXPECT_EQ(load(dir, f, diag).sheen_color, Vec3{1.0f});
+    for (const std::string& w : diag.warnings) EXPECT_EQ(w.find("KHR_materials_sheen"), std::string::npos) << w;
+}
+
 TEST(GltfMaterialExtensions, UnlitEmitsItsBaseColourOnly) {
     TempFolder dir;
     write_texture(dir);
@@ -172,7 +231,11 @@ TEST(GltfMaterialExtensions, BrokenValuesAreRefusedByName) {
           {"KHR_materials_clearcoat",
            "clearcoatRoughnessTexture",
            {{"index", 3}},
-           "clearcoatRoughnessTexture names texture 3"}}) {
+           "clearcoatRoughnessTexture names texture 3"},
+          {"KHR_materials_sheen", "sheenColorFactor", {1, 1}, "sheenColorFactor must be 3 numbers"},
+          {"KHR_materials_sheen", "sheenColorFactor", {1, 1, 1, 1}, "sheenColorFactor must be 3 numbers"},
+          {"KHR_materials_sheen", "sheenRoughnessTexture", {{"index", 3}}, "sheenRoughnessTexture names texture 3"},
+          {"KHR_materials_sheen", "sheenColorTexture", {{"texCoord", 0}}, "sheenColorTexture needs a texture index"}}) {
         GltfFile bad = quad({{"extensions", {{extension, {{member, value}}}}}});
         bad.use_extension(extension);
         Diagnostics diag;

@@ -235,6 +235,29 @@ void read_clearcoat(const MaterialContext& c, const tinygltf::Material& g, Mater
                                 " clearcoatNormalTexture ignored (the coat uses the base's shading normal)");
 }
 
+// KHR_materials_sheen: the fibre layer's colour (each channel in [0, 1],
+// clamped with a warning outside) and roughness, with their textures
+// (sheenColorTexture's sRGB RGB, sheenRoughnessTexture's A).
+void read_sheen(const MaterialContext& c, const tinygltf::Material& g, Material& m, GltfMaterialTextures& refs) {
+    const auto it = g.extensions.find(kSheen);
+    if (it == g.extensions.end() || !it->second.IsObject()) return;
+    const tinygltf::Value& x = it->second;
+    if (x.Has("sheenColorFactor")) {
+        const tinygltf::Value& v = x.Get("sheenColorFactor");
+        std::vector<double> rgb;
+        for (int k = 0; v.IsArray() && k < static_cast<int>(v.ArrayLen()) && k < 3; ++k)
+            if (v.Get(k).IsNumber()) rgb.push_back(v.Get(k).GetNumberAsDouble());
+        if (!v.IsArray() || v.ArrayLen() != 3 || rgb.size() != 3)
+            throw Error(c.file, c.what + ": " + kSheen + " sheenColorFactor must be 3 numbers");
+        const Vec3 colour = read_colour(c, rgb, Vec3{0.0f}, "sheenColorFactor");
+        m.sheen_color = {clamped(c, colour.x, "sheenColorFactor"), clamped(c, colour.y, "sheenColorFactor"),
+                         clamped(c, colour.z, "sheenColorFactor")};
+    }
+    m.sheen_roughness = extension_factor(c, x, kSheen, "sheenRoughnessFactor", 0.0f);
+    refs.sheen_color = extension_texture_ref(c, x, "sheenColorTexture");
+    refs.sheen_roughness = extension_texture_ref(c, x, "sheenRoughnessTexture");
+}
+
 }  // namespace
 
 Materials convert_materials(const tinygltf::Model& model, const std::string& file, Diagnostics& diag) {
@@ -292,6 +315,7 @@ Materials convert_materials(const tinygltf::Model& model, const std::string& fil
         read_transmission(c, g, m, refs);
         read_volume(c, g, m);
         read_clearcoat(c, g, m, refs);
+        read_sheen(c, g, m, refs);
         // KHR_materials_unlit: emission only. The base colour (factor times
         // texture) becomes the emitted radiance of a black diffuse surface,
         // lit by nothing and, as any emitter in a path tracer, lighting

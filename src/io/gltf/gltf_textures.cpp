@@ -178,6 +178,8 @@ void apply_textures(const tinygltf::Model& model, const std::filesystem::path& p
         t.transmission = slot(r.transmission, TextureEncoding::Data, 0);
         t.clearcoat = slot(r.clearcoat, TextureEncoding::Data, 0);
         t.clearcoat_roughness = slot(r.clearcoat_roughness, TextureEncoding::Data, 1);
+        t.sheen_color = slot(r.sheen_color, TextureEncoding::Color);
+        t.sheen_roughness = slot(r.sheen_roughness, TextureEncoding::Data, 3);
         if (r.alpha_mode != AlphaMode::Opaque) {
             // Alpha is baseColorFactor's A times the base colour image's A
             // (never sRGB-decoded, so the colour image serves as it is).

@@ -46,6 +46,8 @@ struct GltfMaterialTextures {
     GltfTextureRef transmission;         // KHR_materials_transmission: R times transmission
     GltfTextureRef clearcoat;            // KHR_materials_clearcoat: R times clearcoat
     GltfTextureRef clearcoat_roughness;  // KHR_materials_clearcoat: G times clearcoat_roughness
+    GltfTextureRef sheen_color;          // KHR_materials_sheen: RGB (sRGB) times sheen_color
+    GltfTextureRef sheen_roughness;      // KHR_materials_sheen: A times sheen_roughness
     AlphaMode alpha_mode = AlphaMode::Opaque;
     float alpha_cutoff = 0.5f;  // MASK: cut out where alpha < cutoff
     float base_alpha = 1.0f;    // baseColorFactor's A
@@ -53,7 +55,8 @@ struct GltfMaterialTextures {
     bool any() const {
         return base_color.present() || metallic_roughness.present() || normal.present() || emissive.present() ||
                occlusion.present() || specular.present() || specular_color.present() || transmission.present() ||
-               clearcoat.present() || clearcoat_roughness.present();
+               clearcoat.present() || clearcoat_roughness.present() || sheen_color.present() ||
+               sheen_roughness.present();
     }
 };
 
