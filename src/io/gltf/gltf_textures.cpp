@@ -163,8 +163,9 @@ void apply_textures(const tinygltf::Model& model, const std::filesystem::path& p
     const SlotMaker slot{model, file, table};
     for (std::size_t i = 0; i < refs.size() && i < materials.size(); ++i) {
         const GltfMaterialTextures& r = refs[i];
-        for (const GltfTextureRef* ref : {&r.base_color, &r.metallic_roughness, &r.normal, &r.emissive, &r.specular,
-                                          &r.specular_color, &r.transmission, &r.clearcoat, &r.clearcoat_roughness})
+        for (const GltfTextureRef* ref :
+             {&r.base_color, &r.metallic_roughness, &r.normal, &r.emissive, &r.specular, &r.specular_color,
+              &r.transmission, &r.clearcoat, &r.clearcoat_roughness, &r.sheen_color, &r.sheen_roughness})
             unapplied_texcoords += ref->present() && ref->texcoord >= int(kUvSets) ? 1 : 0;
         MaterialTextures& t = materials[i].textures;
         t.base_color = slot(r.base_color, TextureEncoding::Color);
