@@ -96,6 +96,7 @@ private:
         j["x"] = vec(h.position);
         j["n_g"] = vec(h.n_g);
         j["n_s"] = vec(h.n_s);
+        if (h.n_c != Vec3{}) j["n_c"] = vec(h.n_c);
         j["outside"] = h.outside;
         if (h.has_uv) j["uv"] = {number(h.uv.x), number(h.uv.y)};
         if (h.uv_footprint > 0.0f) j["uv_footprint"] = number(h.uv_footprint);

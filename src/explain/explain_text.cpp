@@ -140,6 +140,10 @@ private:
                  : h.n_s == h.n_g ? "  (shading normal: blended vertex normals, here the same as n_g)"
                                   : "  (shading normal: blended vertex normals)")
              << "\n";
+        if (h.n_c != Vec3{})
+            out_ << "  n_c      " << readable(h.n_c)
+                 << "  (the clearcoat's own normal: its clearcoatNormalTexture, or n_s "
+                 << "without the base's map)\n";
         out_ << "  ω_o      " << readable(-v.ray_dir) << "  (towards the viewer)\n";
         out_ << "  material " << material_text(h, c_.scene.materials[h.material]) << "\n";
         emission(v.emission, "emission");

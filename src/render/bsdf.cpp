@@ -105,8 +105,8 @@ bool sample_dielectric(const Material& m, const BsdfPoint& p, Vec3 wo, float u_l
 
 }  // namespace
 
-BsdfPoint make_bsdf_point(Vec3 n_g, Vec3 n_s, bool outside) {
-    return BsdfPoint{n_g, n_s, Frame::from_normal(n_s), outside};
+BsdfPoint make_bsdf_point(Vec3 n_g, Vec3 n_s, bool outside, Vec3 n_c) {
+    return BsdfPoint{n_g, n_s, Frame::from_normal(n_s), outside, n_c};
 }
 
 bool is_delta_bsdf(const Material& m) {

@@ -55,10 +55,15 @@ struct BsdfPoint {
     Frame frame;  // Frame::from_normal(n_s)
     bool
         outside;  // wo is on the side of the triangle's winding normal n_w (a dielectric ray from outside enters the medium)
+    // The unit shading normal of a pbr material's KHR_materials_clearcoat
+    // coat where it has its own (SurfaceInteraction::n_c), in n_g's
+    // hemisphere; zero: the coat shares n_s and p.frame. Only the coat reads it.
+    Vec3 n_c{};
 };
 
-// A BsdfPoint with its frame built around n_s. n_g, n_s unit, n_g·n_s ≥ 0.
-BsdfPoint make_bsdf_point(Vec3 n_g, Vec3 n_s, bool outside);
+// A BsdfPoint with its frame built around n_s. n_g, n_s unit, n_g·n_s ≥ 0;
+// n_c zero or as BsdfPoint::n_c.
+BsdfPoint make_bsdf_point(Vec3 n_g, Vec3 n_s, bool outside, Vec3 n_c = Vec3{});
 
 // True when eval_bsdf, eval_bsdf_terms or pdf_bsdf of m read the shading
 // frame (Conductor, Pbr). Diffuse and Phong work with n_s alone, and the
@@ -72,8 +77,8 @@ inline bool eval_reads_frame(const Material& m) {
 // never sample_bsdf): make_bsdf_point's where eval_reads_frame(m), else
 // with the frame left zero, so that a diffuse or Phong hit of the direct
 // integrator, which only evaluates, builds no frame it would not read.
-inline BsdfPoint make_eval_bsdf_point(const Material& m, Vec3 n_g, Vec3 n_s, bool outside) {
-    if (eval_reads_frame(m)) return make_bsdf_point(n_g, n_s, outside);
+inline BsdfPoint make_eval_bsdf_point(const Material& m, Vec3 n_g, Vec3 n_s, bool outside, Vec3 n_c = Vec3{}) {
+    if (eval_reads_frame(m)) return make_bsdf_point(n_g, n_s, outside, n_c);
     return BsdfPoint{n_g, n_s, Frame{}, outside};
 }
 

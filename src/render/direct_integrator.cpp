@@ -33,8 +33,8 @@ Vec3 shade_direct(const IntegratorContext& ctx, const Ray& ray, const Hit& hit, 
     // diffuse or Phong surface, which would not read it.
     if (!is_delta_bsdf(material)) {
         add_delta_lights(*ctx.lights, *ctx.accel, si, material,
-                         make_eval_bsdf_point(material, si.n_g, si.n_s, si.outside), wo, Vec3{1.0f}, radiance, counters,
-                         recorder);
+                         make_eval_bsdf_point(material, si.n_g, si.n_s, si.outside, si.n_c), wo, Vec3{1.0f}, radiance,
+                         counters, recorder);
     } else {
         recorder.delta_material();
     }

@@ -17,6 +17,11 @@ struct SurfaceInteraction {
     Vec3 position_error;  // per-axis bound on |position − exact point|
     Vec3 n_g;             // unit geometric normal, facing the ray's origin (surfaces are two-sided)
     Vec3 n_s;             // unit shading normal (blended vertex normals, else n_g), same hemisphere as n_g
+    // KHR_materials_clearcoat's coat normal where it differs from n_s (set
+    // by resolve_material, render/shading.h: the coat's own normal map, or
+    // n_s as it was before the base's normal or bump map); zero: the coat
+    // shares n_s, as every material without a coat.
+    Vec3 n_c;
     // True when the ray arrived from the side the triangle's winding normal
     // n_w = (p1 − p0) × (p2 − p0) points to: into a dielectric's medium, and
     // the side a quad light emits toward (spec §10, §11).

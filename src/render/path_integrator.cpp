@@ -139,7 +139,7 @@ Vec3 trace_path_recorded(const IntegratorContext& ctx, const Ray& camera_ray, Sa
             break;
         }
 
-        const BsdfPoint bsdf_point = make_bsdf_point(si.n_g, si.n_s, si.outside);
+        const BsdfPoint bsdf_point = make_bsdf_point(si.n_g, si.n_s, si.outside, si.n_c);
         // Every vertex draws the same dimensions whether it uses them or
         // not, so that dimension k means the same thing on every path.
         const SampleStream::Pair u_light = samples.next_2d();

@@ -35,6 +35,7 @@ struct HitRecord {
     float distance = 0;                    // |x − ray origin|
     float b1 = 0, b2 = 0;                  // barycentric weights of the second and third corner
     Vec3 position, n_g, n_s;  // n_g faces the ray's origin, n_s in n_g's hemisphere (after normal or bump maps)
+    Vec3 n_c;                 // a clearcoat's own normal (SurfaceInteraction::n_c); zero: the coat, if any, uses n_s
     bool outside = true;      // arrived on the winding normal's side
     Vec2 uv;                  // texture coordinates at the hit ((0, 0) without)
     bool has_uv = false;

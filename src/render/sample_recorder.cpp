@@ -77,6 +77,7 @@ void SampleRecorder::surface(const Ray& ray, const Hit& hit, const SurfaceIntera
     v.surface.position = si.position;
     v.surface.n_g = si.n_g;
     v.surface.n_s = si.n_s;
+    v.surface.n_c = si.n_c;
     v.surface.outside = si.outside;
     v.surface.uv = si.uv;
     v.surface.has_uv = si.has_uv;

@@ -127,37 +127,53 @@ bool uv_of(const Scene& scene, const SurfaceInteraction& si, const TextureRef& r
     return true;
 }
 
-// A normal or bump map's shading normal at si (where it has the map's uv
-// set), or si.n_s.
-Vec3 mapped_normal(const Scene& scene, const MaterialTextures& t, const SurfaceInteraction& si,
+// The shading normal of tangent-space normal map `map` (of scale `scale`) at
+// si around si.n_s, or si.n_s where si lacks the map's uv set or a tangent
+// frame: the base's normalTexture and the coat's clearcoatNormalTexture alike.
+Vec3 normal_mapped(const Scene& scene, const TextureRef& map, float scale, const SurfaceInteraction& si,
                    float surface_footprint) {
     // The maps perturb the surface's front (its winding normal's side); seen
     // from the back the same sheet shows the mirror image: the result is
     // turned back to the side the ray came from.
     const Vec3 front = si.outside ? si.n_s : -si.n_s;
-    Vec3 n = front;
-    const TextureRef& map = t.normal_map.is_set() ? t.normal_map : t.bump_map;
     Vec2 uv;
     float uv_footprint = 0;
-    if (!uv_of(scene, si, map, surface_footprint, uv, uv_footprint)) return si.n_s;
-    if (t.normal_map.is_set()) {
-        Vec3 along_u, along_v, n_map;
-        if (!tangent_frame(scene, si, map.uv_set, front, along_u, along_v)) return si.n_s;
-        if (normal_map_value(lookup(scene, t.normal_map, uv, uv_footprint), t.normal_scale, n_map))
-            n = apply_normal_map(front, along_u, along_v, n_map);
-    } else {
-        Vec3 dpdu, dpdv;
-        if (!world_position_derivatives(scene, si, map.uv_set, dpdu, dpdv)) return si.n_s;
-        const Texture& h = scene.textures[t.bump_map.texture];
-        // Central differences one texel apart around the hit.
-        const float du = 1.0f / static_cast<float>(h.width), dv = 1.0f / static_cast<float>(h.height);
-        const auto height = [&](float u, float v) { return lookup(scene, t.bump_map, Vec2{u, v}, uv_footprint)[0]; };
-        const float dhdu = t.bump_scale * (height(uv.x + 0.5f * du, uv.y) - height(uv.x - 0.5f * du, uv.y)) / du;
-        const float dhdv = t.bump_scale * (height(uv.x, uv.y + 0.5f * dv) - height(uv.x, uv.y - 0.5f * dv)) / dv;
-        n = apply_bump(front, dpdu, dpdv, dhdu, dhdv);
-    }
+    Vec3 along_u, along_v, n_map;
+    if (!uv_of(scene, si, map, surface_footprint, uv, uv_footprint) ||
+        !tangent_frame(scene, si, map.uv_set, front, along_u, along_v))
+        return si.n_s;
+    Vec3 n = front;
+    if (normal_map_value(lookup(scene, map, uv, uv_footprint), scale, n_map))
+        n = apply_normal_map(front, along_u, along_v, n_map);
     if (!si.outside) n = -n;
     return keep_above(n, si.n_g);
+}
+
+// A bump map's shading normal at si (where it has the map's uv set), or si.n_s.
+Vec3 bumped_normal(const Scene& scene, const MaterialTextures& t, const SurfaceInteraction& si,
+                   float surface_footprint) {
+    const Vec3 front = si.outside ? si.n_s : -si.n_s;
+    const TextureRef& map = t.bump_map;
+    Vec2 uv;
+    float uv_footprint = 0;
+    Vec3 dpdu, dpdv;
+    if (!uv_of(scene, si, map, surface_footprint, uv, uv_footprint) ||
+        !world_position_derivatives(scene, si, map.uv_set, dpdu, dpdv))
+        return si.n_s;
+    const Texture& h = scene.textures[map.texture];
+    // Central differences one texel apart around the hit.
+    const float du = 1.0f / static_cast<float>(h.width), dv = 1.0f / static_cast<float>(h.height);
+    const auto height = [&](float u, float v) { return lookup(scene, map, Vec2{u, v}, uv_footprint)[0]; };
+    const float dhdu = t.bump_scale * (height(uv.x + 0.5f * du, uv.y) - height(uv.x - 0.5f * du, uv.y)) / du;
+    const float dhdv = t.bump_scale * (height(uv.x, uv.y + 0.5f * dv) - height(uv.x, uv.y - 0.5f * dv)) / dv;
+    Vec3 n = apply_bump(front, dpdu, dpdv, dhdu, dhdv);
+    if (!si.outside) n = -n;
+    return keep_above(n, si.n_g);
+}
+
+// A map on set 0 needs the hit's uv; one on another set finds its own.
+bool can_map(const SurfaceInteraction& si, const TextureRef& map) {
+    return map.is_set() && (si.has_uv || map.uv_set != 0);
 }
 
 }  // namespace
@@ -212,9 +228,21 @@ const Material& resolve_material(const Scene& scene, SurfaceInteraction& si, Mat
         scratch.*slot.value =
             std::clamp(m.*slot.value * lookup(scene, ref, uv, uv_footprint)[ref.channel & 3u], 0.0f, 1.0f);
     }
-    // A map on set 0 needs the hit's uv; one on another set finds its own.
-    const TextureRef& map = t.normal_map.is_set() ? t.normal_map : t.bump_map;
-    if (map.is_set() && (si.has_uv || map.uv_set != 0)) si.n_s = mapped_normal(scene, t, si, surface_footprint);
+    // KHR_materials_clearcoat: the coat's normal is its own map's, else the
+    // unmapped n_s; si.n_c is set only where that differs from the base's
+    // final n_s, so that a coat without maps on either layer shades as before.
+    const bool coat = scratch.type == MaterialType::Pbr && scratch.clearcoat > 0.0f;
+    Vec3 n_c = si.n_s;
+    if (coat && can_map(si, t.clearcoat_normal_map))
+        n_c = normal_mapped(scene, t.clearcoat_normal_map, t.clearcoat_normal_scale, si, surface_footprint);
+    // The normal map wins over the bump map, even where it cannot apply.
+    if (t.normal_map.is_set()) {
+        if (can_map(si, t.normal_map))
+            si.n_s = normal_mapped(scene, t.normal_map, t.normal_scale, si, surface_footprint);
+    } else if (can_map(si, t.bump_map)) {
+        si.n_s = bumped_normal(scene, t, si, surface_footprint);
+    }
+    si.n_c = coat && !(n_c == si.n_s) ? n_c : Vec3{};
     return scratch;
 }
 

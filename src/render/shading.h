@@ -21,7 +21,10 @@ namespace sombra {
 // [0, 1], ke to >= 0); and on faces with uvs (si.has_uv) a normal map (in
 // the vertex tangents' frame where the triangle has them, else its uv
 // parameterisation's), else a bump map, replaces si.n_s, kept within n_g's
-// hemisphere. The result lives as long as `scratch` (or the scene).
+// hemisphere. A coated pbr material (KHR_materials_clearcoat) gets its
+// coat's normal in si.n_c where it differs from the final si.n_s: its
+// clearcoat_normal_map's, resolved as the normal map is, else si.n_s as it
+// was before the base's maps. The result lives as long as `scratch` (or the scene).
 // `surface_footprint` is the ray cone's footprint on the surface, world
 // units (render/ray_cone.h): when > 0 on a textured face with uvs, every
 // lookup is filtered at that footprint (eval_texture_ref_filtered) and

@@ -74,6 +74,12 @@ struct MaterialTextures {
     // (glTF normalTexture.scale; 1 elsewhere). Wins over the bump map.
     TextureRef normal_map;
     float normal_scale = 1;
+    // KHR_materials_clearcoat's clearcoatNormalTexture: the coat's own
+    // tangent-space normal map, read as normal_map is (its scale
+    // clearcoat_normal_scale). Unset: the coat has no normal mapping at all
+    // (neither this nor the base's maps), as the extension says.
+    TextureRef clearcoat_normal_map;
+    float clearcoat_normal_scale = 1;
     // Height map (MTL bump): its first channel times bump_scale is a
     // displacement along n_s in world units (as pbrt's bump mapping).
     TextureRef bump_map;
@@ -213,7 +219,7 @@ inline bool any_texture(const MaterialTextures& t) {
         if ((t.*slot.texture).is_set()) return true;
     for (const ScalarTextureSlot& slot : kScalarTextureSlots)
         if ((t.*slot.texture).is_set()) return true;
-    return t.normal_map.is_set() || t.bump_map.is_set() || t.alpha.is_set();
+    return t.normal_map.is_set() || t.clearcoat_normal_map.is_set() || t.bump_map.is_set() || t.alpha.is_set();
 }
 
 // Copies every field of `from` but its name into `to`: what a hit's resolved
@@ -257,6 +263,7 @@ void for_each_texture_ref(MaterialTextures& t, F&& f) {
     for (const RgbTextureSlot& slot : kRgbTextureSlots) f(t.*slot.texture);
     for (const ScalarTextureSlot& slot : kScalarTextureSlots) f(t.*slot.texture);
     f(t.normal_map);
+    f(t.clearcoat_normal_map);
     f(t.bump_map);
     f(t.alpha);
 }

@@ -91,8 +91,15 @@ constexpr Member kSheenMembers[] = {{"sheenColorFactor", T::Numbers, nullptr, 3}
                                     {"sheenRoughnessFactor", T::Number},
                                     {"sheenRoughnessTexture", T::Object, &kTextureInfoShape}};
 constexpr Shape kSheenShape{kSheenMembers};
+constexpr Member kClearcoatMembers[] = {{"clearcoatFactor", T::Number},
+                                        {"clearcoatTexture", T::Object, &kTextureInfoShape},
+                                        {"clearcoatRoughnessFactor", T::Number},
+                                        {"clearcoatRoughnessTexture", T::Object, &kTextureInfoShape},
+                                        {"clearcoatNormalTexture", T::Object, &kNormalTextureInfoShape}};
+constexpr Shape kClearcoatShape{kClearcoatMembers};
 constexpr Member kMaterialExtensions[] = {{kEmissiveStrength, T::Object, &kEmissiveStrengthShape},
                                           {kIor, T::Object, &kIorShape},
+                                          {kClearcoat, T::Object, &kClearcoatShape},
                                           {kSheen, T::Object, &kSheenShape}};
 constexpr Shape kMaterialExtensionsShape{kMaterialExtensions};
 constexpr Member kMaterial[] = {{"name", T::String},

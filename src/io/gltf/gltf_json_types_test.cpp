@@ -46,7 +46,13 @@ GltfFile typed_quad() {
                               {{"sheenColorFactor", {0.5, 0.5, 0.5}},
                                {"sheenRoughnessFactor", 0.5},
                                {"sheenColorTexture", texture_info},
-                               {"sheenRoughnessTexture", {{"index", 0}}}}}}}}};
+                               {"sheenRoughnessTexture", {{"index", 0}}}}},
+                             {"KHR_materials_clearcoat",
+                              {{"clearcoatFactor", 1},
+                               {"clearcoatTexture", texture_info},
+                               {"clearcoatRoughnessFactor", 0.1},
+                               {"clearcoatRoughnessTexture", {{"index", 0}}},
+                               {"clearcoatNormalTexture", {{"index", 0}, {"texCoord", 0}, {"scale", 0.5}}}}}}}}};
     f.doc["textures"] = {{{"sampler", 0}, {"source", 0}}};
     f.doc["samplers"] = {{{"magFilter", 9729}, {"wrapS", 10497}, {"wrapT", 33071}}};
     f.doc["images"] = {{{"uri", "missing.png"}}};  // a warning: the constant is used
@@ -54,7 +60,7 @@ GltfFile typed_quad() {
     f.doc["extensions"]["KHR_lights_punctual"]["lights"] = {
         {{"type", "point"}, {"color", {1, 1, 1}}, {"intensity", 10}}};
     for (const char* name : {"KHR_texture_transform", "KHR_materials_ior", "KHR_materials_emissive_strength",
-                             "KHR_materials_sheen", "KHR_lights_punctual"})
+                             "KHR_materials_sheen", "KHR_materials_clearcoat", "KHR_lights_punctual"})
         f.use_extension(name);
     f.add_node(
         {{"name", "quad"}, {"mesh", 0}, {"translation", {0, 0, 0}}, {"rotation", {0, 0, 0, 1}}, {"scale", {1, 1, 1}}});
@@ -110,6 +116,26 @@ const WrongType kWrongTypes[] = {
     {"a null in sheenColorFactor",
      [](GltfFile& f) { material(f)["extensions"]["KHR_materials_sheen"]["sheenColorFactor"][2] = nullptr; },
      "/materials/0/extensions/KHR_materials_sheen/sheenColorFactor/2", "expected a number, got null"},
+    {"a string clearcoatNormalTexture scale",
+     [](GltfFile& f) {
+         material(f)["extensions"]["KHR_materials_clearcoat"]["clearcoatNormalTexture"]["scale"] = "0.5";
+     },
+     "/materials/0/extensions/KHR_materials_clearcoat/clearcoatNormalTexture/scale", "expected a number, got a string"},
+    {"a negative clearcoatNormalTexture index",
+     [](GltfFile& f) { material(f)["extensions"]["KHR_materials_clearcoat"]["clearcoatNormalTexture"]["index"] = -1; },
+     "/materials/0/extensions/KHR_materials_clearcoat/clearcoatNormalTexture/index",
+     "expected a non-negative integer, got -1"},
+    {"a string clearcoatNormalTexture texCoord",
+     [](GltfFile& f) {
+         material(f)["extensions"]["KHR_materials_clearcoat"]["clearcoatNormalTexture"]["texCoord"] = "1";
+     },
+     "/materials/0/extensions/KHR_materials_clearcoat/clearcoatNormalTexture/texCoord",
+     "expected a non-negative integer, got a string"},
+    {"an array for clearcoatNormalTexture",
+     [](GltfFile& f) {
+         material(f)["extensions"]["KHR_materials_clearcoat"]["clearcoatNormalTexture"] = json::array();
+     },
+     "/materials/0/extensions/KHR_materials_clearcoat/clearcoatNormalTexture", "expected an object, got an array"},
     // array
     {"a number for sheenColorFactor",
      [](GltfFile& f) { material(f)["extensions"]["KHR_materials_sheen"]["sheenColorFactor"] = 1; },

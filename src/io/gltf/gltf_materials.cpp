@@ -219,9 +219,9 @@ void read_volume(const MaterialContext& c, const tinygltf::Material& g, Material
         c.diag.warn(c.file, where + "without transmission: the volume is never entered, and ignored");
 }
 
-// KHR_materials_clearcoat: the coat's strength (clearcoatTexture's R) and
-// roughness (clearcoatRoughnessTexture's G). clearcoatNormalTexture is not
-// read (the coat shares the base's shading normal), with a warning.
+// KHR_materials_clearcoat: the coat's strength (clearcoatTexture's R),
+// roughness (clearcoatRoughnessTexture's G) and normal map
+// (clearcoatNormalTexture, with its scale as normalTexture's).
 void read_clearcoat(const MaterialContext& c, const tinygltf::Material& g, Material& m, GltfMaterialTextures& refs) {
     const auto it = g.extensions.find(kClearcoat);
     if (it == g.extensions.end() || !it->second.IsObject()) return;
@@ -230,9 +230,9 @@ void read_clearcoat(const MaterialContext& c, const tinygltf::Material& g, Mater
     m.clearcoat_roughness = extension_factor(c, x, kClearcoat, "clearcoatRoughnessFactor", 0.0f);
     refs.clearcoat = extension_texture_ref(c, x, "clearcoatTexture");
     refs.clearcoat_roughness = extension_texture_ref(c, x, "clearcoatRoughnessTexture");
-    if (x.Has("clearcoatNormalTexture"))
-        c.diag.warn(c.file, c.what + ": " + kClearcoat +
-                                " clearcoatNormalTexture ignored (the coat uses the base's shading normal)");
+    refs.clearcoat_normal = extension_texture_ref(c, x, "clearcoatNormalTexture");
+    if (refs.clearcoat_normal.present())
+        refs.clearcoat_normal.strength = finite_number(x.Get("clearcoatNormalTexture").Get("scale"), 1);
 }
 
 // KHR_materials_sheen: the fibre layer's colour (each channel in [0, 1],
@@ -327,6 +327,7 @@ Materials convert_materials(const tinygltf::Model& model, const std::string& fil
             refs.emissive = refs.base_color;
             refs.metallic_roughness = {};
             refs.normal = {};
+            refs.clearcoat_normal = {};
         }
         refs.alpha_mode = g.alphaMode == "MASK"    ? AlphaMode::Mask
                           : g.alphaMode == "BLEND" ? AlphaMode::Blend

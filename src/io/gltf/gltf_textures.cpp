@@ -163,9 +163,9 @@ void apply_textures(const tinygltf::Model& model, const std::filesystem::path& p
     const SlotMaker slot{model, file, table};
     for (std::size_t i = 0; i < refs.size() && i < materials.size(); ++i) {
         const GltfMaterialTextures& r = refs[i];
-        for (const GltfTextureRef* ref :
-             {&r.base_color, &r.metallic_roughness, &r.normal, &r.emissive, &r.specular, &r.specular_color,
-              &r.transmission, &r.clearcoat, &r.clearcoat_roughness, &r.sheen_color, &r.sheen_roughness})
+        for (const GltfTextureRef* ref : {&r.base_color, &r.metallic_roughness, &r.normal, &r.emissive, &r.specular,
+                                          &r.specular_color, &r.transmission, &r.clearcoat, &r.clearcoat_roughness,
+                                          &r.clearcoat_normal, &r.sheen_color, &r.sheen_roughness})
             unapplied_texcoords += ref->present() && ref->texcoord >= int(kUvSets) ? 1 : 0;
         MaterialTextures& t = materials[i].textures;
         t.base_color = slot(r.base_color, TextureEncoding::Color);
@@ -179,6 +179,8 @@ void apply_textures(const tinygltf::Model& model, const std::filesystem::path& p
         t.transmission = slot(r.transmission, TextureEncoding::Data, 0);
         t.clearcoat = slot(r.clearcoat, TextureEncoding::Data, 0);
         t.clearcoat_roughness = slot(r.clearcoat_roughness, TextureEncoding::Data, 1);
+        t.clearcoat_normal_map = slot(r.clearcoat_normal, TextureEncoding::Data);
+        t.clearcoat_normal_scale = r.clearcoat_normal.strength;
         t.sheen_color = slot(r.sheen_color, TextureEncoding::Color);
         t.sheen_roughness = slot(r.sheen_roughness, TextureEncoding::Data, 3);
         if (r.alpha_mode != AlphaMode::Opaque) {

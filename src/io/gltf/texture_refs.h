@@ -25,7 +25,7 @@ struct GltfTextureRef {
     Vec2 offset{0, 0};
     float rotation = 0;  // radians, counter-clockwise in uv
     Vec2 scale{1, 1};
-    float strength = 1;  // normalTexture.scale, occlusionTexture.strength; 1 otherwise
+    float strength = 1;  // normalTexture.scale, clearcoatNormalTexture.scale, occlusionTexture.strength; 1 otherwise
 
     bool present() const { return texture >= 0; }
 };
@@ -46,6 +46,7 @@ struct GltfMaterialTextures {
     GltfTextureRef transmission;         // KHR_materials_transmission: R times transmission
     GltfTextureRef clearcoat;            // KHR_materials_clearcoat: R times clearcoat
     GltfTextureRef clearcoat_roughness;  // KHR_materials_clearcoat: G times clearcoat_roughness
+    GltfTextureRef clearcoat_normal;     // KHR_materials_clearcoat: the coat's tangent-space normal
     GltfTextureRef sheen_color;          // KHR_materials_sheen: RGB (sRGB) times sheen_color
     GltfTextureRef sheen_roughness;      // KHR_materials_sheen: A times sheen_roughness
     AlphaMode alpha_mode = AlphaMode::Opaque;
@@ -55,8 +56,8 @@ struct GltfMaterialTextures {
     bool any() const {
         return base_color.present() || metallic_roughness.present() || normal.present() || emissive.present() ||
                occlusion.present() || specular.present() || specular_color.present() || transmission.present() ||
-               clearcoat.present() || clearcoat_roughness.present() || sheen_color.present() ||
-               sheen_roughness.present();
+               clearcoat.present() || clearcoat_roughness.present() || clearcoat_normal.present() ||
+               sheen_color.present() || sheen_roughness.present();
     }
 };
 
