@@ -95,11 +95,13 @@ inline constexpr float kDeltaAlpha = 1e-3f;
 
 // True when m has a non-delta transmission lobe, so that eval_bsdf and
 // pdf_bsdf may be > 0 for wi on the other side of n_g: a rough pbr with
-// KHR_materials_transmission on a thin wall (thickness 0). Every other
-// transmission (Dielectric, a smooth or volume pbr's) is a delta.
+// KHR_materials_transmission, on a thin wall (thickness 0) or bounding a
+// volume that refracts (thickness > 0, ior > 1: Walter et al.'s rough
+// refraction). Every other transmission (Dielectric, a smooth pbr's, a
+// volume's of ior ≤ 1, which does not bend the ray) is a delta.
 inline bool transmits_diffusely(const Material& m) {
-    return m.type == MaterialType::Pbr && m.transmission > 0.0f && m.metallic < 1.0f && !(m.thickness > 0.0f) &&
-           m.roughness * m.roughness >= kDeltaAlpha;
+    return m.type == MaterialType::Pbr && m.transmission > 0.0f && m.metallic < 1.0f &&
+           (!(m.thickness > 0.0f) || m.ior > 1.0f) && m.roughness * m.roughness >= kDeltaAlpha;
 }
 
 // The factor by which a transmission sampled by sample_bsdf at a point
@@ -131,8 +133,9 @@ inline Vec3 eval_bsdf(const Material& m, const BsdfPoint& p, Vec3 wo, Vec3 wi) {
 // the integrators use eval_bsdf's.
 struct BsdfTerms {
     Vec3 diffuse, lobe;
-    // pbr's KHR_materials_transmission lobe through a rough thin wall (wi on
-    // the other side of n_g), KHR_materials_clearcoat's coat and
+    // pbr's KHR_materials_transmission lobe through a rough thin wall or a
+    // rough volume's interface (wi on the other side of n_g),
+    // KHR_materials_clearcoat's coat and
     // KHR_materials_sheen's sheen; 0 elsewhere. The sum of all five is
     // eval_bsdf's value up to float rounding.
     Vec3 transmission{0.0f}, coat{0.0f}, sheen{0.0f};

@@ -28,11 +28,25 @@
 // transmission half vector H_T = normalize(ωo + ωi'), ωi' = ωi mirrored
 // through the surface plane, V_T the separable Smith form of its
 // implementation notes, i.e. the reflection lobe's geometry mirrored to the
-// back. With a volume (thickness > 0) the transmission is a delta
-// refraction by Snell's law at the material's ior (its roughness blurs the
-// reflection only), with the dielectric material's radiance scaling
-// (η_i/η_t)²; from inside, the layer's Fresnel is 1 beyond the critical
-// angle and Schlick's at the outer angle cos θ_t otherwise (layer_fresnel).
+// back. With a volume (thickness > 0, ior > 1) the transmission refracts by
+// Snell's law at the material's ior, with the dielectric material's
+// radiance scaling (η_i/η_t)²; from inside, the layer's Fresnel is 1 beyond
+// the critical angle and Schlick's at the outer angle cos θ_t otherwise
+// (layer_fresnel). Smooth, that is a delta; rough, it is Walter et al.'s
+// microfacet BTDF (render/microfacet_refraction.h), the frosted glass of
+// Cycles and the Khronos viewer,
+//
+//   f_t = (1 − m)·t·c·(1 − max(F_d(ωo·h))) · |ωi·h| (ωo·h) / (|cos θ_i| cos θ_o)
+//         · η² G1(ωo) G1(ωi) D(h) / (ωi·h + η ωo·h)²,
+//
+// h the generalized half vector, η = η_o/η_t (ωo's side over ωi's), G the
+// separable Smith form of the thin wall's V_T. The η² is the same radiance
+// scaling as the smooth refraction's: a sampled refraction weighs
+// η²·(1 − F)·G1(ωi)/P, which tends to the delta's weight as α → 0. Its
+// reflection counterpart is the rough lobe above, unchanged. Both are
+// sampled from one visible normal h, which reflects or refracts with
+// probability in proportion to their Fresnel weights at ωo·h
+// (reflect_probability): by Fresnel for white glass.
 #include "render/bsdf_pbr.h"
 
 #include <algorithm>
@@ -41,6 +55,7 @@
 #include "render/brdf.h"
 #include "render/bsdf_lobes.h"
 #include "render/microfacet.h"
+#include "render/microfacet_refraction.h"
 
 namespace sombra {
 namespace {
@@ -118,6 +133,35 @@ Vec3 eval_thin_transmission(const Material& m, Vec3 wo, Vec3 wi) {
     return m.base_color * ((1.0f - m.metallic) * m.transmission * (1.0f - fd) * btdf);
 }
 
+// η_o/η_t for ωo on the side `inside`: 1/ior entering the volume, ior leaving it.
+float refraction_eta(const Material& m, bool inside) { return inside ? m.ior : 1.0f / m.ior; }
+
+// The volume's rough transmission f (1/sr), wo.z > 0 > wi.z, local: f_t of
+// the header above; 0 for a pair that no facet facing both refracts into
+// each other.
+Vec3 eval_rough_refraction(const Material& m, bool inside, Vec3 wo, Vec3 wi) {
+    const float eta = refraction_eta(m, inside);
+    const Vec3 h = refraction_half_vector(wo, wi, eta);
+    const float cos_oh = dot(wo, h);
+    if (!(cos_oh > 0.0f) || !(dot(wi, h) < 0.0f)) return Vec3{0.0f};
+    const float alpha = pbr_alpha(m);
+    // ggx_g1_over_cos carries the 1/|cos θ| of both directions.
+    const float btdf = eta * eta * refraction_jacobian(wo, wi, h, eta) * cos_oh * ggx_d(h, alpha) *
+                       ggx_g1_over_cos(wo, alpha) * ggx_g1_over_cos(wi, alpha);
+    // layer_fresnel's Schlick term at the outer angle, read off the outer
+    // direction: its Snell conversion from inside loses (1 − F)'s digits
+    // near the critical angle (percents there), and the two sides of a
+    // facet would then disagree on what crosses it.
+    const float fd = max_component(dielectric_fresnel(m, inside ? -dot(wi, h) : cos_oh));
+    return m.base_color * ((1.0f - m.metallic) * m.transmission * (1.0f - fd) * btdf);
+}
+
+// The rough transmission through the surface, wo.z > 0 > wi.z, local:
+// refracted into (or out of) a volume, else the thin wall's.
+Vec3 eval_rough_transmission(const Material& m, bool inside, Vec3 wo, Vec3 wi) {
+    return refracts(m) ? eval_rough_refraction(m, inside, wo, wi) : eval_thin_transmission(m, wo, wi);
+}
+
 // The Fresnel factor of the specular part (layer and metal) at ωo·h = cos θ_o:
 // the smooth mirror's reflectance, and the rough lobe's albedo as lobe
 // selection estimates it.
@@ -140,6 +184,54 @@ float specular_probability(const Material& m, bool inside, float cos_o) {
 // The probability of the transmission lobe: its share t of the base's 1 − P_s.
 float transmission_probability(const Material& m, float ps) {
     return m.transmission > 0.0f ? (1.0f - ps) * m.transmission : 0.0f;
+}
+
+// A rough volume's interface (transmits_diffusely and refracts) draws
+// reflection and refraction from one visible normal, as one lobe chosen
+// with probability P_s + P_t.
+bool rough_refraction(const Material& m) { return refracts(m) && transmits_diffusely(m); }
+
+// The probability that a visible normal h drawn for a rough volume's
+// interface reflects ωo rather than refracting it: the reflection's Fresnel
+// weight against the transmission's, both at ωo·h = cos_oh and averaged
+// over RGB (as specular_probability's); 1 when nothing is transmitted
+// (beyond the critical angle, or a black base colour).
+float reflect_probability(const Material& m, bool inside, float cos_oh) {
+    const Vec3 fd = layer_fresnel(m, inside, cos_oh);
+    const float s = mean((1.0f - m.metallic) * fd + m.metallic * fresnel_schlick(m.base_color, cos_oh));
+    const float t = (1.0f - m.metallic) * m.transmission * (1.0f - max_component(fd)) * mean(m.base_color);
+    return t > 0.0f ? s / (s + t) : 1.0f;
+}
+
+// The density (1/sr) with which a rough volume's interface lobe, chosen
+// with probability pm, draws wi (local; wo.z > 0): reflected, D_ωo(h)/(4 ωo·h)
+// at h = normalize(ωo + ωi); refracted, D_ωo(h)·|∂ω_h/∂ω_i| at the
+// generalized half vector; each times its share reflect_probability.
+float rough_interface_pdf(const Material& m, bool inside, Vec3 wo, Vec3 wi, float pm) {
+    const float alpha = pbr_alpha(m);
+    if (wi.z > 0.0f) {
+        const float pdf = ggx_reflection_pdf(wo, wi, alpha);
+        return pm * reflect_probability(m, inside, dot(wo, normalize(wi + wo))) * pdf;
+    }
+    const float eta = refraction_eta(m, inside);
+    const Vec3 h = refraction_half_vector(wo, wi, eta);
+    const float cos_oh = dot(wo, h);
+    if (!(cos_oh > 0.0f) || !(dot(wi, h) < 0.0f)) return 0.0f;
+    // D_ωo(h) = G1(ωo)·(ωo·h)·D(h)/cos θ_o, Heitz's density of visible normals.
+    const float visible = ggx_g1_over_cos(wo, alpha) * cos_oh * ggx_d(h, alpha);
+    return pm * (1.0f - reflect_probability(m, inside, cos_oh)) * visible * refraction_jacobian(wo, wi, h, eta);
+}
+
+// Draws wi (local) from a rough volume's interface: a visible normal h, then
+// reflection about it if u (in [0, 1)) < reflect_probability, else
+// refraction. False when wi lands on the wrong side of the surface.
+bool sample_rough_interface(const Material& m, bool inside, Vec3 wo, float u, float u1, float u2, Vec3& wi) {
+    const Vec3 h = sample_ggx_vndf(wo, pbr_alpha(m), u1, u2);
+    if (u < reflect_probability(m, inside, dot(wo, h))) {
+        wi = reflect(wo, h);
+        return wi.z > 0.0f;
+    }
+    return refract_about(wo, h, refraction_eta(m, inside), wi) && wi.z < 0.0f;
 }
 
 // The delta transmission (smooth thin wall, or a volume's refraction),
@@ -176,7 +268,7 @@ BsdfTerms eval_pbr_terms_base(const Material& m, const BsdfPoint& p, Vec3 wo, Ve
     if (wo_l.z <= 0.0f) return {Vec3{0.0f}, Vec3{0.0f}};
     if (dot(p.n_g, wi) <= 0.0f) {
         if (wi_l.z >= 0.0f || !transmits_diffusely(m)) return {Vec3{0.0f}, Vec3{0.0f}};
-        return {Vec3{0.0f}, Vec3{0.0f}, eval_thin_transmission(m, wo_l, wi_l)};
+        return {Vec3{0.0f}, Vec3{0.0f}, eval_rough_transmission(m, !p.outside, wo_l, wi_l)};
     }
     if (wi_l.z <= 0.0f) return {Vec3{0.0f}, Vec3{0.0f}};
     const PbrParts parts = eval_parts(m, !p.outside, wo_l, wi_l);
@@ -187,7 +279,7 @@ Vec3 eval_pbr_base(const Material& m, const BsdfPoint& p, Vec3 wo, Vec3 wi) {
     const Vec3 wo_l = p.frame.to_local(wo), wi_l = p.frame.to_local(wi);
     if (dot(p.n_g, wi) <= 0.0f) {
         if (wo_l.z <= 0.0f || wi_l.z >= 0.0f || !transmits_diffusely(m)) return Vec3{0.0f};
-        return eval_thin_transmission(m, wo_l, wi_l);
+        return eval_rough_transmission(m, !p.outside, wo_l, wi_l);
     }
     if (wo_l.z <= 0.0f || wi_l.z <= 0.0f) return Vec3{0.0f};
     const PbrParts parts = eval_parts(m, !p.outside, wo_l, wi_l);
@@ -197,15 +289,19 @@ Vec3 eval_pbr_base(const Material& m, const BsdfPoint& p, Vec3 wo, Vec3 wi) {
 float pdf_pbr_base(const Material& m, const BsdfPoint& p, Vec3 wo, Vec3 wi) {
     const Vec3 wo_l = p.frame.to_local(wo), wi_l = p.frame.to_local(wi);
     if (wo_l.z <= 0.0f) return 0.0f;
-    const float ps = specular_probability(m, !p.outside, wo_l.z);
+    const bool inside = !p.outside;
+    const float ps = specular_probability(m, inside, wo_l.z);
+    const float pt = transmission_probability(m, ps);
     if (dot(p.n_g, wi) <= 0.0f) {
         if (wi_l.z >= 0.0f || !transmits_diffusely(m)) return 0.0f;
+        if (refracts(m)) return rough_interface_pdf(m, inside, wo_l, wi_l, ps + pt);
         const Vec3 wr{wi_l.x, wi_l.y, -wi_l.z};
-        return transmission_probability(m, ps) * ggx_reflection_pdf(wo_l, wr, pbr_alpha(m));
+        return pt * ggx_reflection_pdf(wo_l, wr, pbr_alpha(m));
     }
     if (wi_l.z <= 0.0f) return 0.0f;
     const float diffuse = (1.0f - ps) * (1.0f - m.transmission) * wi_l.z * kInvPi;
     if (smooth(m)) return diffuse;
+    if (rough_refraction(m)) return rough_interface_pdf(m, inside, wo_l, wi_l, ps + pt) + diffuse;
     return ps * ggx_reflection_pdf(wo_l, wi_l, pbr_alpha(m)) + diffuse;
 }
 
@@ -217,7 +313,14 @@ bool sample_pbr_base(const Material& m, const BsdfPoint& p, Vec3 wo, float u_lob
     const float ps = specular_probability(m, inside, wo_l.z);
     const float pt = transmission_probability(m, ps);
     Vec3 wi_l;
-    if (u_lobe < ps) {
+    if (rough_refraction(m)) {
+        const float pm = ps + pt;
+        if (u_lobe < pm) {
+            if (!sample_rough_interface(m, inside, wo_l, u_lobe / pm, u1, u2, wi_l)) return false;
+        } else {
+            wi_l = sample_cosine_hemisphere(u1, u2);
+        }
+    } else if (u_lobe < ps) {
         if (smooth(m)) return sample_specular_reflection(p, wo, specular_reflectance(m, inside, wo_l.z) / ps, ps, out);
         wi_l = reflect(wo_l, sample_ggx_vndf(wo_l, pbr_alpha(m), u1, u2));
         if (wi_l.z <= 0.0f) return false;

@@ -97,6 +97,37 @@ inline double thin_transmission(const Params& p, double transmission, Dir v, Dir
     return (1 - p.metallic) * transmission * (1 - fresnel_max) * p.base * v_t * d_t;
 }
 
+// KHR_materials_transmission through a KHR_materials_volume interface of
+// roughness > 0 as Walter, Marschner, Li and Torrance 2007 write the
+// microfacet BTDF (their eqs. 16, 21, 33 and 34), for V above and L below
+// the surface (N = +z), V outside the volume (index 1, L inside at index
+// ior) or inside (V at ior, L outside):
+//   (1 − metallic) · transmission · base · (1 − F_max) ·
+//   |L·H| |V·H| / (|L·N| |V·N|) · η_V² G(V, L, H) D(H) / (η_L (L·H) + η_V (V·H))²,
+// H = −(η_L L + η_V V) normalised and turned to N's side, D = α² χ⁺(H·N) /
+// (π cos⁴θ_H (α² + tan²θ_H)²), G = G1(V) G1(L), G1(X) = χ⁺((X·H)/(X·N)) ·
+// 2 / (1 + √(1 + α² tan²θ_X)). F is the layer's Schlick term (with
+// KHR_materials_specular's max) at the angle between H and whichever of V
+// and L lies outside the volume: the same on both sides of the facet.
+inline double rough_refraction(const Params& p, double transmission, bool v_outside, Dir v, Dir l) {
+    if (v.z <= 0 || l.z >= 0) return 0;
+    constexpr double pi = std::numbers::pi;
+    const double a = p.roughness * p.roughness, a2 = a * a;
+    const double eta_v = v_outside ? 1 : p.ior, eta_l = v_outside ? p.ior : 1;
+    Dir h{-(eta_l * l.x + eta_v * v.x), -(eta_l * l.y + eta_v * v.y), -(eta_l * l.z + eta_v * v.z)};
+    const double len = std::sqrt(dot(h, h)) * (h.z < 0 ? -1 : 1);
+    h = {h.x / len, h.y / len, h.z / len};
+    const auto tan2 = [](double cos_theta) { return (1 - cos_theta * cos_theta) / (cos_theta * cos_theta); };
+    const double d_term = a2 * heaviside(h.z) / (pi * std::pow(h.z, 4) * std::pow(a2 + tan2(h.z), 2));
+    const auto g1 = [&](Dir x) { return heaviside(dot(x, h) / x.z) * 2 / (1 + std::sqrt(1 + a2 * tan2(x.z))); };
+    const double l_h = dot(l, h), v_h = dot(v, h);
+    const double jacobian_like = std::fabs(l_h) * std::fabs(v_h) / (std::fabs(l.z) * std::fabs(v.z));
+    const double btdf = jacobian_like * eta_v * eta_v * g1(v) * g1(l) * d_term / std::pow(eta_l * l_h + eta_v * v_h, 2);
+    const double cos_outer = std::fabs(v_outside ? v_h : l_h);
+    const double fresnel_max = dielectric_fresnel(p, p.specular_color_max, std::pow(1 - cos_outer, 5));
+    return (1 - p.metallic) * transmission * (1 - fresnel_max) * p.base * btdf;
+}
+
 // KHR_materials_clearcoat over the material `base` (its f(V, L), 1/sr) for
 // V and L above the surface (N = +z): fresnel_coat(ior 1.5, weight
 // clearcoat, base, specular_brdf(α = coat_roughness²)) =
