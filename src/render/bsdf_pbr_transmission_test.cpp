@@ -144,7 +144,9 @@ TEST(PbrTransmission, WeightIsFCosOverPdfAndDeltaLobesAreTheirClosedForms) {
                         EXPECT_EQ(rough_through, 0);
                     } else {
                         EXPECT_EQ(delta_through, 0);
-                        if (!tir) EXPECT_GT(rough_through, 400);
+                        if (!tir) {
+                            EXPECT_GT(rough_through, 400);
+                        }
                     }
                 }
 }
