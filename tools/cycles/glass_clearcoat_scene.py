@@ -6,7 +6,8 @@ Run inside Blender (Debian's `blender` package, 3.4):
 
 It builds the scene with Blender's own objects and Principled BSDFs — a
 glass Suzanne (transmission with a thickness, so the exporter writes
-KHR_materials_transmission, _volume and _ior), a red clear-coated sphere
+KHR_materials_transmission, _volume and _ior), a frosted glass sphere
+(the same at roughness 0.3), a red clear-coated sphere
 (KHR_materials_clearcoat), a rough gold sphere, a floor, a sun — and
 writes, into OUTDIR:
 - scene.glb, exported by Blender's own glTF exporter (io_scene_gltf2) with
@@ -42,14 +43,16 @@ def principled(name, **inputs):
     return mat, bsdf
 
 
-def glass_with_thickness(thickness):
+def glass_with_thickness(name, thickness, roughness):
     """Transmission 1 with the exporter's "glTF Material Output" group carrying
     a thickness, so the file says the mesh is a solid (KHR_materials_volume),
     as Cycles renders it."""
-    mat, _ = principled("glass", **{"Base Color": (0.92, 0.97, 1.0, 1), "Transmission": 1.0, "Roughness": 0.0,
-                                    "IOR": 1.45})
-    group = bpy.data.node_groups.new("glTF Material Output", "ShaderNodeTree")
-    group.inputs.new("NodeSocketFloat", "Thickness")
+    mat, _ = principled(name, **{"Base Color": (0.92, 0.97, 1.0, 1), "Transmission": 1.0, "Roughness": roughness,
+                                 "IOR": 1.45})
+    group = bpy.data.node_groups.get("glTF Material Output")
+    if group is None:
+        group = bpy.data.node_groups.new("glTF Material Output", "ShaderNodeTree")
+        group.inputs.new("NodeSocketFloat", "Thickness")
     node = mat.node_tree.nodes.new("ShaderNodeGroup")
     node.node_tree = group
     node.inputs["Thickness"].default_value = thickness
@@ -69,7 +72,8 @@ def build():
     floor, _ = principled("floor", **{"Base Color": (0.5, 0.48, 0.45, 1), "Roughness": 0.7})
     add(bpy.ops.mesh.primitive_plane_add, floor, (0, 0, 0), size=12)
 
-    monkey = add(bpy.ops.mesh.primitive_monkey_add, glass_with_thickness(0.6), (0, 0, 0.62), size=1.0)
+    monkey = add(bpy.ops.mesh.primitive_monkey_add, glass_with_thickness("glass", 0.6, 0.0), (-0.55, 0.1, 0.62),
+                 size=1.0)
     monkey.rotation_euler = (math.radians(-20), 0, math.radians(15))
     subdivision = monkey.modifiers.new("subdivision", "SUBSURF")
     subdivision.levels = subdivision.render_levels = 2
@@ -77,10 +81,13 @@ def build():
 
     paint, _ = principled("car paint", **{"Base Color": (0.6, 0.02, 0.03, 1), "Roughness": 0.45,
                                           "Clearcoat": 1.0, "Clearcoat Roughness": 0.03})
-    add(bpy.ops.mesh.primitive_uv_sphere_add, paint, (1.25, 0.45, 0.45), radius=0.45, segments=64, ring_count=32)
+    add(bpy.ops.mesh.primitive_uv_sphere_add, paint, (1.95, 0.45, 0.45), radius=0.45, segments=64, ring_count=32)
     bpy.ops.object.shade_smooth()
     gold, _ = principled("rough gold", **{"Base Color": (1.0, 0.71, 0.29, 1), "Metallic": 1.0, "Roughness": 0.35})
-    add(bpy.ops.mesh.primitive_uv_sphere_add, gold, (-1.25, 0.55, 0.45), radius=0.45, segments=64, ring_count=32)
+    add(bpy.ops.mesh.primitive_uv_sphere_add, gold, (-1.95, 0.55, 0.45), radius=0.45, segments=64, ring_count=32)
+    bpy.ops.object.shade_smooth()
+    frosted = glass_with_thickness("frosted glass", 0.9, 0.3)
+    add(bpy.ops.mesh.primitive_uv_sphere_add, frosted, (0.75, 0.2, 0.45), radius=0.45, segments=64, ring_count=32)
     bpy.ops.object.shade_smooth()
 
     sun = bpy.data.lights.new("sun", "SUN")
