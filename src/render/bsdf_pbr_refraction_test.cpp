@@ -52,7 +52,7 @@ const BsdfPoint kBelowInside = make_bsdf_point({0, 0, -1}, {0, 0, -1}, false);
 
 TEST(PbrRefraction, RoughVolumeTransmitsDiffusely) {
     EXPECT_TRUE(transmits_diffusely(volume(Vec3{1.0f}, 0.0f, 0.3f, 1.0f)));
-    EXPECT_FALSE(transmits_diffusely(volume(Vec3{1.0f}, 0.0f, 0.0f, 1.0f)));  // smooth: the delta
+    EXPECT_FALSE(transmits_diffusely(volume(Vec3{1.0f}, 0.0f, 0.0f, 1.0f)));        // smooth: the delta
     EXPECT_FALSE(transmits_diffusely(volume(Vec3{1.0f}, 0.0f, 0.3f, 1.0f, 1.0f)));  // ior 1 does not bend
     EXPECT_FALSE(transmits_diffusely(volume(Vec3{1.0f}, 1.0f, 0.3f, 1.0f)));        // metals transmit nothing
     EXPECT_FALSE(is_delta_bsdf(volume(Vec3{1.0f}, 0.0f, 0.3f, 1.0f)));
@@ -168,8 +168,7 @@ TEST(PbrRefraction, TendsToTheSmoothRefraction) {
             for (std::uint32_t i = 0; i < n; ++i) {
                 BsdfSample s;
                 const float u_lobe = (static_cast<float>(i) + 0.5f) / static_cast<float>(n);
-                if (!sample_bsdf(rough, p, wo, u_lobe, rnd(2 * i, 90), rnd(2 * i + 1, 90), s) ||
-                    !s.transmission)
+                if (!sample_bsdf(rough, p, wo, u_lobe, rnd(2 * i, 90), rnd(2 * i + 1, 90), s) || !s.transmission)
                     continue;
                 sum += s.weight;
                 ++through;

@@ -23,9 +23,9 @@ using gltf_test::GltfFile;
 using testing::TempFolder;
 
 constexpr int kSize = 48;
-constexpr float kTan = 0.25f;      // the camera's tan(half field of view), at z = 5 looking down −z
-constexpr float kBoardZ = -4.0f;   // the checkerboard's plane
-constexpr float kSquare = 0.8f;    // its squares' side
+constexpr float kTan = 0.25f;     // the camera's tan(half field of view), at z = 5 looking down −z
+constexpr float kBoardZ = -4.0f;  // the checkerboard's plane
+constexpr float kSquare = 0.8f;   // its squares' side
 constexpr float kSlabFront = 1.0f, kSlabBack = 0.5f;
 
 // A quad (a, b, c, d) as two triangles of `index`, counter-clockwise as given.
