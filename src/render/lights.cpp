@@ -178,9 +178,11 @@ LightSet make_light_set(const Scene& scene, Environment environment, bool sample
     lights.environment = std::move(environment);
     lights.environment_lights = sample_environment_light && !is_black(lights.environment);
     if (lights.environment_lights) {
-        const float r = bounding_radius(scene);
-        float env_power = std::max(environment_power_proxy(lights.environment), 1e-12f) * kPi * r * r;
-        if (!has_map(lights.environment) && !power.empty()) {
+        float env_power = 0;
+        if (has_map(lights.environment) || power.empty()) {
+            const float r = bounding_radius(scene);
+            env_power = std::max(environment_power_proxy(lights.environment), 1e-12f) * kPi * r * r;
+        } else {
             // A constant environment is what BSDF sampling finds best (the
             // cosine lobe is its exact density on a diffuse surface); spending
             // light samples on it by power took half of the spheres scene's
