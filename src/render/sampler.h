@@ -229,11 +229,19 @@ struct SampleStream {
     std::uint32_t index = 0;      // this sample's index among the pixel's
     std::uint32_t count = 1;      // the pixel's samples: 1, or more (progressive)
     std::uint32_t dimension = 0;  // draws so far (one sample); progressive: dimensions walked after the pixel's
+    // Progressive: the group the last draw read, its seeds and this sample's
+    // shuffled index in it, kept because a vertex reads each of its groups
+    // two or three times (a point, then a choice or roulette). Not part of
+    // what the sample is: every value is the same without it.
+    std::uint32_t cached_group = 0xffffffffu;
+    sobol::Group group{};
+    std::uint32_t shuffled = 0;
 
     float next_1d() {
         if (count <= 1) return hash_to_unit(index, dimension_key());
         const std::uint32_t d = kPixelDimensions + dimension++;
-        return sample_group(pixel_key, d / sobol::kDimensions).value(index, static_cast<int>(d % sobol::kDimensions));
+        select_group(d / sobol::kDimensions);
+        return group.value_at(shuffled, static_cast<int>(d % sobol::kDimensions));
     }
 
     struct Pair {
@@ -244,9 +252,8 @@ struct SampleStream {
         std::uint32_t d = kPixelDimensions + dimension;
         d = (d + sobol::kDimensions - 1) / sobol::kDimensions * sobol::kDimensions;  // the next group's (0, 1)
         dimension = d + 2 - kPixelDimensions;
-        const sobol::Group g = sample_group(pixel_key, d / sobol::kDimensions);
-        const std::uint32_t s = g.shuffled_reversed(index);
-        return {g.value_at(s, 0), g.value_at(s, 1)};
+        select_group(d / sobol::kDimensions);
+        return {group.value_at(shuffled, 0), group.value_at(shuffled, 1)};
     }
 
     // The thin lens's point (spec §17): a 2-D dimension of its own, keyed
@@ -263,6 +270,13 @@ struct SampleStream {
     }
 
 private:
+    void select_group(std::uint32_t g) {
+        if (g == cached_group) return;
+        cached_group = g;
+        group = sample_group(pixel_key, g);
+        shuffled = group.shuffled_reversed(index);
+    }
+
     Pair hashed_pair(std::uint64_t key) const {
         return {hash_to_unit(index, key), hash_to_unit(index, key ^ 0x368cc8b700000000ull)};
     }
