@@ -1,6 +1,7 @@
 #include "view/view_camera.h"
 
 #include <cmath>
+#include <limits>
 #include <numbers>
 
 #include "core/vec3d.h"
@@ -20,7 +21,11 @@ CameraLookAt view_camera_of(const CameraSpec& spec, const Camera& camera) {
     const float forward = length(camera.forward);
     c.look_at = camera.origin + camera.forward / forward;
     c.up = camera.up / length(camera.up);
-    c.fov_degrees = static_cast<float>(2.0 * std::atan(double{length(camera.up)} / forward) * 180.0 / std::numbers::pi);
+    // An orthographic camera has no field of view (its |up| is the
+    // half-height): the default stays, unused.
+    if (!camera.orthographic)
+        c.fov_degrees =
+            static_cast<float>(2.0 * std::atan(double{length(camera.up)} / forward) * 180.0 / std::numbers::pi);
     return c;
 }
 
@@ -38,10 +43,18 @@ std::string view_camera_problem(const CameraLookAt& c) {
     return {};
 }
 
-CameraSpec with_view_camera(const CameraSpec& scene_camera, const CameraLookAt& camera) {
+std::string view_half_height_problem(double half_height) {
+    if (!(half_height > 0) || !(half_height <= std::numeric_limits<float>::max()))
+        return "half_height must be a positive finite number";
+    return {};
+}
+
+CameraSpec with_view_camera(const CameraSpec& scene_camera, const CameraLookAt& camera,
+                            std::optional<float> half_height) {
     CameraSpec spec = scene_camera;
     spec.basis.reset();
     spec.look_at = camera;
+    if (half_height && spec.projection == CameraSpec::Projection::Orthographic) spec.ortho_half_height = *half_height;
     return spec;
 }
 

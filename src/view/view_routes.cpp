@@ -41,6 +41,15 @@ json state_json(const ViewContext& c) {
     const ViewSettings s = c.live.settings();
     const RenderJob job = c.live.job_for(s);
     const CameraLookAt camera = view_camera_of(s.camera, job.camera);
+    json camera_state = {
+        {"origin", vec3_json(camera.origin)}, {"look_at", vec3_json(camera.look_at)}, {"up", vec3_json(camera.up)}};
+    if (s.camera.projection == CameraSpec::Projection::Orthographic) {
+        camera_state["projection"] = "orthographic";
+        camera_state["half_height"] = s.camera.ortho_half_height;
+    } else {
+        camera_state["projection"] = "perspective";
+        camera_state["fov"] = camera.fov_degrees;
+    }
     return {{"scene", c.scene_file},
             {"width", s.settings.width},
             {"height", s.settings.height},
@@ -48,11 +57,7 @@ json state_json(const ViewContext& c) {
             {"max_depth", s.settings.max_depth},
             {"integrator", s.settings.integrator == IntegratorKind::Path ? "path" : "direct"},
             {"exposure", c.exposure},
-            {"camera",
-             {{"origin", vec3_json(camera.origin)},
-              {"look_at", vec3_json(camera.look_at)},
-              {"up", vec3_json(camera.up)},
-              {"fov", camera.fov_degrees}}},
+            {"camera", camera_state},
             {"frame", frame_json(c.live.latest())}};
 }
 
@@ -67,7 +72,9 @@ std::optional<std::string> param(const httplib::Request& req, const char* name) 
     return req.get_param_value(name);
 }
 
-// POST /camera?origin=x,y,z&look_at=x,y,z&up=x,y,z&fov=F: every value required, checked as the scene file's.
+// POST /camera?origin=x,y,z&look_at=x,y,z&up=x,y,z&fov=F: every value
+// required, checked as the scene file's; an orthographic camera takes
+// half_height=H instead of fov.
 void set_camera(ViewContext& c, const httplib::Request& req, httplib::Response& res) {
     std::string problem;
     CameraLookAt camera;
@@ -80,14 +87,26 @@ void set_camera(ViewContext& c, const httplib::Request& req, httplib::Response& 
         if (!v) return bad_request(res, problem);
         *targets[k] = *v;
     }
-    const std::optional<std::string> fov_text = param(req, "fov");
-    if (!fov_text) return bad_request(res, "missing fov");
-    const std::optional<double> fov = parse_query_number("fov", *fov_text, problem);
-    if (!fov) return bad_request(res, problem);
-    camera.fov_degrees = static_cast<float>(*fov);
-    if (const std::string p = view_camera_problem(camera); !p.empty()) return bad_request(res, p);
     ViewSettings s = c.live.settings();
-    s.camera = with_view_camera(s.camera, camera);
+    const bool orthographic = s.camera.projection == CameraSpec::Projection::Orthographic;
+    const char* zoom_name = orthographic ? "half_height" : "fov";
+    if (param(req, orthographic ? "fov" : "half_height"))
+        return bad_request(res, std::string("the scene's camera is ") +
+                                    (orthographic ? "orthographic" : "perspective") + ": it takes " + zoom_name +
+                                    ", not " + (orthographic ? "fov" : "half_height"));
+    const std::optional<std::string> zoom_text = param(req, zoom_name);
+    if (!zoom_text) return bad_request(res, std::string("missing ") + zoom_name);
+    const std::optional<double> zoom = parse_query_number(zoom_name, *zoom_text, problem);
+    if (!zoom) return bad_request(res, problem);
+    std::optional<float> half_height;
+    if (orthographic) {
+        if (const std::string p = view_half_height_problem(*zoom); !p.empty()) return bad_request(res, p);
+        half_height = static_cast<float>(*zoom);
+    } else {
+        camera.fov_degrees = static_cast<float>(*zoom);
+    }
+    if (const std::string p = view_camera_problem(camera); !p.empty()) return bad_request(res, p);
+    s.camera = with_view_camera(s.camera, camera, half_height);
     c.live.restart(s);
     res.set_content(state_json(c).dump(), "application/json");
 }

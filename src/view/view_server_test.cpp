@@ -24,7 +24,9 @@
 namespace sombra {
 namespace {
 
+using view_test::decode_png;
 using view_test::raw_request;
+using view_test::Rgb8;
 using view_test::ServedScene;
 
 using view_test::kToken;
@@ -175,6 +177,60 @@ TEST(ViewServer, CameraAndSettingsAreCheckedAndRestartThePasses) {
     const nlohmann::json six = s.wait_done();
     EXPECT_EQ(six["spp"], 6);
     EXPECT_EQ(six["passes"], 3);
+}
+
+// An orthographic camera (a glTF file's) zooms by its half-height: the
+// state says so, /camera takes half_height and refuses fov, and the render
+// follows. The unit square at half-height 2 on 32 × 24 pixels (half-width
+// 8/3) covers exactly columns 10–21 and rows 6–17: pixel (i, j) sees
+// x = (1 − 2(i + ½)/32)·8/3 and y = (1 − 2(j + ½)/24)·2.
+TEST(ViewServer, AnOrthographicCameraZoomsByItsHalfHeight) {
+    ServedScene s(1, "", 32, 24, 1.5f);
+    s.wait_done();
+    httplib::Client client("127.0.0.1", s.port());
+    const std::string t = "token=" + std::string(kToken);
+    const auto initial = client.Get("/state?" + t);
+    ASSERT_TRUE(initial);
+    const nlohmann::json state = nlohmann::json::parse(initial->body);
+    EXPECT_EQ(state["camera"]["projection"], "orthographic");
+    EXPECT_EQ(state["camera"]["half_height"], 1.5);
+    EXPECT_FALSE(state["camera"].contains("fov"));
+
+    const std::string pose = "&origin=0,0,4&look_at=0,0,0&up=0,1,0";
+    for (const std::string bad : {"&fov=40", "&half_height=0", "&half_height=-1", "&half_height=nan",
+                                  "&half_height=1e39", "&half_height=2&fov=40", ""}) {
+        const auto r = client.Post("/camera?" + t + pose + bad, "", "text/plain");
+        ASSERT_TRUE(r) << bad;
+        EXPECT_EQ(r->status, 400) << bad;
+        EXPECT_TRUE(r->body.starts_with("400 bad request: ")) << r->body;
+    }
+    const auto moved = client.Post("/camera?" + t + pose + "&half_height=2", "", "text/plain");
+    ASSERT_TRUE(moved);
+    ASSERT_EQ(moved->status, 200) << moved->body;
+    const nlohmann::json after = nlohmann::json::parse(moved->body);
+    EXPECT_EQ(after["camera"]["half_height"], 2.0);
+    const int generation = after["frame"]["generation"].get<int>();
+    s.read_events_until([&](const std::vector<nlohmann::json>& e) {
+        return !e.empty() && e.back()["done"].get<bool>() && e.back()["generation"].get<int>() >= generation;
+    });
+    const auto png = client.Get("/image.png?" + t);
+    ASSERT_TRUE(png);
+    const Rgb8 image = decode_png(png->body);
+    ASSERT_EQ(image.width, 32);
+    ASSERT_EQ(image.height, 24);
+    for (int j = 0; j < 24; ++j)
+        for (int i = 0; i < 32; ++i) {
+            const unsigned char* p = &image.pixels[(std::size_t(j) * 32 + std::size_t(i)) * 3];
+            const bool lit = p[0] + p[1] + p[2] > 0;
+            EXPECT_EQ(lit, i >= 10 && i <= 21 && j >= 6 && j <= 17) << i << ", " << j;
+        }
+
+    // A perspective camera refuses half_height.
+    ServedScene perspective(1);
+    httplib::Client other("127.0.0.1", perspective.port());
+    const auto refused = other.Post("/camera?" + t + pose + "&fov=40&half_height=2", "", "text/plain");
+    ASSERT_TRUE(refused);
+    EXPECT_EQ(refused->status, 400);
 }
 
 TEST(ViewServer, ExplainsAPixelWithTheRendersValue) {

@@ -17,6 +17,7 @@
 #include <fstream>
 #include <memory>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
 #include <thread>
 #include <vector>
@@ -99,10 +100,13 @@ inline Rgb8 decode_png(const std::string& bytes) {
 }
 
 // A lit unit square seen from the front, width × height pixels at `spp` (more
-// "render" members in `render_extra`), loaded and served on a free port.
+// "render" members in `render_extra`), loaded and served on a free port;
+// with `ortho_half_height`, through an orthographic camera of that
+// half-height (as a glTF file's: scene files have none).
 class ServedScene {
 public:
-    explicit ServedScene(int spp, const std::string& render_extra = "", int width = 32, int height = 24) {
+    explicit ServedScene(int spp, const std::string& render_extra = "", int width = 32, int height = 24,
+                         std::optional<float> ortho_half_height = std::nullopt) {
         dir_ = fs::temp_directory_path() / ("sombra-view-" + std::to_string(::getpid()) + "-" +
                                             ::testing::UnitTest::GetInstance()->current_test_info()->name());
         fs::remove_all(dir_);
@@ -118,6 +122,10 @@ public:
                  "objects": [{"file": "square.obj", "material": "grey"}]})";
         Diagnostics diag;
         loaded_ = std::make_unique<LoadedScene>(load_scene_file(dir_ / "scene.json", diag));
+        if (ortho_half_height) {
+            loaded_->scene.camera.projection = CameraSpec::Projection::Orthographic;
+            loaded_->scene.camera.ortho_half_height = *ortho_half_height;
+        }
         accel_ = std::make_unique<Accel>(make_accel(loaded_->scene, AccelKind::Bvh));
         ViewServerOptions options;
         options.initial = ViewSettings{loaded_->scene.camera, loaded_->settings};

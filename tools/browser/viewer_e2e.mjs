@@ -8,7 +8,9 @@
 //   4. a click on a pixel shows explain's story in the side panel, with the
 //      pixel's value equal to what `sombra explain --json` gives for it at
 //      that camera;
-//   5. a signal ends the server at once and frees the port (SIGTERM: a
+//   5. a glTF file's orthographic camera stays orthographic: `+` zooms by
+//      its half-height, the origin stays, and the image grows;
+//   6. a signal ends the server at once and frees the port (SIGTERM: a
 //      process that a non-interactive shell starts in the background inherits
 //      SIGINT ignored, as CI's may; Ctrl-C itself is tested by interrupt_test).
 // Screenshots go to $SOMBRA_ARTIFACTS (CI keeps them).
@@ -68,20 +70,24 @@ function runSombra(args) {
   return r.stdout;
 }
 
-// The server: its URL is the first line on standard output.
-const server = spawn(exe, ["view", scene, ...common, "--port", "0", "--quiet"], { stdio: ["ignore", "pipe", "pipe"] });
-let serverErr = "";
-server.stderr.on("data", (d) => { serverErr += d; });
-const url = await new Promise((resolve, reject) => {
-  let out = "";
-  const timer = setTimeout(() => reject(new Error("sombra view printed no URL within 30 s: " + serverErr)), 30000);
-  server.stdout.on("data", (d) => {
-    out += d;
-    const line = out.split("\n").find((l) => l.startsWith("http://127.0.0.1:"));
-    if (line) { clearTimeout(timer); resolve(line.trim()); }
+// A server for `file`, and its URL: the first line on standard output.
+async function serve(file) {
+  const child = spawn(exe, ["view", file, ...common, "--port", "0", "--quiet"], { stdio: ["ignore", "pipe", "pipe"] });
+  let err = "";
+  child.stderr.on("data", (d) => { err += d; });
+  const address = await new Promise((resolve, reject) => {
+    let out = "";
+    const timer = setTimeout(() => reject(new Error("sombra view printed no URL within 30 s: " + err)), 30000);
+    child.stdout.on("data", (d) => {
+      out += d;
+      const line = out.split("\n").find((l) => l.startsWith("http://127.0.0.1:"));
+      if (line) { clearTimeout(timer); resolve(line.trim()); }
+    });
+    child.on("exit", (code) => reject(new Error(`sombra view exited (${code}): ${err}`)));
   });
-  server.on("exit", (code) => reject(new Error(`sombra view exited (${code}): ${serverErr}`)));
-});
+  return { child, address };
+}
+const { child: server, address: url } = await serve(scene);
 const port = Number(new URL(url).port);
 console.log(`serving at ${url}`);
 
@@ -151,9 +157,14 @@ try {
   await page.mouse.down();
   for (let k = 1; k <= 8; ++k) await page.mouse.move(box.x + box.width / 2 + 6 * k, box.y + box.height / 2 + k);
   await page.mouse.up();
+  // The page sends one camera at a time and the latest after it: wait until
+  // the last has been sent, so that the camera below is the final one.
+  await page.waitForFunction(() => !sending && !queued, null, { timeout: 20000 });
   await page.waitForFunction(() => !document.getElementById("status").textContent.includes("done"), null,
                              { timeout: 20000 }).catch(() => {});  // a fast machine may finish in between
   await waitDone(page, statusBefore);
+  await page.waitForFunction(async () => (await (await fetch(api("/state"))).json()).frame.done, null,
+                             { polling: 100, timeout: 60000 });
   await page.waitForTimeout(300);
   const orbited = await pixelsOf(page);
   let changed = 0;
@@ -189,10 +200,63 @@ try {
   const close = cli.value.every((v, i) => Math.abs(v - shownValue[i]) <= 1e-5 * Math.max(1, Math.abs(v)));
   check(close, `the panel's value [${shownValue}] is explain's [${cli.value.map((v) => v.toPrecision(6))}]`);
   await page.screenshot({ path: path.join(artifacts, "3-explained.png") });
+
+  // 5. An orthographic camera (a glTF file's: a 2 × 2 square seen square on
+  // from z = 4, ymag 1.5) zooms by its half-height.
+  const square = new Float32Array([-1, -1, 0, 1, -1, 0, 1, 1, 0, -1, 1, 0]);
+  const corners = new Uint16Array([0, 1, 2, 0, 2, 3]);
+  const bytes = Buffer.concat([Buffer.from(square.buffer), Buffer.from(corners.buffer)]);
+  const gltf = path.join(work, "orthographic.gltf");
+  writeFileSync(gltf, JSON.stringify({
+    asset: { version: "2.0" }, scene: 0, scenes: [{ nodes: [0, 1] }],
+    nodes: [{ mesh: 0 }, { camera: 0, translation: [0, 0, 4] }],
+    cameras: [{ type: "orthographic", orthographic: { xmag: 2, ymag: 1.5, znear: 0.1, zfar: 100 } }],
+    meshes: [{ primitives: [{ attributes: { POSITION: 0 }, indices: 1 }] }],
+    buffers: [{ byteLength: bytes.length, uri: "data:application/octet-stream;base64," + bytes.toString("base64") }],
+    bufferViews: [{ buffer: 0, byteOffset: 0, byteLength: 48 }, { buffer: 0, byteOffset: 48, byteLength: 12 }],
+    accessors: [
+      { bufferView: 0, componentType: 5126, count: 4, type: "VEC3", min: [-1, -1, 0], max: [1, 1, 0] },
+      { bufferView: 1, componentType: 5123, count: 6, type: "SCALAR" }],
+  }));
+  const ortho = await serve(gltf);
+  try {
+    const view = await browser.newPage({ viewport: { width: 1100, height: 700 } });
+    view.on("pageerror", (e) => fail(`the page threw: ${e.message}`));
+    await view.goto(ortho.address);
+    await waitDone(view);
+    await view.waitForFunction(() => document.getElementById("view").naturalWidth > 0);
+    await view.waitForTimeout(300);
+    const before = await pixelsOf(view);
+    const stateOf = () => view.evaluate(async () => (await fetch(api("/state"))).json());
+    const first = await stateOf();
+    check(first.camera.projection === "orthographic" && first.camera.half_height === 1.5,
+          `the viewer's state says orthographic, half-height 1.5 (${JSON.stringify(first.camera)})`);
+    const statusBefore = await view.locator("#status").textContent();
+    await view.keyboard.press("+");
+    await view.waitForFunction(() => !document.getElementById("status").textContent.includes("done"), null,
+                               { timeout: 20000 }).catch(() => {});
+    await waitDone(view, statusBefore);
+    await view.waitForTimeout(300);
+    const zoomed = await stateOf();
+    check(Math.abs(zoomed.camera.half_height - 1.5 / 1.1) < 1e-5 &&
+          zoomed.camera.origin.every((v, i) => v === first.camera.origin[i]),
+          `+ zoomed by the half-height (${zoomed.camera.half_height}), the origin where it was`);
+    const after = await pixelsOf(view);
+    // The square's pixels: brighter than the quick look's grey background (the corner's).
+    const lit = (img) => {
+      let n = 0;
+      for (let i = 0; i < img.data.length; i += 4) n += img.data[i] > img.data[0] + 20 ? 1 : 0;
+      return n;
+    };
+    check(lit(after) > 1.1 * lit(before), `the square grew on screen (${lit(before)} → ${lit(after)} pixels)`);
+    await view.screenshot({ path: path.join(artifacts, "4-orthographic.png") });
+  } finally {
+    ortho.child.kill("SIGTERM");
+  }
   passed = true;
 } finally {
   await browser.close();
-  // 5. A signal ends the server at once and frees the port.
+  // 6. A signal ends the server at once and frees the port.
   const started = Date.now();
   server.kill("SIGTERM");
   const code = await new Promise((r) => (server.exitCode !== null ? r(server.exitCode) : server.on("exit", r)));
