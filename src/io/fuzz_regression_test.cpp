@@ -65,7 +65,7 @@ protected:
 TEST_F(FuzzRegression, EveryReproducerLoadsOrFailsCleanly) {
     const std::size_t replayed = replay_all(fuzz::Target::Obj, "obj") + replay_all(fuzz::Target::Ply, "ply") +
                                  replay_all(fuzz::Target::Scene, "scene") +
-                                 replay_all(fuzz::Target::Texture, "texture");
+                                 replay_all(fuzz::Target::Texture, "texture") + replay_all(fuzz::Target::Gltf, "gltf");
     EXPECT_GE(replayed, 2u);  // at least those tested one by one below
 }
 
@@ -184,6 +184,22 @@ TEST_F(FuzzRegression, PlyFaceCountCheckedBeforeReserving) {
         FAIL() << "loaded a file claiming 4294967295 faces";
     } catch (const Error& e) {
         EXPECT_NE(e.message().find("element 'face' claims 4294967295 entries"), std::string::npos) << e.what();
+    }
+}
+
+// fuzz_gltf found it: an EXT_mesh_gpu_instancing SCALE of (1, 512,
+// 1.8e-40), no component zero, gives an instance transform with no inverse
+// in float. The scene builder refused it, but only after load_gltf had
+// handed it on; the loader now refuses it itself, naming the instance.
+TEST_F(FuzzRegression, GltfInstanceWithoutAFloatInverseIsRefused) {
+    const fs::path file = kRegressions / "gltf" / "singular-instance-from-a-denormal-instancing-scale.gltf";
+    const fs::path path = fuzz::stage_input(fuzz::Target::Gltf, read_bytes(file), folder);
+    Diagnostics diag;
+    try {
+        load_gltf(path, diag);
+        FAIL() << "loaded an instance whose transform has no inverse";
+    } catch (const Error& e) {
+        EXPECT_EQ(e.message(), "node 2: instance 1: the transform is not invertible") << e.what();
     }
 }
 

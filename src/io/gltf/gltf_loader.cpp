@@ -338,8 +338,18 @@ LoadedMesh load_gltf(const std::filesystem::path& path, Diagnostics& diag) {
         if (moves && !(std::fabs(determinant3(world)) > 0.0f))
             throw Error(file, node_name(in.node) + ": its animated transform at time 0 is not invertible");
         // In a file with animations every part follows its nodes (a static node's pose is its rest pose).
+        const std::size_t first_instance = part.instances.size();
         const auto add = [&](const Transform& before) {
-            part.instances.push_back(compose(before, world));
+            const Transform placed = compose(before, world);
+            // The ray transform needs an inverse in float: a product of
+            // tiny (or huge) scales can lose it though each factor has one.
+            if (Instance probe; !place_instance(probe, placed))
+                throw Error(file,
+                            node_name(in.node) +
+                                (gpu_instanced ? ": instance " + std::to_string(part.instances.size() - first_instance)
+                                               : std::string()) +
+                                ": the transform is not invertible");
+            part.instances.push_back(placed);
             if (!animation) return;
             part.nodes.push_back(std::uint32_t(in.node));
             part.local.push_back(before);
