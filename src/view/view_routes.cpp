@@ -90,10 +90,11 @@ void set_camera(ViewContext& c, const httplib::Request& req, httplib::Response& 
     ViewSettings s = c.live.settings();
     const bool orthographic = s.camera.projection == CameraSpec::Projection::Orthographic;
     const char* zoom_name = orthographic ? "half_height" : "fov";
-    if (param(req, orthographic ? "fov" : "half_height"))
+    const char* other_name = orthographic ? "fov" : "half_height";
+    if (param(req, other_name))
         return bad_request(res, std::string("the scene's camera is ") +
                                     (orthographic ? "orthographic" : "perspective") + ": it takes " + zoom_name +
-                                    ", not " + (orthographic ? "fov" : "half_height"));
+                                    ", not " + other_name);
     const std::optional<std::string> zoom_text = param(req, zoom_name);
     if (!zoom_text) return bad_request(res, std::string("missing ") + zoom_name);
     const std::optional<double> zoom = parse_query_number(zoom_name, *zoom_text, problem);
