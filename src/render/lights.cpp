@@ -7,7 +7,6 @@
 #include <numbers>
 
 #include "render/shading.h"
-#include "render/spherical_triangle.h"
 #include "scene/cutout.h"
 
 namespace sombra {
@@ -53,50 +52,6 @@ float bounding_radius(const Scene& scene) {
     return r > 0.0f && std::isfinite(r) ? r : 1.0f;
 }
 
-// Triangles subtending a solid angle in this range (estimated first, see
-// spherical_triangle_to_sample) are sampled uniformly over it (spherical
-// triangles); outside it by area. Below the range d² and
-// cos θ vary little over the triangle, so area sampling is nearly as good
-// and cheaper: measured (docs/performance.md, "Sampling triangle lights"),
-// the Cornell box's light (about 0.02 sr per triangle from the floor) is
-// sampled better per second by area, the spheres scene's large quad light
-// (0.1–0.4 sr) by solid angle. Near 2π sr (x almost on the triangle)
-// Arvo's formulas lose precision.
-constexpr double kMinSphericalSolidAngle = 0.05;
-constexpr double kMaxSphericalSolidAngle = 6.0;
-
-bool sample_by_solid_angle(const SphericalTriangle& t) {
-    return t.solid_angle >= kMinSphericalSolidAngle && t.solid_angle <= kMaxSphericalSolidAngle;
-}
-
-// The spherical triangle of p0 p1 p2 seen from x when it is to be sampled by
-// solid angle, or an empty one (solid angle 0: sampled by area). The choice
-// is made on the solid angle estimated from the centroid c, area · |cos θ_c|
-// / |x − c|², in float: building the spherical triangle (double precision,
-// atan2, asin) to decide was a tenth of the path-traced Cornell box's render
-// instructions, for the 5 % of its shading points that see the light above
-// kMinSphericalSolidAngle. Any choice that is a function of x and the
-// triangle alone keeps the estimator unbiased, as long as sample_light and
-// pdf_light_triangle make the same one.
-SphericalTriangle spherical_triangle_to_sample(Vec3 x, Vec3 p0, Vec3 p1, Vec3 p2, Vec3 unit_normal, float area) {
-    const Vec3 to_x = x - (1.0f / 3.0f) * (p0 + p1 + p2);
-    const float dist2 = dot(to_x, to_x);
-    const float cos_area = std::fabs(dot(unit_normal, to_x)) * area;  // |cos θ_c| · area · |x − c|
-    if (!(cos_area >= static_cast<float>(kMinSphericalSolidAngle) * dist2 * std::sqrt(dist2))) return {};
-    return make_spherical_triangle(x, p0, p1, p2);
-}
-
-// Solid-angle density of area-uniform sampling of a triangle of `area` at
-// point y, seen from x: pdf_area · |x − y|² / |cos θ_y|; 0 edge-on.
-float area_to_solid_angle(Vec3 x, Vec3 y, Vec3 unit_normal, float area) {
-    const Vec3 d = x - y;
-    const float dist2 = dot(d, d);
-    if (!(dist2 > 0.0f)) return 0.0f;
-    const float cos_y = std::fabs(dot(unit_normal, d)) / std::sqrt(dist2);
-    if (!(cos_y > 0.0f)) return 0.0f;
-    return dist2 / (cos_y * area);
-}
-
 // The probability of choosing a constant environment (a `background` under
 // path tracing) when the scene has emitters too.
 constexpr double kConstantEnvironmentShare = 0.01;
@@ -116,6 +71,36 @@ bool sampled_point_exists(const Scene& scene, Emitter e, Vec3 y) {
     float b1 = 0, b2 = 0;
     if (!point_barycentrics(mesh, e.triangle, y, b1, b2)) return true;
     return surface_exists(Cutouts{&mesh, &scene.materials, &scene.textures}, e.triangle, b1, b2);
+}
+
+// The probability that sample_light, at x with normal n, chooses emitter e.
+float emitter_choice(const LightSet& lights, Vec3 x, Vec3 n, std::size_t e) {
+    return lights.use_tree
+               ? emitters_choice_probability(lights) * pmf_light_tree(lights.tree, x, n, static_cast<std::uint32_t>(e))
+               : lights.choice_probability[e];
+}
+
+// Pairs the emitters that make rectangles: neighbours in the emitter order
+// (a quad's two triangles, or a mesh's, are consecutive) of one instance
+// and one material.
+void find_emitter_rectangles(const Scene& scene, LightSet& lights) {
+    lights.emitter_rectangle.assign(lights.emitters.size(), kNoRectangle);
+    for (std::size_t i = 0; i + 1 < lights.emitters.size(); ++i) {
+        const Emitter a = lights.emitters[i], b = lights.emitters[i + 1];
+        if (a.instance != b.instance) continue;
+        const TriangleMesh& mesh = surface_mesh(scene, a.instance);
+        if (mesh.material_ids[a.triangle] != mesh.material_ids[b.triangle]) continue;
+        EmitterRectangle rect;
+        if (!find_rectangle(world_triangle_corners(scene, a.triangle, a.instance),
+                            world_triangle_corners(scene, b.triangle, b.instance), rect))
+            continue;
+        rect.near = static_cast<std::uint32_t>(i);
+        rect.far = static_cast<std::uint32_t>(i + 1);
+        lights.emitter_rectangle[i] = lights.emitter_rectangle[i + 1] =
+            static_cast<std::uint32_t>(lights.rectangles.size());
+        lights.rectangles.push_back(rect);
+        ++i;
+    }
 }
 
 // The position of emitter `e` in lights.emitters, or lights.emitters.size().
@@ -175,6 +160,7 @@ LightSet make_light_set(const Scene& scene, Environment environment, bool sample
             if (!(e.power > 0.0f) || !std::isfinite(e.power)) e.power = 1.0f;
         lights.tree = make_light_tree(tree_emitters);
     }
+    find_emitter_rectangles(scene, lights);
     lights.environment = std::move(environment);
     lights.environment_lights = sample_environment_light && !is_black(lights.environment);
     if (lights.environment_lights) {
@@ -244,31 +230,24 @@ bool sample_light(const LightSet& lights, const Scene& scene, Vec3 x, Vec3 n, fl
         return max_component(out.radiance) > 0.0f;
     }
 
-    const Emitter e = lights.emitters[chosen];
-    const auto [p0, p1, p2] = world_triangle_corners(scene, e.triangle, e.instance);
-    const Vec3 n_w = normalize(cross(p1 - p0, p2 - p0));
-    const SphericalTriangle spherical = spherical_triangle_to_sample(x, p0, p1, p2, n_w, lights.emitter_areas[chosen]);
-    Vec3 y, wi;
+    Vec3 y, wi, n_w;
     float pdf = 0;
-    if (sample_by_solid_angle(spherical)) {
-        // Uniform over the solid angle; the point is where that direction meets the plane.
-        wi = sample_spherical_triangle(spherical, u1, u2);
-        const float cos_y = dot(n_w, wi);
-        const float t = dot(p0 - x, n_w) / cos_y;
-        if (!(t > 0.0f) || !std::isfinite(t)) return false;
-        y = x + t * wi;
-        pdf = static_cast<float>(1.0 / spherical.solid_angle);
+    if (lights.emitter_rectangle[chosen] != kNoRectangle) {
+        // The rectangle as one light: both triangles' chances of being chosen.
+        const EmitterRectangle& rect = lights.rectangles[lights.emitter_rectangle[chosen]];
+        choice += emitter_choice(lights, x, n, chosen == rect.near ? rect.far : rect.near);
+        bool in_near = true;
+        if (!sample_emitter_rectangle(rect, x, u1, u2, y, wi, pdf, in_near)) return false;
+        n_w = rect.unit_normal;
+        chosen = in_near ? rect.near : rect.far;
     } else {
-        // Uniform by area: the square-root parameterisation of the triangle.
-        const float su = std::sqrt(u1);
-        const float b1 = 1.0f - su, b2 = u2 * su;
-        y = (1.0f - b1 - b2) * p0 + b1 * p1 + b2 * p2;
-        const Vec3 to_light = y - x;
-        const float dist2 = dot(to_light, to_light);
-        if (!(dist2 > 0.0f)) return false;
-        wi = to_light / std::sqrt(dist2);
-        pdf = area_to_solid_angle(x, y, n_w, lights.emitter_areas[chosen]);
+        const Emitter e = lights.emitters[chosen];
+        const auto [p0, p1, p2] = world_triangle_corners(scene, e.triangle, e.instance);
+        n_w = normalize(cross(p1 - p0, p2 - p0));
+        if (!sample_emitter_triangle(x, p0, p1, p2, n_w, lights.emitter_areas[chosen], u1, u2, y, wi, pdf))
+            return false;
     }
+    const Emitter e = lights.emitters[chosen];
     const Material& m = scene.materials[surface_mesh(scene, e.instance).material_ids[e.triangle]];
     // One-sided emitters shine only toward their winding normal's side.
     if (m.emits_front_only && dot(n_w, wi) >= 0.0f) return false;
@@ -290,15 +269,16 @@ float pdf_light_triangle(const LightSet& lights, const Scene& scene, std::uint32
                          Vec3 x, Vec3 n, Vec3 y) {
     const std::size_t e = find_emitter(lights, Emitter{triangle, instance});
     if (e == lights.emitters.size()) return 0.0f;
-    const float choice = lights.use_tree ? emitters_choice_probability(lights) *
-                                               pmf_light_tree(lights.tree, x, n, static_cast<std::uint32_t>(e))
-                                         : lights.choice_probability[e];
+    if (lights.emitter_rectangle[e] != kNoRectangle) {
+        const EmitterRectangle& rect = lights.rectangles[lights.emitter_rectangle[e]];
+        const float choice = emitter_choice(lights, x, n, rect.near) + emitter_choice(lights, x, n, rect.far);
+        return choice > 0.0f ? choice * pdf_emitter_rectangle(rect, x, y) : 0.0f;
+    }
+    const float choice = emitter_choice(lights, x, n, e);
     if (!(choice > 0.0f)) return 0.0f;
     const auto [p0, p1, p2] = world_triangle_corners(scene, triangle, instance);
     const Vec3 n_w = normalize(cross(p1 - p0, p2 - p0));
-    const SphericalTriangle spherical = spherical_triangle_to_sample(x, p0, p1, p2, n_w, lights.emitter_areas[e]);
-    if (sample_by_solid_angle(spherical)) return choice * static_cast<float>(1.0 / spherical.solid_angle);
-    return choice * area_to_solid_angle(x, y, n_w, lights.emitter_areas[e]);
+    return choice * pdf_emitter_triangle(x, p0, p1, p2, n_w, lights.emitter_areas[e], y);
 }
 
 LightKind light_kind(const LightSet& lights, const Scene& scene, std::uint32_t light) {

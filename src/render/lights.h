@@ -15,6 +15,7 @@
 #include <limits>
 #include <vector>
 
+#include "render/emitter_sampling.h"
 #include "render/environment.h"
 #include "render/interaction.h"
 #include "render/light_tree.h"
@@ -87,6 +88,10 @@ struct LightSet {
     // the emitters' share of the power (1 − the environment's).
     LightTree tree;
     bool use_tree = false;
+    // The rectangles among the emitters, and for each emitter the index of
+    // its rectangle or kNoRectangle.
+    std::vector<EmitterRectangle> rectangles;
+    std::vector<std::uint32_t> emitter_rectangle;
 
     bool has_sampled_lights() const { return !choice_probability.empty(); }
 
@@ -129,7 +134,8 @@ struct LightSample {
 // normal n (zero when unknown; the light tree then leaves out its cosine
 // bound, which only sharpens the choice): u_choice picks the light, (u1, u2) a point on it: on a triangle uniform over the solid
 // angle it subtends from x (render/spherical_triangle.h) when that is
-// between 0.05 and 6 sr, else uniform by area.
+// between 0.05 and 6 sr, else uniform by area; likewise on a rectangle
+// (EmitterRectangle, render/spherical_rectangle.h).
 // Returns false when nothing can be sampled or the sample carries nothing
 // (the emitter is seen edge-on or from its dark side).
 bool sample_light(const LightSet& lights, const Scene& scene, Vec3 x, Vec3 n, float u_choice, float u1, float u2,

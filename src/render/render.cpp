@@ -11,6 +11,7 @@
 #include <limits>
 #include <optional>
 
+#include "core/flush_denormals.h"
 #include "render/first_hit.h"
 #include "render/ray_cone.h"
 #include "render/sampler.h"
@@ -137,6 +138,7 @@ IntegratorContext make_integrator_context(const RenderJob& job) {
 }
 
 Vec3 trace_pixel_sample(const RenderJob& job, int i, int j, int k, RayCounters& counters, SampleRecord& record) {
+    const DenormalsFlushed flushed;  // as render_image's tiles are traced
     const std::uint64_t key = pixel_key(job.settings.seed, i, j, job.settings.width);
     const CameraSample c = camera_sample(job, key, i, j, static_cast<std::uint32_t>(k));
     record.pixel_x = i;
@@ -188,6 +190,7 @@ RenderOutput render_image(const RenderJob& job, RenderProgress& progress) {
             std::atomic<bool> any_left{false};
             tbb::parallel_for(image, [&](const tbb::blocked_range2d<int>& tile) {
                 if (progress.cancel.load(std::memory_order_relaxed)) return;
+                const DenormalsFlushed flushed;
                 RayCounters& counters = per_thread.local();
                 bool left = false;
                 for (int j = tile.rows().begin(); j < tile.rows().end(); ++j) {
