@@ -69,14 +69,17 @@ float area_to_solid_angle(Vec3 x, Vec3 y, Vec3 unit_normal, float area) {
 constexpr float kRectangleSolidAngleDistanceRatio2 = 16.0f;
 
 bool solid_angle_pays(Vec3 x, const EmitterRectangle& r) {
-    const Vec3 d = x - r.corner;
-    // The solid angle estimated from the centre, as for triangles (spherical_triangle_to_sample).
-    const float height = std::fabs(dot(d, r.unit_normal));
-    const Vec3 from_centre = d - 0.5f * (r.edge1 + r.edge2);
+    // The solid angle estimated from the centre, height · area / d³, at
+    // least kMinSphericalSolidAngle, as for triangles; squared, so as to
+    // need no root (a d³ past float's range is a far point: false).
+    const float height_area = dot(x - r.centre, r.unit_normal) * r.area;
+    const Vec3 from_centre = x - r.centre;
     const float dist2 = dot(from_centre, from_centre);
-    if (!(height * r.area >= static_cast<float>(kMinSphericalSolidAngle) * dist2 * std::sqrt(dist2))) return false;
+    constexpr auto kMin2 = static_cast<float>(kMinSphericalSolidAngle * kMinSphericalSolidAngle);
+    if (!(height_area * height_area >= kMin2 * dist2 * dist2 * dist2)) return false;
     // The nearest and farthest points of the rectangle from x.
-    const float s = dot(d, r.edge1) / dot(r.edge1, r.edge1), t = dot(d, r.edge2) / dot(r.edge2, r.edge2);
+    const Vec3 d = x - r.corner;
+    const float s = dot(d, r.edge1) * r.inv_length2_1, t = dot(d, r.edge2) * r.inv_length2_2;
     const Vec3 nearest = d - std::clamp(s, 0.0f, 1.0f) * r.edge1 - std::clamp(t, 0.0f, 1.0f) * r.edge2;
     const Vec3 farthest = d - (s < 0.5f ? 1.0f : 0.0f) * r.edge1 - (t < 0.5f ? 1.0f : 0.0f) * r.edge2;
     return dot(farthest, farthest) >= kRectangleSolidAngleDistanceRatio2 * dot(nearest, nearest);
@@ -112,7 +115,10 @@ bool find_rectangle(const std::array<Vec3, 3>& a, const std::array<Vec3, 3>& b, 
     out.edge1 = e1;
     out.edge2 = e2;
     out.unit_normal = normal / area;
+    out.centre = q + 0.5f * (e1 + e2);
     out.area = area;
+    out.inv_length2_1 = 1.0f / dot(e1, e1);
+    out.inv_length2_2 = 1.0f / dot(e2, e2);
     return true;
 }
 
@@ -148,23 +154,31 @@ float pdf_emitter_triangle(Vec3 x, Vec3 p0, Vec3 p1, Vec3 p2, Vec3 n, float area
 
 bool sample_emitter_rectangle(const EmitterRectangle& r, Vec3 x, float u1, float u2, Vec3& y, Vec3& wi, float& pdf,
                               bool& in_near) {
-    bool by_solid_angle = false;
     if (solid_angle_pays(x, r)) {
         const SphericalRectangle spherical = make_spherical_rectangle(x, r.corner, r.edge1, r.edge2);
         if (in_solid_angle_range(spherical.solid_angle)) {
             y = sample_spherical_rectangle(spherical, u1, u2);
+            const Vec3 to_light = y - x;
+            const float dist2 = dot(to_light, to_light);
+            if (!(dist2 > 0.0f) || !is_finite(y)) return false;
+            wi = to_light / std::sqrt(dist2);
             pdf = static_cast<float>(1.0 / spherical.solid_angle);
-            by_solid_angle = true;
+            const Vec3 d = y - r.corner;
+            in_near = dot(d, r.edge1) * r.inv_length2_1 + dot(d, r.edge2) * r.inv_length2_2 <= 1.0f;
+            return true;
         }
     }
-    if (!by_solid_angle) y = r.corner + u1 * r.edge1 + u2 * r.edge2;
+    // By area: pdf_A = 1/area, to solid angle d²/|cos θ_y| = d³/|n·(y − x)|.
+    y = r.corner + u1 * r.edge1 + u2 * r.edge2;
     const Vec3 to_light = y - x;
     const float dist2 = dot(to_light, to_light);
     if (!(dist2 > 0.0f) || !is_finite(y)) return false;
-    wi = to_light / std::sqrt(dist2);
-    if (!by_solid_angle) pdf = area_to_solid_angle(x, y, r.unit_normal, r.area);
-    const Vec3 d = y - r.corner;
-    in_near = dot(d, r.edge1) / dot(r.edge1, r.edge1) + dot(d, r.edge2) / dot(r.edge2, r.edge2) <= 1.0f;
+    const float dist = std::sqrt(dist2);
+    wi = to_light / dist;
+    const float height_area = std::fabs(dot(r.unit_normal, to_light)) * r.area;
+    if (!(height_area > 0.0f)) return false;
+    pdf = dist2 * dist / height_area;
+    in_near = u1 + u2 <= 1.0f;
     return true;
 }
 

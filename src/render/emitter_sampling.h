@@ -20,7 +20,9 @@ namespace sombra {
 struct EmitterRectangle {
     Vec3 corner, edge1, edge2;  // corner + s·edge1 + t·edge2, s, t in [0, 1]; edge1 ⟂ edge2
     Vec3 unit_normal;           // the triangles' winding normal
+    Vec3 centre;
     float area = 0;
+    float inv_length2_1 = 0, inv_length2_2 = 0;  // 1/|edge1|², 1/|edge2|²: (s, t) of a point
     std::uint32_t near = 0;  // the emitter (index in LightSet::emitters) whose triangle has `corner`: s + t ≤ 1
     std::uint32_t far = 0;   // the other one
 };
