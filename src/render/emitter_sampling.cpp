@@ -23,9 +23,9 @@ namespace {
 constexpr double kMinSphericalSolidAngle = 0.05;
 constexpr double kMaxSphericalSolidAngle = 6.0;
 
-bool sample_by_solid_angle(const SphericalTriangle& t) {
-    return t.solid_angle >= kMinSphericalSolidAngle && t.solid_angle <= kMaxSphericalSolidAngle;
-}
+// Solid angles in which spherical sampling is used (after the estimate),
+// for triangles and rectangles alike.
+bool in_solid_angle_range(double omega) { return omega >= kMinSphericalSolidAngle && omega <= kMaxSphericalSolidAngle; }
 
 // The spherical triangle of p0 p1 p2 seen from x when it is to be sampled by
 // solid angle, or an empty one (solid angle 0: sampled by area). The choice
@@ -44,15 +44,22 @@ SphericalTriangle spherical_triangle_to_sample(Vec3 x, Vec3 p0, Vec3 p1, Vec3 p2
     return make_spherical_triangle(x, p0, p1, p2);
 }
 
-// Solid-angle density of area-uniform sampling of a triangle of `area` at
-// point y, seen from x: pdf_area · |x − y|² / |cos θ_y|; 0 edge-on.
-float area_to_solid_angle(Vec3 x, Vec3 y, Vec3 unit_normal, float area) {
-    const Vec3 d = x - y;
-    const float dist2 = dot(d, d);
-    if (!(dist2 > 0.0f)) return 0.0f;
-    const float cos_y = std::fabs(dot(unit_normal, d)) / std::sqrt(dist2);
+// Solid-angle density of area-uniform sampling of an emitter of `area`
+// at the point `to_point` away from the shading point (dist2 = |to_point|²,
+// dist its root, which the sampler has already taken for ω_i):
+// pdf_area · d² / |cos θ_y|; 0 edge-on.
+float area_density(Vec3 to_point, float dist2, float dist, Vec3 unit_normal, float area) {
+    const float cos_y = std::fabs(dot(unit_normal, to_point)) / dist;
     if (!(cos_y > 0.0f)) return 0.0f;
     return dist2 / (cos_y * area);
+}
+
+// The same for point y seen from x.
+float area_to_solid_angle(Vec3 x, Vec3 y, Vec3 unit_normal, float area) {
+    const Vec3 d = y - x;
+    const float dist2 = dot(d, d);
+    if (!(dist2 > 0.0f)) return 0.0f;
+    return area_density(d, dist2, std::sqrt(dist2), unit_normal, area);
 }
 
 // A rectangle is sampled by solid angle (render/spherical_rectangle.h) where
@@ -72,8 +79,8 @@ bool solid_angle_pays(Vec3 x, const EmitterRectangle& r) {
     // The solid angle estimated from the centre, height · area / d³, at
     // least kMinSphericalSolidAngle, as for triangles; squared, so as to
     // need no root (a d³ past float's range is a far point: false).
-    const float height_area = dot(x - r.centre, r.unit_normal) * r.area;
     const Vec3 from_centre = x - r.centre;
+    const float height_area = dot(from_centre, r.unit_normal) * r.area;
     const float dist2 = dot(from_centre, from_centre);
     constexpr auto kMin2 = static_cast<float>(kMinSphericalSolidAngle * kMinSphericalSolidAngle);
     if (!(height_area * height_area >= kMin2 * dist2 * dist2 * dist2)) return false;
@@ -84,9 +91,6 @@ bool solid_angle_pays(Vec3 x, const EmitterRectangle& r) {
     const Vec3 farthest = d - (s < 0.5f ? 1.0f : 0.0f) * r.edge1 - (t < 0.5f ? 1.0f : 0.0f) * r.edge2;
     return dot(farthest, farthest) >= kRectangleSolidAngleDistanceRatio2 * dot(nearest, nearest);
 }
-
-// Solid angles in which spherical sampling is used (after the estimate).
-bool in_solid_angle_range(double omega) { return omega >= kMinSphericalSolidAngle && omega <= kMaxSphericalSolidAngle; }
 
 }  // namespace
 
@@ -125,7 +129,7 @@ bool find_rectangle(const std::array<Vec3, 3>& a, const std::array<Vec3, 3>& b, 
 bool sample_emitter_triangle(Vec3 x, Vec3 p0, Vec3 p1, Vec3 p2, Vec3 n, float area, float u1, float u2, Vec3& y,
                              Vec3& wi, float& pdf) {
     const SphericalTriangle spherical = spherical_triangle_to_sample(x, p0, p1, p2, n, area);
-    if (sample_by_solid_angle(spherical)) {
+    if (in_solid_angle_range(spherical.solid_angle)) {
         // Uniform over the solid angle; the point is where that direction meets the plane.
         wi = sample_spherical_triangle(spherical, u1, u2);
         const float t = dot(p0 - x, n) / dot(n, wi);
@@ -141,14 +145,15 @@ bool sample_emitter_triangle(Vec3 x, Vec3 p0, Vec3 p1, Vec3 p2, Vec3 n, float ar
     const Vec3 to_light = y - x;
     const float dist2 = dot(to_light, to_light);
     if (!(dist2 > 0.0f)) return false;
-    wi = to_light / std::sqrt(dist2);
-    pdf = area_to_solid_angle(x, y, n, area);
+    const float dist = std::sqrt(dist2);
+    wi = to_light / dist;
+    pdf = area_density(to_light, dist2, dist, n, area);
     return true;
 }
 
 float pdf_emitter_triangle(Vec3 x, Vec3 p0, Vec3 p1, Vec3 p2, Vec3 n, float area, Vec3 y) {
     const SphericalTriangle spherical = spherical_triangle_to_sample(x, p0, p1, p2, n, area);
-    if (sample_by_solid_angle(spherical)) return static_cast<float>(1.0 / spherical.solid_angle);
+    if (in_solid_angle_range(spherical.solid_angle)) return static_cast<float>(1.0 / spherical.solid_angle);
     return area_to_solid_angle(x, y, n, area);
 }
 
@@ -168,16 +173,15 @@ bool sample_emitter_rectangle(const EmitterRectangle& r, Vec3 x, float u1, float
             return true;
         }
     }
-    // By area: pdf_A = 1/area, to solid angle d²/|cos θ_y| = d³/|n·(y − x)|.
+    // By area.
     y = r.corner + u1 * r.edge1 + u2 * r.edge2;
     const Vec3 to_light = y - x;
     const float dist2 = dot(to_light, to_light);
     if (!(dist2 > 0.0f) || !is_finite(y)) return false;
     const float dist = std::sqrt(dist2);
     wi = to_light / dist;
-    const float height_area = std::fabs(dot(r.unit_normal, to_light)) * r.area;
-    if (!(height_area > 0.0f)) return false;
-    pdf = dist2 * dist / height_area;
+    pdf = area_density(to_light, dist2, dist, r.unit_normal, r.area);
+    if (!(pdf > 0.0f)) return false;
     in_near = u1 + u2 <= 1.0f;
     return true;
 }
