@@ -104,6 +104,13 @@ inline bool transmits_diffusely(const Material& m) {
            (!(m.thickness > 0.0f) || m.ior > 1.0f) && m.roughness * m.roughness >= kDeltaAlpha;
 }
 
+// False when sample_bsdf's result does not depend on u_lobe for m (one
+// lobe, or a choice it makes by other means), so that a caller may leave
+// that random number uncomputed.
+inline bool uses_lobe_choice(const Material& m) {
+    return m.type == MaterialType::Phong || m.type == MaterialType::Dielectric || m.type == MaterialType::Pbr;
+}
+
 // The factor by which a transmission sampled by sample_bsdf at a point
 // whose wo is `outside` (BsdfPoint::outside) scales (η_i/η_t)²: what undoes
 // refraction's radiance scaling for Russian roulette. Dielectric and a

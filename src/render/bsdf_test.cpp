@@ -360,6 +360,38 @@ TEST(Bsdf, DeltaMaterials) {
     EXPECT_EQ(pdf_bsdf(conductor(Vec3{0.5f}, 0), kFlat, wo, s.wi), 0.0f);
 }
 
+TEST(Bsdf, MaterialsThatIgnoreTheLobeDrawSayTheyDo) {
+    // The path integrator leaves u_lobe uncomputed where uses_lobe_choice is
+    // false: sample_bsdf must then give the same sample for any u_lobe.
+    Material mirror{"m", MaterialType::Mirror, {}, {}, 1, {}};
+    mirror.kr = Vec3{0.9f};
+    const Material ignoring[] = {diffuse(Vec3{0.5f}), mirror, conductor(Vec3{0.8f}, 0.3f), conductor(Vec3{0.8f}, 0)};
+    for (const Material& m : ignoring) {
+        EXPECT_FALSE(uses_lobe_choice(m));
+        for (std::uint32_t i = 0; i < 256; ++i) {
+            const Vec3 wo = uniform_sphere(rnd(i, 1), rnd(i, 2));
+            const float u1 = rnd(i, 3), u2 = rnd(i, 4);
+            for (const BsdfPoint& p : {kFlat, kTilted}) {
+                BsdfSample a, b;
+                const bool sa = sample_bsdf(m, p, wo, 0.0f, u1, u2, a);
+                const bool sb = sample_bsdf(m, p, wo, 0x1.fffffep-1f, u1, u2, b);
+                ASSERT_EQ(sa, sb);
+                if (!sa) continue;
+                EXPECT_EQ(a.wi, b.wi);
+                EXPECT_EQ(a.weight, b.weight);
+                EXPECT_EQ(a.pdf, b.pdf);
+            }
+        }
+    }
+    // Phong chooses its lobe with it: a sample that differs exists.
+    const Material both = phong(Vec3{0.4f}, Vec3{0.4f}, 20);
+    EXPECT_TRUE(uses_lobe_choice(both));
+    BsdfSample a, b;
+    ASSERT_TRUE(sample_bsdf(both, kFlat, polar(30, 0), 0.0f, 0.3f, 0.6f, a));
+    ASSERT_TRUE(sample_bsdf(both, kFlat, polar(30, 0), 0x1.fffffep-1f, 0.3f, 0.6f, b));
+    EXPECT_NE(a.wi, b.wi);
+}
+
 TEST(Bsdf, EdgeCasesAreFinite) {
     const Material materials[] = {diffuse(Vec3{0.5f}),
                                   phong(Vec3{0.3f}, Vec3{0.6f}, 0),

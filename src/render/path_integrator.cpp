@@ -129,11 +129,10 @@ Vec3 trace_path_recorded(const IntegratorContext& ctx, const Ray& camera_ray, Sa
 
         SurfaceInteraction si = make_surface_interaction(scene, ray, hit);
         const float hit_distance = cone.active() ? hit.t * length(ray.dir) : 0.0f;
-        const Material& material =
-            needs_resolved_material(scene, si)
-                ? resolve_material(scene, si, textured ? *textured : textured.emplace(),
-                                   surface_footprint(cone, hit_distance, ray.dir, si.n_g))
-                : scene.materials[si.material];
+        const Material& material = needs_resolved_material(scene, si)
+                                       ? resolve_material(scene, si, textured ? *textured : textured.emplace(),
+                                                          surface_footprint(cone, hit_distance, ray.dir, si.n_g))
+                                       : scene.materials[si.material];
         const Vec3 wo = -normalize(ray.dir);
         // The segment just travelled ran inside the volume that the hit
         // surface bounds (KHR_materials_volume): Beer–Lambert along its length.
@@ -157,24 +156,30 @@ Vec3 trace_path_recorded(const IntegratorContext& ctx, const Ray& camera_ray, Sa
         }
 
         const BsdfPoint bsdf_point = make_bsdf_point(si.n_g, si.n_s, si.outside, si.n_c);
-        // Every vertex draws the same dimensions whether it uses them or
-        // not, so that dimension k means the same thing on every path.
-        const SampleStream::Pair u_light = samples.next_2d();
-        const float u_choice = samples.next_1d();
-        const SampleStream::Pair u_bsdf = samples.next_2d();
-        const float u_lobe = samples.next_1d();
-        const float u_roulette = samples.next_1d();
+        // Every vertex takes the same dimensions whether it uses them or
+        // not, so that dimension k means the same thing on every path; it
+        // computes only those it reads.
+        const SampleStream::Slot light_slot = samples.take_2d();
+        const SampleStream::Slot choice_slot = samples.take_1d();
+        const SampleStream::Slot bsdf_slot = samples.take_2d();
+        const SampleStream::Slot lobe_slot = samples.take_1d();
+        const SampleStream::Slot roulette_slot = samples.take_1d();
 
         const ShadingView view{si, material, bsdf_point, wo};
         if (!is_delta_bsdf(material)) {
             add_delta_lights(lights, *ctx.accel, si, material, bsdf_point, wo, beta, radiance, counters, recorder);
-            if (lights.has_sampled_lights() && ctx.strategy != LightStrategy::BsdfOnly)
-                radiance += beta * sample_one_light(ctx, view, u_choice, u_light, counters, recorder);
+            if (lights.has_sampled_lights() && ctx.strategy != LightStrategy::BsdfOnly) {
+                const SampleStream::Pair u_light = samples.read_2d(light_slot);
+                radiance +=
+                    beta * sample_one_light(ctx, view, samples.read_1d(choice_slot), u_light, counters, recorder);
+            }
         } else {
             recorder.delta_material();
         }
 
         BsdfSample bs;
+        const SampleStream::Pair u_bsdf = samples.read_2d(bsdf_slot);
+        const float u_lobe = uses_lobe_choice(material) ? samples.read_1d(lobe_slot) : 0.0f;
         if (!sample_bsdf(material, bsdf_point, wo, u_lobe, u_bsdf.u1, u_bsdf.u2, bs)) {
             recorder.bounce(nullptr, view, beta);
             recorder.end("the BSDF sampled no direction");
@@ -199,6 +204,7 @@ Vec3 trace_path_recorded(const IntegratorContext& ctx, const Ray& camera_ray, Sa
         if (depth + 1 > kRouletteStart) {
             const float q = roulette_survival(beta, eta_scale);
             if (q < 1.0f) {
+                const float u_roulette = samples.read_1d(roulette_slot);
                 const bool survived = !(u_roulette >= q);
                 if (survived) beta = beta / q;
                 recorder.roulette(q, u_roulette, survived, beta);

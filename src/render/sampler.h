@@ -237,24 +237,42 @@ struct SampleStream {
     sobol::Group group{};
     std::uint32_t shuffled = 0;
 
-    float next_1d() {
-        if (count <= 1) return hash_to_unit(index, dimension_key());
-        const std::uint32_t d = kPixelDimensions + dimension++;
-        select_group(d / sobol::kDimensions);
-        return group.value_at(shuffled, static_cast<int>(d % sobol::kDimensions));
-    }
-
+    // A draw's place in the stream. A path vertex takes the same dimensions
+    // whether it uses them or not (so that dimension k means the same thing
+    // on every path), but computes only the values it reads: read_1d and
+    // read_2d return what next_1d and next_2d would have returned at the
+    // take.
+    struct Slot {
+        std::uint32_t dimension;  // one sample: the draw's count; progressive: the stream dimension
+    };
     struct Pair {
         float u1, u2;
     };
-    Pair next_2d() {
-        if (count <= 1) return hashed_pair(dimension_key());
+
+    Slot take_1d() {
+        if (count <= 1) return {++dimension};
+        return {kPixelDimensions + dimension++};
+    }
+    Slot take_2d() {
+        if (count <= 1) return {++dimension};
         std::uint32_t d = kPixelDimensions + dimension;
         d = (d + sobol::kDimensions - 1) / sobol::kDimensions * sobol::kDimensions;  // the next group's (0, 1)
         dimension = d + 2 - kPixelDimensions;
-        select_group(d / sobol::kDimensions);
+        return {d};
+    }
+    float read_1d(Slot slot) {
+        if (count <= 1) return hash_to_unit(index, dimension_key(slot.dimension));
+        select_group(slot.dimension / sobol::kDimensions);
+        return group.value_at(shuffled, static_cast<int>(slot.dimension % sobol::kDimensions));
+    }
+    Pair read_2d(Slot slot) {
+        if (count <= 1) return hashed_pair(dimension_key(slot.dimension));
+        select_group(slot.dimension / sobol::kDimensions);
         return {group.value_at(shuffled, 0), group.value_at(shuffled, 1)};
     }
+
+    float next_1d() { return read_1d(take_1d()); }
+    Pair next_2d() { return read_2d(take_2d()); }
 
     // The thin lens's point (spec §17): a 2-D dimension of its own, keyed
     // apart from the sequence next_1d and next_2d walk (progressive: the
@@ -281,9 +299,8 @@ private:
         return {hash_to_unit(index, key), hash_to_unit(index, key ^ 0x368cc8b700000000ull)};
     }
 
-    std::uint64_t dimension_key() {
-        ++dimension;
-        return mix64(pixel_key ^ (static_cast<std::uint64_t>(dimension) * 0x9e3779b97f4a7c15ull));
+    std::uint64_t dimension_key(std::uint32_t draw) const {
+        return mix64(pixel_key ^ (static_cast<std::uint64_t>(draw) * 0x9e3779b97f4a7c15ull));
     }
 };
 

@@ -403,6 +403,40 @@ TEST(SampleStream, DeterministicAndDifferentPerSample) {
     EXPECT_NE(a1, c1);
 }
 
+TEST(SampleStream, ReadingATakenSlotGivesWhatTheDrawWouldHave) {
+    // A vertex takes five slots and reads some of them, in any order, or
+    // none: every value read, and every later draw, is what drawing them
+    // all in order gives. Both modes: progressive and one sample.
+    for (const std::uint32_t count : {1u, 64u}) {
+        for (std::uint32_t i = 0; i < 16; ++i) {
+            SampleStream drawn{pixel_key(3, 4, 5, 16), i, count};
+            SampleStream taken{pixel_key(3, 4, 5, 16), i, count};
+            for (int vertex = 0; vertex < 4; ++vertex) {
+                const SampleStream::Pair light = drawn.next_2d();
+                const float choice = drawn.next_1d();
+                const SampleStream::Pair bsdf = drawn.next_2d();
+                const float lobe = drawn.next_1d();
+                const float roulette = drawn.next_1d();
+                const SampleStream::Slot light_slot = taken.take_2d(), choice_slot = taken.take_1d(),
+                                         bsdf_slot = taken.take_2d(), lobe_slot = taken.take_1d(),
+                                         roulette_slot = taken.take_1d();
+                if (vertex % 2 == 0) {  // read backwards, the light's slots last
+                    EXPECT_EQ(taken.read_1d(roulette_slot), roulette);
+                    EXPECT_EQ(taken.read_1d(lobe_slot), lobe);
+                    const SampleStream::Pair b = taken.read_2d(bsdf_slot);
+                    EXPECT_EQ(b.u1, bsdf.u1);
+                    EXPECT_EQ(b.u2, bsdf.u2);
+                    EXPECT_EQ(taken.read_1d(choice_slot), choice);
+                    const SampleStream::Pair l = taken.read_2d(light_slot);
+                    EXPECT_EQ(l.u1, light.u1);
+                    EXPECT_EQ(l.u2, light.u2);
+                }  // odd vertices read nothing
+            }
+            EXPECT_EQ(taken.next_1d(), drawn.next_1d()) << count << " spp, sample " << i;
+        }
+    }
+}
+
 TEST(SampleStream, ChoicesAndTheirPointsAreStratifiedTogether) {
     // A vertex chooses an emitter (or a BSDF lobe) with a 1-D draw, then
     // samples it with a 2-D draw. Drawn right after the 2-D draw, the choice
