@@ -75,13 +75,27 @@ float area_to_solid_angle(Vec3 x, Vec3 y, Vec3 unit_normal, float area) {
 // error by solid angle). Sampling and density make the same choice.
 constexpr float kRectangleSolidAngleDistanceRatio2 = 16.0f;
 
+// EmitterRectangle::solid_angle_reach2 for a rectangle of diagonal d. With
+// the ratio k = d_far / d_near, d_far ≤ d_near + d gives d_near ≤ d/(k − 1),
+// and the centre lies within d_near + d/2 of x: beyond that the ratio
+// cannot be reached. 1 % more, so that rounding never turns away a point
+// the full test would take.
+float solid_angle_reach2(float diagonal) {
+    const float k = std::sqrt(kRectangleSolidAngleDistanceRatio2);
+    const float reach = 1.01f * diagonal * (1.0f / (k - 1.0f) + 0.5f);
+    return reach * reach;
+}
+
 bool solid_angle_pays(Vec3 x, const EmitterRectangle& r) {
+    const Vec3 from_centre = x - r.centre;
+    const float dist2 = dot(from_centre, from_centre);
+    // Most shading points are too far for the distance ratio below: one
+    // comparison instead of the whole test.
+    if (!(dist2 <= r.solid_angle_reach2)) return false;
     // The solid angle estimated from the centre, height · area / d³, at
     // least kMinSphericalSolidAngle, as for triangles; squared, so as to
     // need no root (a d³ past float's range is a far point: false).
-    const Vec3 from_centre = x - r.centre;
     const float height_area = dot(from_centre, r.unit_normal) * r.area;
-    const float dist2 = dot(from_centre, from_centre);
     constexpr auto kMin2 = static_cast<float>(kMinSphericalSolidAngle * kMinSphericalSolidAngle);
     if (!(height_area * height_area >= kMin2 * dist2 * dist2 * dist2)) return false;
     // The nearest and farthest points of the rectangle from x.
@@ -123,6 +137,7 @@ bool find_rectangle(const std::array<Vec3, 3>& a, const std::array<Vec3, 3>& b, 
     out.area = area;
     out.inv_length2_1 = 1.0f / dot(e1, e1);
     out.inv_length2_2 = 1.0f / dot(e2, e2);
+    out.solid_angle_reach2 = solid_angle_reach2(std::sqrt(l1 * l1 + l2 * l2));
     return true;
 }
 

@@ -23,6 +23,10 @@ struct EmitterRectangle {
     Vec3 centre;
     float area = 0;
     float inv_length2_1 = 0, inv_length2_2 = 0;  // 1/|edge1|², 1/|edge2|²: (s, t) of a point
+    // The squared distance from the centre beyond which a point is never
+    // sampled by solid angle (too far for the rectangle to span a wide
+    // range of distances from it).
+    float solid_angle_reach2 = 0;
     std::uint32_t near = 0;  // the emitter (index in LightSet::emitters) whose triangle has `corner`: s + t ≤ 1
     std::uint32_t far = 0;   // the other one
 };

@@ -5,10 +5,13 @@
 // far from it (χ² over sub-rectangles whose probabilities are known).
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
+#include <limits>
 #include <vector>
 
 #include "render/chi2_test_util.h"
+#include "render/emitter_sampling.h"
 #include "render/lights.h"
 #include "render/sampler.h"
 #include "render/spherical_triangle.h"
@@ -140,6 +143,38 @@ TEST(RectangleLights, NearPointsSampleItsSolidAngleAndFarOnesItsArea) {
               1e-3);
     // 30 below: every point of it nearly as far; uniform by area.
     EXPECT_GT(cells_p_value(scene, lights, {0.2f, -28, 0}, 20, [](Vec3, Vec3, Vec3) { return 1.0 / 64; }), 1e-3);
+}
+
+TEST(RectangleLights, TheReachShortcutChangesNoDensity) {
+    // solid_angle_pays turns away points farther from the centre than
+    // solid_angle_reach2 before its full test; the density must be the one
+    // the full test alone gives, for points around that reach, near and far.
+    const std::array<Vec3, 3> shapes[][2] = {
+        {{{{0, 0, 0}, {1, 0, 0}, {1, 0, 1}}}, {{{0, 0, 0}, {1, 0, 1}, {0, 0, 1}}}},              // a unit square
+        {{{{0, 0, 0}, {10, 0, 0}, {10, 0.1f, 0}}}, {{{0, 0, 0}, {10, 0.1f, 0}, {0, 0.1f, 0}}}},  // long and thin
+        {{{{0, 0, 0}, {1, 1, 0}, {1, 1, 2}}}, {{{0, 0, 0}, {1, 1, 2}, {0, 0, 2}}}},              // tilted
+    };
+    int by_solid_angle = 0;
+    for (const auto& shape : shapes) {
+        EmitterRectangle r;
+        ASSERT_TRUE(find_rectangle(shape[0], shape[1], r));
+        EmitterRectangle without_shortcut = r;
+        without_shortcut.solid_angle_reach2 = std::numeric_limits<float>::infinity();
+        const float reach = std::sqrt(r.solid_angle_reach2);
+        for (std::uint32_t i = 0; i < 4000; ++i) {
+            const float z = 1.0f - 2.0f * hash_to_unit(i, 1), phi = 6.2831853f * hash_to_unit(i, 2);
+            const float rho = std::sqrt(std::max(0.0f, 1.0f - z * z));
+            const Vec3 x =
+                r.centre + 1.3f * reach * hash_to_unit(i, 3) * Vec3{rho * std::cos(phi), rho * std::sin(phi), z};
+            const Vec3 y1 = r.corner + 0.2f * r.edge1 + 0.7f * r.edge2, y2 = r.corner + 0.9f * r.edge1 + 0.1f * r.edge2;
+            const float full1 = pdf_emitter_rectangle(without_shortcut, x, y1);
+            const float full2 = pdf_emitter_rectangle(without_shortcut, x, y2);
+            EXPECT_EQ(pdf_emitter_rectangle(r, x, y1), full1) << i;
+            EXPECT_EQ(pdf_emitter_rectangle(r, x, y2), full2) << i;
+            if (full1 == full2 && full1 > 0.0f) ++by_solid_angle;  // uniform over the solid angle
+        }
+    }
+    EXPECT_GT(by_solid_angle, 100);  // the points exercise both ways of sampling
 }
 
 }  // namespace
