@@ -74,8 +74,14 @@ struct LoadedMesh {
     std::vector<PunctualLight> lights;
     std::optional<ModelCamera> camera;
     // The file's node animations (glTF, spec §22), which the parts with
-    // `nodes` follow; none when the file has no animation.
+    // `nodes` follow; none when nothing the scene places moves.
     std::shared_ptr<const GltfNodeAnimation> animation{};
+    // With `animation`: per light, the animated node that carries it (-1:
+    // none) and the light in that node's coordinates; the camera's node
+    // when it is animated (-1: none). `lights` and `camera` are as at time 0.
+    std::vector<int> light_nodes{};
+    std::vector<PunctualLight> lights_in_nodes{};
+    int camera_node = -1;
 };
 
 // Reads an OBJ file and the MTL files it names (spec §5, §9). Polygons are

@@ -122,7 +122,21 @@ LoadedScene make_quicklook_scene(const std::filesystem::path& model, Diagnostics
             out.settings.height = static_cast<int>(std::clamp(height, 1.0f, static_cast<float>(kMaxImageSide)));
         }
     }
-    for (const PunctualLight& light : loaded.lights) builder.add_light(light);
+    for (std::size_t i = 0; i < loaded.lights.size(); ++i) {
+        // Lights and the camera on animated nodes follow them (spec §22).
+        if (animation && i < loaded.light_nodes.size() && loaded.light_nodes[i] >= 0)
+            animation->lights.push_back(AnimatedLight{static_cast<std::uint32_t>(builder.scene().lights.size()),
+                                                      loaded.lights_in_nodes[i],
+                                                      loaded.animation,
+                                                      static_cast<std::uint32_t>(loaded.light_nodes[i]),
+                                                      {},
+                                                      {},
+                                                      model.string()});
+        builder.add_light(loaded.lights[i]);
+    }
+    if (animation && loaded.camera && loaded.camera_node >= 0)
+        animation->node_camera =
+            AnimatedCamera{loaded.animation, static_cast<std::uint32_t>(loaded.camera_node), model.string()};
 
     // Far enough that the sphere fits the vertical field of view (the
     // horizontal one is wider for landscape images), with a 10 % margin.

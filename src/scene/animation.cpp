@@ -179,18 +179,46 @@ CameraSpec interpolate_camera(std::span<const CameraKey> keys, double time) {
     return camera;
 }
 
+namespace {
+
+// The view of a camera a glTF node carries (AnimatedCamera), computed as
+// the glTF loader places one (so that time 0 gives its camera bit for
+// bit): at the node's origin, along its −z, its +y made perpendicular to
+// that for up. `scene_name` and `moment` ("m.gltf: node 3: at 1.5 s") name
+// what fails.
+void place_node_camera(const Transform& world, CameraLookAt& view, const std::string& scene_name,
+                       const std::string& moment) {
+    const Vec3 origin = transform_point(world, Vec3{0.0f});
+    const Vec3 forward = normalize(transform_vector(world, Vec3{0, 0, -1}));
+    const Vec3 up = transform_vector(world, Vec3{0, 1, 0});
+    const Vec3 upright = normalize(up - dot(up, forward) * forward);
+    // A node scaled to nothing along an axis gives a zero vector, whose
+    // normalisation is not finite.
+    if (!is_finite(origin) || !is_finite(forward) || !is_finite(upright))
+        throw Error(scene_name, moment + " the camera's node has no frame (scaled to nothing, or not finite)");
+    view.origin = origin;
+    view.look_at = origin + forward;
+    view.up = upright;
+}
+
+}  // namespace
+
 void set_scene_time(Scene& scene, double time, const std::string& scene_name) {
     if (!scene.animation) return;
     const SceneAnimation& animation = *scene.animation;
     // A glTF file's parts share its animation: its nodes are evaluated once.
     const GltfNodeAnimation* evaluated = nullptr;
     std::vector<Transform> worlds;
+    const auto node_worlds = [&](const GltfNodeAnimation& gltf) -> const std::vector<Transform>& {
+        if (&gltf != evaluated) {
+            worlds = gltf_node_worlds(gltf, time);
+            evaluated = &gltf;
+        }
+        return worlds;
+    };
     for (const AnimatedObject& object : animation.objects) {
         const Transform keyed = interpolate_transform(object.keys, time);
-        if (object.gltf && object.gltf.get() != evaluated) {
-            worlds = gltf_node_worlds(*object.gltf, time);
-            evaluated = object.gltf.get();
-        }
+        if (object.gltf) node_worlds(*object.gltf);
         for (std::size_t k = 0; k < object.after.size(); ++k) {
             Instance& instance = scene.instances[object.first_instance + k];
             const Transform node = object.gltf ? compose(object.before[k], worlds[object.nodes[k]]) : object.before[k];
@@ -202,6 +230,20 @@ void set_scene_time(Scene& scene, double time, const std::string& scene_name) {
             throw Error(scene_name, object.name + "/transform: at " + std::to_string(time) +
                                         " s the interpolated transform is not invertible");
         }
+    }
+    for (const AnimatedLight& moving : animation.lights) {
+        Transform world = moving.gltf ? node_worlds(*moving.gltf)[moving.node] : Transform{};
+        if (!moving.keys.empty()) world = compose(world, interpolate_transform(moving.keys, time));
+        PunctualLight light = moving.local;
+        if (transform_light(light, compose(world, moving.after)) != LightPlacement::Ok)
+            throw Error(scene_name, moving.name + (moving.gltf ? ": node " + std::to_string(moving.node) : "") +
+                                        ": at " + std::to_string(time) + " s its light's placement is not finite");
+        scene.lights[moving.light] = light;
+    }
+    if (animation.node_camera && scene.camera.look_at) {
+        const AnimatedCamera& c = *animation.node_camera;
+        place_node_camera(node_worlds(*c.gltf)[c.node], *scene.camera.look_at, scene_name,
+                          c.file + ": node " + std::to_string(c.node) + ": at " + std::to_string(time) + " s");
     }
     if (animation.camera.empty()) return;
     const CameraSpec camera = interpolate_camera(animation.camera, time);

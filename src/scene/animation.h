@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "scene/gltf_animation.h"
+#include "scene/light.h"
 #include "scene/transform.h"
 
 namespace sombra {
@@ -53,11 +54,39 @@ struct AnimatedObject {
     std::string file{};                               // with `gltf`: the glTF file, for messages
 };
 
+// A light a model file places on something that moves (spec §22): a glTF
+// light whose node is animated, or any light of a scene object whose
+// transform is keyed. At each moment `local` is carried by its node's world
+// transform (with `gltf`; without, `local` is in the file's coordinates),
+// then the object's keyed transform (none: `keys` empty), then `after` (the
+// object's fixed transform and "instances" entry), into Scene::lights[light].
+struct AnimatedLight {
+    std::uint32_t light = 0;
+    PunctualLight local;
+    std::shared_ptr<const GltfNodeAnimation> gltf{};
+    std::uint32_t node = 0;
+    std::vector<TransformKey> keys{};
+    Transform after{};
+    std::string name{};  // for messages: the file, or the object's pointer
+};
+
+// The camera a glTF node carries when the node is animated (the quick look
+// of a glTF file): at each moment it stands at the node's origin, looking
+// along the node's −z with its +y up; the field of view stays the scene
+// camera's.
+struct AnimatedCamera {
+    std::shared_ptr<const GltfNodeAnimation> gltf;
+    std::uint32_t node = 0;
+    std::string file;  // for messages
+};
+
 struct SceneAnimation {
     double fps = 24;
     std::int64_t first_frame = 0, last_frame = 0;
     std::vector<AnimatedObject> objects;
     std::vector<CameraKey> camera;  // empty: the camera does not move
+    std::vector<AnimatedLight> lights{};
+    std::optional<AnimatedCamera> node_camera{};  // never with `camera` keys
 };
 
 // The keyed transform at `time`: the end keys hold outside their range.
@@ -76,8 +105,8 @@ struct PolarParts {
 PolarParts polar_decompose(const Transform& m);
 Transform compose_polar(const PolarParts& parts);
 
-// Moves `scene` to `time` seconds: its animated objects' instances and its
-// camera. Throws Error(scene_name, …) naming the object (and the glTF node)
+// Moves `scene` to `time` seconds: its animated objects' instances, its
+// lights that move and its camera. Throws Error(scene_name, …) naming the object (and the glTF node)
 // whose transform at that moment cannot be inverted.
 void set_scene_time(Scene& scene, double time, const std::string& scene_name);
 

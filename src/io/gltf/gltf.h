@@ -209,6 +209,15 @@ std::optional<PunctualLight> punctual_light(const tinygltf::Model& model, int in
 std::optional<ModelCamera> place_camera(const tinygltf::Model& model, int index, const Transform& world,
                                         const std::string& file, Diagnostics& diag);
 
+// The KHR_lights_punctual light that node `node` (index `node_index`)
+// carries, placed by the node's `world` transform, with `in_node` set to
+// the light in the node's own coordinates; none when the node carries no
+// light, or one of a type not rendered (counted in `skipped`). A light
+// placed where it is not finite is an error naming the node.
+std::optional<PunctualLight> place_light(const tinygltf::Model& model, const tinygltf::Node& node, int node_index,
+                                         const Transform& world, const std::string& file, Diagnostics& diag,
+                                         std::map<std::string, std::size_t>& skipped, PunctualLight& in_node);
+
 // T · R · S (glTF 2.0 §3.5.3) for the quaternion (x, y, z, w), normalised
 // here; nothing when its length is zero or not finite.
 std::optional<Transform> trs_transform(Vec3 translation, double x, double y, double z, double w, Vec3 scale);

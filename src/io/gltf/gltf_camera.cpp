@@ -1,6 +1,8 @@
-// A glTF camera placed by its node (spec §13, §24): perspective or
-// orthographic, in the file's coordinates.
+// What a glTF node carries besides a mesh, placed by the node (spec §13,
+// §16, §24): a camera, perspective or orthographic, and a
+// KHR_lights_punctual light, in the file's coordinates.
 #include <cmath>
+#include <map>
 #include <numbers>
 #include <string>
 
@@ -53,6 +55,30 @@ std::optional<ModelCamera> place_camera(const tinygltf::Model& model, int index,
         return std::nullopt;
     }
     return cam;
+}
+
+std::optional<PunctualLight> place_light(const tinygltf::Model& model, const tinygltf::Node& node, int node_index,
+                                         const Transform& world, const std::string& file, Diagnostics& diag,
+                                         std::map<std::string, std::size_t>& skipped, PunctualLight& in_node) {
+    const auto it = node.extensions.find(kLights);
+    if (it == node.extensions.end() || !it->second.IsObject()) return std::nullopt;
+    const std::string name = "node " + std::to_string(node_index);
+    const std::optional<int> index =
+        it->second.Has("light") ? value_int(it->second.Get("light"), 0, 1 << 30) : std::nullopt;
+    if (!index) throw Error(file, name + ": " + kLights + " names no light");
+    std::string type;
+    std::optional<PunctualLight> light = punctual_light(model, *index, file, type, diag);
+    if (!light) {
+        ++skipped[type + " lights"];
+        return std::nullopt;
+    }
+    in_node = *light;
+    switch (transform_light(*light, world)) {
+        case LightPlacement::Ok: break;
+        case LightPlacement::NonFinitePosition: throw Error(file, name + ": its light's position is not finite");
+        case LightPlacement::NonFiniteDirection: throw Error(file, name + ": its light's direction is not finite");
+    }
+    return light;
 }
 
 }  // namespace sombra::gltf

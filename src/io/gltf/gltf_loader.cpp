@@ -224,7 +224,8 @@ LoadedMesh load_gltf(const std::filesystem::path& path, Diagnostics& diag) {
 
     // Animations (spec §22): a node moves when a channel targets it or an
     // ancestor. What it draws is an instanced part (even when drawn once),
-    // placed as at time 0; so are its camera and lights.
+    // placed as at time 0; so are its camera and lights, which follow their
+    // nodes too (LoadedMesh::light_nodes, camera_node).
     std::vector<std::uint32_t> order;
     for (const NodePlacement& in : placements) order.push_back(std::uint32_t(in.node));
     std::shared_ptr<const GltfNodeAnimation> animation = gltf::read_animations(reader, order, skipped);
@@ -283,6 +284,10 @@ LoadedMesh load_gltf(const std::filesystem::path& path, Diagnostics& diag) {
     std::vector<PartBuild> parts;
     std::optional<std::pair<int, ModelCamera>> camera;  // the lowest camera index placed
     std::vector<PunctualLight> lights;
+    // What an animated node carries (LoadedMesh::light_nodes, camera_node).
+    std::vector<int> light_nodes;
+    std::vector<PunctualLight> lights_in_nodes;
+    int camera_node = -1;
     bool any_triangles = false;
     std::size_t clamped_colors = 0;
     std::size_t missing_texcoords = 0;  // primitives without a TEXCOORD_k their material's textures read
@@ -290,24 +295,16 @@ LoadedMesh load_gltf(const std::filesystem::path& path, Diagnostics& diag) {
         const tinygltf::Node& node = model.nodes[std::size_t(in.node)];
         if (node.skin >= 0) ++skipped["skins (the bind pose is used)"];
         if (node.camera >= 0 && (!camera || node.camera < camera->first))
-            if (std::optional<ModelCamera> c = gltf::place_camera(model, node.camera, world_of(in), file, diag))
+            if (std::optional<ModelCamera> c = gltf::place_camera(model, node.camera, world_of(in), file, diag)) {
                 camera = {node.camera, *c};
-        if (const auto it = node.extensions.find(gltf::kLights); it != node.extensions.end() && it->second.IsObject()) {
-            const std::optional<int> light =
-                it->second.Has("light") ? gltf::value_int(it->second.Get("light"), 0, 1 << 30) : std::nullopt;
-            if (!light) throw Error(file, node_name(in.node) + ": " + gltf::kLights + " names no light");
-            std::string type;
-            if (std::optional<PunctualLight> l = gltf::punctual_light(model, *light, file, type, diag)) {
-                switch (transform_light(*l, world_of(in))) {
-                    case LightPlacement::Ok: break;
-                    case LightPlacement::NonFinitePosition:
-                        throw Error(file, node_name(in.node) + ": its light's position is not finite");
-                    case LightPlacement::NonFiniteDirection:
-                        throw Error(file, node_name(in.node) + ": its light's direction is not finite");
-                }
-                lights.push_back(*l);
-            } else
-                ++skipped[type + " lights"];
+                camera_node = animated[std::size_t(in.node)] ? in.node : -1;
+            }
+        PunctualLight in_node;
+        if (std::optional<PunctualLight> l =
+                gltf::place_light(model, node, in.node, world_of(in), file, diag, skipped, in_node)) {
+            lights.push_back(*l);
+            light_nodes.push_back(animated[std::size_t(in.node)] ? in.node : -1);
+            lights_in_nodes.push_back(in_node);
         }
         if (node.mesh < 0 || !visible(in)) continue;
         auto [cached, first_use] = decoded.try_emplace(node.mesh);
@@ -392,8 +389,16 @@ LoadedMesh load_gltf(const std::filesystem::path& path, Diagnostics& diag) {
     gltf::apply_textures(model, path, materials.texture_refs, out.materials, out.textures, diag);
     out.lights = std::move(lights);
     if (camera) out.camera = camera->second;
+    const bool carried =
+        camera_node >= 0 || std::any_of(light_nodes.begin(), light_nodes.end(), [](int n) { return n >= 0; });
+    if (carried) {
+        out.light_nodes = std::move(light_nodes);
+        out.lights_in_nodes = std::move(lights_in_nodes);
+        out.camera_node = camera_node;
+    }
     const bool any_moving = std::any_of(out.instanced.begin(), out.instanced.end(),
-                                        [](const InstancedPart& p) { return !p.nodes.empty(); });
+                                        [](const InstancedPart& p) { return !p.nodes.empty(); }) ||
+                            carried;
     if (any_moving) out.animation = std::move(animation);
     return out;
 }

@@ -377,12 +377,23 @@ LoadedScene load_scene_text(const std::string& text, const fs::path& path, Diagn
             add_object(builder, *specs[i].given, specs[i], s, animation);
             continue;
         }
-        // Lights a glTF file places move with its object (§13, §16).
-        for (const PunctualLight& light : meshes[mesh_of[i]].lights) {
-            if (specs[i].instances.empty())
-                builder.add_light(placed_light(light, specs[i].transform, s, specs[i].pointer));
-            for (const Transform& instance : specs[i].instances)
-                builder.add_light(placed_light(light, compose(specs[i].transform, instance), s, specs[i].pointer));
+        // Lights a glTF file places move with its object (§13, §16), and on
+        // animated nodes or a keyed object with the clock (§22).
+        const LoadedMesh& file = meshes[mesh_of[i]];
+        for (std::size_t j = 0; j < file.lights.size(); ++j) {
+            const bool on_node = j < file.light_nodes.size() && file.light_nodes[j] >= 0;
+            const auto add = [&](const Transform* instance) {  // null: the object has no "instances"
+                const Transform placed = instance ? compose(specs[i].transform, *instance) : specs[i].transform;
+                if (on_node || !specs[i].keys.empty())
+                    animation.lights.push_back(AnimatedLight{
+                        static_cast<std::uint32_t>(builder.scene().lights.size()),
+                        on_node ? file.lights_in_nodes[j] : file.lights[j], on_node ? file.animation : nullptr,
+                        on_node ? static_cast<std::uint32_t>(file.light_nodes[j]) : 0u, specs[i].keys,
+                        specs[i].keys.empty() ? placed : (instance ? *instance : Transform{}), specs[i].pointer});
+                builder.add_light(placed_light(file.lights[j], placed, s, specs[i].pointer));
+            };
+            if (specs[i].instances.empty()) add(nullptr);
+            for (const Transform& instance : specs[i].instances) add(&instance);
         }
         add_object(builder, meshes[mesh_of[i]], specs[i], s, animation);
         // Free each file's mesh after its last object: peak memory stays near two copies.
@@ -391,7 +402,8 @@ LoadedScene load_scene_text(const std::string& text, const fs::path& path, Diagn
     for (std::size_t i = 0; i < quad_meshes.size(); ++i)
         add_object(builder, quad_meshes[i], quad_specs[i], s, animation);
     out.scene = builder.finish();
-    if (find_member(root, "animation") || !animation.objects.empty() || !animation.camera.empty()) {
+    if (find_member(root, "animation") || !animation.objects.empty() || !animation.camera.empty() ||
+        !animation.lights.empty()) {
         out.scene.animation = std::move(animation);
         // Placed as every later moment will be (glTF parts were placed as at
         // time 0), so that the first frame is the same scene however it is
