@@ -201,6 +201,12 @@ void place_node_camera(const Transform& world, CameraLookAt& view, const std::st
     view.up = upright;
 }
 
+// "NAME: " for an error about part NAME of the scene, or nothing when the
+// part is the scene itself (a glTF file's quick look).
+std::string part_name(const std::string& scene_name, const std::string& name) {
+    return name.empty() || name == scene_name ? std::string() : name + ": ";
+}
+
 }  // namespace
 
 void set_scene_time(Scene& scene, double time, const std::string& scene_name) {
@@ -236,14 +242,16 @@ void set_scene_time(Scene& scene, double time, const std::string& scene_name) {
         if (!moving.keys.empty()) world = compose(world, interpolate_transform(moving.keys, time));
         PunctualLight light = moving.local;
         if (transform_light(light, compose(world, moving.after)) != LightPlacement::Ok)
-            throw Error(scene_name, moving.name + (moving.gltf ? ": node " + std::to_string(moving.node) : "") +
-                                        ": at " + std::to_string(time) + " s its light's placement is not finite");
+            throw Error(scene_name, part_name(scene_name, moving.name) +
+                                        (moving.gltf ? "node " + std::to_string(moving.node) + ": " : "") + "at " +
+                                        std::to_string(time) + " s its light's placement is not finite");
         scene.lights[moving.light] = light;
     }
     if (animation.node_camera && scene.camera.look_at) {
         const AnimatedCamera& c = *animation.node_camera;
         place_node_camera(node_worlds(*c.gltf)[c.node], *scene.camera.look_at, scene_name,
-                          c.file + ": node " + std::to_string(c.node) + ": at " + std::to_string(time) + " s");
+                          part_name(scene_name, c.file) + "node " + std::to_string(c.node) + ": at " +
+                              std::to_string(time) + " s");
     }
     if (animation.camera.empty()) return;
     const CameraSpec camera = interpolate_camera(animation.camera, time);
