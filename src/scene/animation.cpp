@@ -181,26 +181,6 @@ CameraSpec interpolate_camera(std::span<const CameraKey> keys, double time) {
 
 namespace {
 
-// The view of a camera a glTF node carries (AnimatedCamera), computed as
-// the glTF loader places one (so that time 0 gives its camera bit for
-// bit): at the node's origin, along its −z, its +y made perpendicular to
-// that for up. `scene_name` and `moment` ("m.gltf: node 3: at 1.5 s") name
-// what fails.
-void place_node_camera(const Transform& world, CameraLookAt& view, const std::string& scene_name,
-                       const std::string& moment) {
-    const Vec3 origin = transform_point(world, Vec3{0.0f});
-    const Vec3 forward = normalize(transform_vector(world, Vec3{0, 0, -1}));
-    const Vec3 up = transform_vector(world, Vec3{0, 1, 0});
-    const Vec3 upright = normalize(up - dot(up, forward) * forward);
-    // A node scaled to nothing along an axis gives a zero vector, whose
-    // normalisation is not finite.
-    if (!is_finite(origin) || !is_finite(forward) || !is_finite(upright))
-        throw Error(scene_name, moment + " the camera's node has no frame (scaled to nothing, or not finite)");
-    view.origin = origin;
-    view.look_at = origin + forward;
-    view.up = upright;
-}
-
 // "NAME: " for an error about part NAME of the scene, or nothing when the
 // part is the scene itself (a glTF file's quick look).
 std::string part_name(const std::string& scene_name, const std::string& name) {
@@ -249,9 +229,13 @@ void set_scene_time(Scene& scene, double time, const std::string& scene_name) {
     }
     if (animation.node_camera && scene.camera.look_at) {
         const AnimatedCamera& c = *animation.node_camera;
-        place_node_camera(node_worlds(*c.gltf)[c.node], *scene.camera.look_at, scene_name,
-                          part_name(scene_name, c.file) + "node " + std::to_string(c.node) + ": at " +
-                              std::to_string(time) + " s");
+        CameraLookAt& view = *scene.camera.look_at;
+        Vec3 forward;
+        if (!gltf_camera_frame(node_worlds(*c.gltf)[c.node], view.origin, forward, view.up))
+            throw Error(scene_name, part_name(scene_name, c.file) + "node " + std::to_string(c.node) + ": at " +
+                                        std::to_string(time) +
+                                        " s the camera's node has no frame (scaled to nothing, or not finite)");
+        view.look_at = view.origin + forward;
     }
     if (animation.camera.empty()) return;
     const CameraSpec camera = interpolate_camera(animation.camera, time);

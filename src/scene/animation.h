@@ -106,8 +106,9 @@ PolarParts polar_decompose(const Transform& m);
 Transform compose_polar(const PolarParts& parts);
 
 // Moves `scene` to `time` seconds: its animated objects' instances, its
-// lights that move and its camera. Throws Error(scene_name, …) naming the object (and the glTF node)
-// whose transform at that moment cannot be inverted.
+// lights that move and its camera. Throws Error(scene_name, …) naming the
+// object (and the glTF node) whose transform at that moment cannot be
+// inverted, or whose light or camera loses its placement.
 void set_scene_time(Scene& scene, double time, const std::string& scene_name);
 
 }  // namespace sombra

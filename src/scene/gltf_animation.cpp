@@ -120,4 +120,13 @@ std::vector<Transform> gltf_node_worlds(const GltfNodeAnimation& animation, doub
     return world;
 }
 
+bool gltf_camera_frame(const Transform& world, Vec3& origin, Vec3& forward, Vec3& up) {
+    origin = transform_point(world, Vec3{0.0f});
+    forward = normalize(transform_vector(world, Vec3{0, 0, -1}));
+    const Vec3 node_up = transform_vector(world, Vec3{0, 1, 0});
+    up = normalize(node_up - dot(node_up, forward) * forward);
+    // A zero vector's normalisation is not finite.
+    return is_finite(origin) && is_finite(forward) && is_finite(up);
+}
+
 }  // namespace sombra

@@ -51,6 +51,14 @@ struct GltfNodeAnimation {
 // value; before the first and after the last key the end value holds.
 std::vector<Transform> gltf_node_worlds(const GltfNodeAnimation& animation, double time);
 
+// Where a camera that a glTF node carries stands and looks (glTF 2.0
+// §3.10): at the node's origin, along its −z, with its +y made
+// perpendicular to that for up (forward and up unit). False when the node
+// has no frame there (scaled to nothing along an axis, or not finite). The
+// loader and set_scene_time both place cameras so, so that time 0 gives
+// the same camera bit for bit.
+bool gltf_camera_frame(const Transform& world, Vec3& origin, Vec3& forward, Vec3& up);
+
 // One sampler's value at `time` into out[0 .. components): LINEAR rotations
 // by slerp on the shorter arc, rotations normalised.
 void sample_gltf(const GltfSampler& sampler, bool rotation, double time, double* out);

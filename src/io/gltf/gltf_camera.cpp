@@ -9,6 +9,7 @@
 #include "core/format.h"
 #include "io/gltf/gltf.h"
 #include "io/mesh_file.h"
+#include "scene/gltf_animation.h"
 
 namespace sombra::gltf {
 
@@ -29,11 +30,7 @@ std::optional<ModelCamera> place_camera(const tinygltf::Model& model, int index,
                               "/orthographic/ymag: the view's half-height must be a finite number above 0, got " +
                               format_number(c.orthographic.ymag));
     ModelCamera cam;
-    cam.origin = transform_point(world, Vec3{0.0f});
-    const Vec3 forward = transform_vector(world, Vec3{0, 0, -1});
-    const Vec3 up = transform_vector(world, Vec3{0, 1, 0});
-    cam.forward = normalize(forward);
-    cam.up = normalize(up - dot(up, cam.forward) * cam.forward);
+    const bool placed = gltf_camera_frame(world, cam.origin, cam.forward, cam.up);
     if (orthographic) {
         cam.ymag = static_cast<float>(c.orthographic.ymag);
         if (!std::isfinite(cam.ymag))
@@ -49,7 +46,7 @@ std::optional<ModelCamera> place_camera(const tinygltf::Model& model, int index,
             return std::nullopt;
         }
     }
-    if (!is_finite(cam.origin) || !is_finite(cam.forward) || !is_finite(cam.up)) {
+    if (!placed) {
         diag.warn(file, "camera " + std::to_string(index) +
                             " is unusable (its placement): the model is framed automatically");
         return std::nullopt;
