@@ -116,10 +116,8 @@ void update_instances(Accel& accel, const Scene& scene) {
 namespace {
 
 // The backends other than the BVH. Kept out of line: inlined into
-// intersect() and occluded(), the brute-force loop made GCC save six
-// registers on entry to every call, the BVH's included (about 16
-// instructions a shadow ray; docs/performance.md, "Direct render phase
-// against caae602").
+// intersect() and occluded(), the brute-force loop makes GCC save six
+// registers on entry to every call, the BVH's included.
 [[gnu::noinline]] bool intersect_other(const Accel& accel, const Ray& ray, Hit& hit) {
     if (!is_traceable(ray)) return false;
 #ifdef SOMBRA_HAVE_EMBREE

@@ -35,8 +35,8 @@ struct Hit {
     // The triangle's corners, triangle_corners(mesh, triangle), when the
     // backend has them at hand: the BVH copies them from the leaf it has just
     // tested, which saves shading four reads at random places in the mesh
-    // (the triangle's indices and three positions; optimisation log, step
-    // P31). The other backends leave has_corners false.
+    // (the triangle's indices and three positions). The other backends leave
+    // has_corners false.
     std::array<Vec3, 3> corners{};
     bool has_corners = false;
 };

@@ -178,8 +178,8 @@ bool intersect_bvh_with(const Bvh& bvh, const Filter& filter, const Ray& ray, Hi
     const RayLanes lanes = make_ray_lanes(ray.origin, ray.dir);
 
     // The closest hit so far, in registers: assigning a whole Hit (its
-    // corners zeroed) on each closer hit went through the stack, and reading
-    // it back stalled on store forwarding (4 % of the spheres scene's time).
+    // corners zeroed) on each closer hit goes through the stack, and reading
+    // it back stalls on store forwarding.
     ClosestHit best{ray.tmax, 0.0f, 0.0f, kNoHit};
     // Where the closest hit's corners lie: copied into `hit` once, at the end.
     const TriangleBlock* best_block = nullptr;
@@ -294,7 +294,7 @@ bool occluded_bvh_with(const Bvh& bvh, const Filter& filter, const Ray& ray) {
             int mask = enter_children(node, box_ray, ray.tmax, tnear);
             if (mask != 0) {
                 // Any order finds an occluder, and sorting costs more than it
-                // saves here (optimisation log, step 7): slot order.
+                // saves here: slot order.
                 const int first = __builtin_ctz(static_cast<unsigned>(mask));
                 mask &= mask - 1;
                 while (mask != 0) {

@@ -180,8 +180,8 @@ struct Builder {
 
 // The references of every triangle that can be hit, in mesh order: made in
 // parallel, then compacted in order. The array is not zeroed first: its
-// pages are first touched by the parallel pass (at 100 M triangles, zeroing
-// 3.4 GB on one thread, page faults included, took seconds); entries of
+// pages are first touched by the parallel pass (zeroing gigabytes on one
+// thread, page faults included, would take seconds); entries of
 // triangles that cannot be hit are never read.
 PrimRefArray make_prim_refs(const TriangleMesh& mesh) {
     const std::size_t count = mesh.triangles.size();

@@ -88,8 +88,8 @@ void write_slot(BvhWideNode& node, int i, Vec3 bmin, Vec3 bmax, std::uint32_t ch
 // halves' areas sum least (a ray entering the node tests each half with
 // probability about its area), the triangles ordered by centroid along the
 // leaf's widest axis, ties by index (deterministic); fills its two blocks
-// and its two slots. One axis, not three: the same SAH cost on the shared
-// models, for less build time (optimisation log, P16).
+// and its two slots. One axis, not three: the widest one gives splits about
+// as good, for less build time.
 void fill_split_leaf(const TriangleMesh& mesh, const std::uint32_t* order, const LeafBlocks& leaf,
                      TriangleBlock* blocks, BvhWideNode* nodes) {
     constexpr std::uint32_t kMax = kBvhMaxLeafSize;

@@ -4,9 +4,8 @@
 // all over a structure of tens of MB; with 4 KiB pages nearly every such read
 // also misses the TLB, and on a virtual machine each page walk is itself a
 // chain of cache misses. Embree does the same for its own arrays (its
-// "hugepages" option, on by default under Linux). The optimisation log in
-// docs/performance.md measures it. Allocation happens at build time only,
-// never per ray.
+// "hugepages" option, on by default under Linux). Allocation happens at
+// build time only, never per ray.
 #pragma once
 
 #include <cstddef>

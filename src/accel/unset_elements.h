@@ -3,8 +3,8 @@
 // types are aggregates of floats and integers (implicit-lifetime types, so
 // the memory holds them without a constructor call), and every element read
 // is written first. Zeroing them would make one thread fault in every page,
-// gigabytes at 100 M triangles, before the parallel pass that fills them
-// (docs/performance.md, optimisation log B8). Internal to src/accel.
+// gigabytes at 100 M triangles, before the parallel pass that fills them.
+// Internal to src/accel.
 #pragma once
 
 #include <new>

@@ -24,9 +24,9 @@ InterruptWatcher::InterruptWatcher(RenderProgress& progress) : progress_(progres
     pthread_sigmask(SIG_BLOCK, &blocked_, &previous_mask_);
     // The watcher sleeps in poll() on the blocked signals (a signalfd) and on
     // an eventfd the destructor writes to, so that a run ends the moment its
-    // work is done instead of waiting for a timed wait to run out (a 100 ms
-    // tick cost every run up to 0.1 s at exit). Without the descriptors
-    // (none left), it falls back to that timed wait.
+    // work is done instead of waiting up to a whole tick of a timed wait at
+    // exit. Without the descriptors (none left), it falls back to that timed
+    // wait.
     signal_fd_ = signalfd(-1, &blocked_, SFD_CLOEXEC);
     wake_fd_ = eventfd(0, EFD_CLOEXEC);
     thread_ = std::thread([this] { watch(); });

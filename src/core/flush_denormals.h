@@ -3,9 +3,7 @@
 // operand costs a microcode assist of a hundred cycles or more, and they
 // arise where no value of a picture needs them, e.g. in the unused lanes
 // of a packed division GCC makes of a Vec3 divided by a float, whose
-// contents are whatever the stack held. Measured in docs/performance.md
-// ("Denormals flushed"): up to 10 % of a path-traced Cornell box, varying
-// from build to build with the stack's leftovers.
+// contents are whatever the stack held.
 //
 // The bits are per thread: each stretch of rendering work (a tile, an
 // explained sample) sets them and restores the caller's on leaving, so

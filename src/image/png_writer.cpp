@@ -64,9 +64,9 @@ bool encode_png(std::FILE* out, png_uint_32 width, png_uint_32 height, png_bytep
     }
     png_set_user_limits(png, PNG_UINT_31_MAX, PNG_UINT_31_MAX);  // the PNG format's own limit
     png_init_io(png, out);
-    // Paeth filtering with zlib's run-length strategy: 4–8× faster than
-    // libpng's default (adaptive filters, zlib level 6) for files 1.05–1.16×
-    // its size on renders (docs/performance.md, "Writing PNG").
+    // Paeth filtering with zlib's run-length strategy: several times faster
+    // than libpng's default (adaptive filters, zlib level 6) on renders, for
+    // files only a little larger.
     png_set_filter(png, PNG_FILTER_TYPE_BASE, PNG_FILTER_PAETH);
     png_set_compression_strategy(png, Z_RLE);
     png_set_IHDR(png, info, width, height, 8, PNG_COLOR_TYPE_RGB, PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_DEFAULT,

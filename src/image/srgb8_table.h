@@ -1,6 +1,6 @@
 // Linear float → 8-bit sRGB code at the speed of two table lookups, exactly
-// as encode_srgb8 (writers.h) rounds. That function's pow() was more than
-// half of writing a PNG (docs/performance.md, "Writing PNG").
+// as encode_srgb8 (writers.h) rounds, without the pow() per channel that
+// would otherwise dominate writing a PNG.
 #pragma once
 
 #include <array>

@@ -53,11 +53,8 @@ public:
     // Pooled, because a stopping rule that reads only the pixel's own
     // samples stops it on a lucky streak (a few samples that missed a rare
     // bright path: low mean and low variance together) and darkens the
-    // image: on the Cornell box at T = 0.1, 1.4 % in a quadrant, z = −9.9
-    // against uniform sampling. Relative, so that a dark pixel beside a
-    // bright one is judged by the neighbours' noise in proportion to their
-    // brightness. With the 3 × 3 pool the same test gives −0.25 %, z = −1.7
-    // (docs/performance.md, "Adaptive sampling").
+    // image. Relative, so that a dark pixel beside a bright one is judged by
+    // the neighbours' noise in proportion to their brightness.
     double luminance_standard_error(int i, int j) const;
 
     // The AOVs asked for, as described at AovImages.

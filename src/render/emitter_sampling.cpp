@@ -12,14 +12,9 @@ namespace {
 
 // Triangles subtending a solid angle in this range (estimated first, see
 // spherical_triangle_to_sample) are sampled uniformly over it (spherical
-// triangles); outside it by area. Below the range d² and
-// cos θ vary little over the triangle, so area sampling is nearly as good
-// and cheaper: measured (docs/performance.md, "Sampling triangle lights"),
-// the Cornell box's light (about 0.02 sr per triangle from the floor) is
-// sampled better per second by area, the spheres scene's large quad light
-// (0.1–0.4 sr a triangle, before quads were sampled as rectangles) by
-// solid angle. Near 2π sr (x almost on the triangle)
-// Arvo's formulas lose precision.
+// triangles); outside it by area. Below the range d² and cos θ vary little
+// over the triangle, so area sampling is nearly as good and cheaper. Near
+// 2π sr (x almost on the triangle) Arvo's formulas lose precision.
 constexpr double kMinSphericalSolidAngle = 0.05;
 constexpr double kMaxSphericalSolidAngle = 6.0;
 
@@ -31,9 +26,8 @@ bool in_solid_angle_range(double omega) { return omega >= kMinSphericalSolidAngl
 // solid angle, or an empty one (solid angle 0: sampled by area). The choice
 // is made on the solid angle estimated from the centroid c, area · |cos θ_c|
 // / |x − c|², in float: building the spherical triangle (double precision,
-// atan2, asin) to decide was a tenth of the path-traced Cornell box's render
-// instructions, for the 5 % of its shading points that see the light above
-// kMinSphericalSolidAngle. Any choice that is a function of x and the
+// atan2, asin) only to decide would be paid at every shading point, though
+// few sample by solid angle. Any choice that is a function of x and the
 // triangle alone keeps the estimator unbiased, as long as sampling and
 // density (sample_emitter_triangle, pdf_emitter_triangle) make the same one.
 SphericalTriangle spherical_triangle_to_sample(Vec3 x, Vec3 p0, Vec3 p1, Vec3 p2, Vec3 unit_normal, float area) {
@@ -68,11 +62,8 @@ float area_to_solid_angle(Vec3 x, Vec3 y, Vec3 unit_normal, float area) {
 // from that density: the area
 // density's factor to solid angle, |cos θ_y|/d² = h/d³ (h the height of x
 // over the plane), varies over the rectangle as (d_far/d_near)³, 64-fold
-// from this ratio of squared distances on. Below it, sampling by area is a
-// tenth of the cost and nearly as good (docs/performance.md, "Quad lights
-// as rectangles": the spheres scene took 0.83 of the time for the same
-// error; a panel light a quarter of a unit above the floor has 0.6 of the
-// error by solid angle). Sampling and density make the same choice.
+// from this ratio of squared distances on. Below it, sampling by area is
+// far cheaper and nearly as good. Sampling and density make the same choice.
 constexpr float kRectangleSolidAngleDistanceRatio2 = 16.0f;
 
 // EmitterRectangle::solid_angle_reach2 for a rectangle of diagonal d. With

@@ -170,10 +170,9 @@ LightSet make_light_set(const Scene& scene, Environment environment, bool sample
             env_power = std::max(environment_power_proxy(lights.environment), 1e-12f) * kPi * r * r;
         } else {
             // A constant environment is what BSDF sampling finds best (the
-            // cosine lobe is its exact density on a diffuse surface); spending
-            // light samples on it by power took half of the spheres scene's
-            // and doubled its direct-light error (docs/performance.md). It
-            // keeps a small share so that both strategies still count it.
+            // cosine lobe is its exact density on a diffuse surface), so light
+            // samples spent on it by power are mostly wasted. It keeps a small
+            // share so that both strategies still count it.
             double emitters = 0;
             for (const float p : power) emitters += p;
             env_power = static_cast<float>(emitters * kConstantEnvironmentShare / (1.0 - kConstantEnvironmentShare));

@@ -26,10 +26,8 @@ constexpr int kRouletteStart = 3;
 
 // Russian roulette's survival probability for a path of throughput β (with
 // refraction's (η_i/η_t)² undone): the cube root of max(β), where the usual
-// max(β) ends paths whose later bounces still matter. Measured at equal time
-// against a linear q and square roots (docs/performance.md, "Russian
-// roulette"): 12 % less relMSE × seconds on the Cornell box, 11 % on the
-// spheres; a survivor's throughput β/q = max(β)^(2/3) stays below 1.
+// max(β) ends paths whose later bounces still matter; a survivor's
+// throughput β/q = max(β)^(2/3) stays below 1.
 float roulette_survival(Vec3 beta, float eta_scale) {
     return std::min(1.0f, std::cbrt(max_component(beta) * eta_scale));
 }
@@ -95,10 +93,8 @@ Vec3 trace_path_recorded(const IntegratorContext& ctx, const Ray& camera_ray, Sa
     RayCone cone =
         ctx.ray_cones ? camera_ray_cone(ctx.camera_pixel_area, camera_ray.dir, ctx.orthographic_camera) : RayCone{};
     // The hit's material when it has textures (render/shading.h), built on
-    // the first hit that needs one: copying a default Material (904 bytes)
-    // into every path was half a percent of an untextured render. (The
-    // optional's storage is still zero-filled per path, libstdc++ 12's way;
-    // a union that skips even that measured no faster.)
+    // the first hit that needs one, so that untextured paths never copy a
+    // whole default Material.
     std::optional<Material> textured;
     // The weight of an emitter or the environment reached by a BSDF-sampled
     // bounce whose density was bsdf_pdf, where next-event estimation would

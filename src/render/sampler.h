@@ -106,8 +106,8 @@ constexpr std::uint32_t reverse_bits(std::uint32_t x) {
 // kReversedNibbles.t[d][n][x] is the xor of reverse_bits(v[d][31 − (4n + j)])
 // over the set bits j of x (0 … 15), so that sample_reversed costs 8 table
 // lookups (2 KiB in all), where the bitwise product would cost 32
-// conditional xors on an effectively random index (mispredicted branches:
-// 2.3× the old sampler's render time when tried).
+// conditional xors on an effectively random index, whose branches
+// mispredict.
 struct ReversedNibbles {
     std::uint32_t t[kDimensions][kBits / 4][16];
 };

@@ -39,8 +39,8 @@ SphericalRectangle make_spherical_rectangle(Vec3 x, Vec3 corner, Vec3 edge1, Vec
     const double z0 = r.z0, z2 = z0 * z0;
     // Unit normals of the four planes through x and an edge (v00→v10,
     // v10→v11, v11→v01, v01→v00), in closed form, and the spherical
-    // rectangle's interior angles between them (acos measured cheaper here
-    // than atan2 of the sums' sines and cosines).
+    // rectangle's interior angles between them (acos is cheaper here than
+    // atan2 of the sums' sines and cosines).
     const double l0 = std::sqrt(z2 + r.y0 * r.y0), l1 = std::sqrt(z2 + r.x1 * r.x1);
     const double l2 = std::sqrt(z2 + r.y1 * r.y1), l3 = std::sqrt(z2 + r.x0 * r.x0);
     const Vec3d n0{0, z0 / l0, -r.y0 / l0}, n1{-z0 / l1, 0, r.x1 / l1};

@@ -96,8 +96,7 @@ struct TriangleMesh {
     // for a million triangles, before it reads the triangle's entries of
     // normal_indices and uv_indices, 12 MB each, at random; a scene mixing
     // meshes with and without normals or uvs would otherwise read both on
-    // every hit for nothing (optimisation log, step P32). Empty: not
-    // derived, and the indices are read.
+    // every hit for nothing. Empty: not derived, and the indices are read.
     std::vector<std::uint64_t> complete_normals;
     std::vector<std::uint64_t> complete_uvs;
 

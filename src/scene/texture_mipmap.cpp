@@ -52,7 +52,7 @@ TextureLevel half_level(const float* from, int width, int height, int channels) 
     if (width % 2 == 0 && height % 2 == 0) {
         // Both sides even (every level of a power-of-two texture): plain 2 × 2
         // averages, what the taps below give with all four weights ¼, without
-        // their bookkeeping per texel (performance.md: loading textures).
+        // their bookkeeping per texel.
         const std::size_t row = static_cast<std::size_t>(width) * c;
         tbb::parallel_for(tbb::blocked_range<int>(0, to.height, 16), [&](const tbb::blocked_range<int>& range) {
             for (int y = range.begin(); y < range.end(); ++y) {

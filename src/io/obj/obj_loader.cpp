@@ -2,8 +2,8 @@
 // reads the geometry; tinyobjloader's LoadMtl reads the MTL files it names
 // (MtlBesideObj below), whose parameters become sombra's diffuse, Phong,
 // mirror, dielectric and pbr materials; MeshBuilder (mesh_builder.h) splits polygons and drops what would
-// poison the renderer. tinyobjloader's LoadObj was replaced because parsing
-// was most of a run's time (docs/performance.md, "OBJ parser").
+// poison the renderer. The geometry has its own parser because tinyobjloader's
+// LoadObj is slow enough to dominate a run on large models.
 #include "io/mesh_file.h"
 
 #include <tiny_obj_loader.h>
