@@ -1,12 +1,14 @@
 // How to render (spec §2 "render", §10, §12): image size, samples, seed,
 // integrator and texture filter. The scene file's "render" section is read
 // into these (io/scene_json/scene_file.h returns them beside the Scene), and
-// the command line overrides them (app/prepare.h). Header-only: it is the
+// front ends override them (api/render_options.h). Header-only: it is the
 // one render/ header the readers include, and they need not link the renderer.
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <string>
+#include <string_view>
 
 #include "core/image_limits.h"
 
@@ -23,6 +25,24 @@ enum class TextureFilter {
     Bilinear,  // the default: bilinear at full resolution for every ray; supersampling antialiases
     Mipmap,    // trilinear in a mip pyramid at the level of the camera ray's cone footprint (render/ray_cone.h)
 };
+
+// The names scene files, the command line, Python and explain use for them.
+constexpr std::string_view integrator_name(IntegratorKind kind) {
+    return kind == IntegratorKind::Path ? "path" : "direct";
+}
+constexpr std::string_view texture_filter_name(TextureFilter filter) {
+    return filter == TextureFilter::Mipmap ? "mipmap" : "bilinear";
+}
+constexpr std::optional<IntegratorKind> parse_integrator(std::string_view name) {
+    if (name == "direct") return IntegratorKind::Direct;
+    if (name == "path") return IntegratorKind::Path;
+    return std::nullopt;
+}
+constexpr std::optional<TextureFilter> parse_texture_filter(std::string_view name) {
+    if (name == "bilinear") return TextureFilter::Bilinear;
+    if (name == "mipmap") return TextureFilter::Mipmap;
+    return std::nullopt;
+}
 
 struct RenderSettings {
     int width = 640;

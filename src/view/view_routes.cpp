@@ -55,7 +55,7 @@ json state_json(const ViewContext& c) {
             {"height", s.settings.height},
             {"spp", s.settings.spp},
             {"max_depth", s.settings.max_depth},
-            {"integrator", s.settings.integrator == IntegratorKind::Path ? "path" : "direct"},
+            {"integrator", integrator_name(s.settings.integrator)},
             {"exposure", c.exposure},
             {"camera", camera_state},
             {"frame", frame_json(c.live.latest())}};

@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <optional>
 
 #include "core/format.h"
 #include "core/vec3d.h"
@@ -156,24 +157,18 @@ RenderSettings read_render(const SceneJson& s, const Json& v, std::string_view p
     if (const Json* integrator = find_member(v, "integrator")) {
         const std::string p = json_child(pointer, "integrator");
         const std::string& name = read_string(s, *integrator, p);
-        if (name == "direct")
-            r.integrator = IntegratorKind::Direct;
-        else if (name == "path")
-            r.integrator = IntegratorKind::Path;
-        else
-            json_fail(s, p, "unknown integrator '" + name + "' (expected 'direct' or 'path')");
+        const std::optional<IntegratorKind> kind = parse_integrator(name);
+        if (!kind) json_fail(s, p, "unknown integrator '" + name + "' (expected 'direct' or 'path')");
+        r.integrator = *kind;
     }
     if (const Json* depth = find_member(v, "max_depth"))
         r.max_depth = static_cast<int>(read_integer(s, *depth, json_child(pointer, "max_depth"), 0, kMaxDepth));
     if (const Json* filter = find_member(v, "texture_filter")) {
         const std::string p = json_child(pointer, "texture_filter");
         const std::string& name = read_string(s, *filter, p);
-        if (name == "bilinear")
-            r.texture_filter = TextureFilter::Bilinear;
-        else if (name == "mipmap")
-            r.texture_filter = TextureFilter::Mipmap;
-        else
-            json_fail(s, p, "unknown texture filter '" + name + "' (expected 'bilinear' or 'mipmap')");
+        const std::optional<TextureFilter> filter_kind = parse_texture_filter(name);
+        if (!filter_kind) json_fail(s, p, "unknown texture filter '" + name + "' (expected 'bilinear' or 'mipmap')");
+        r.texture_filter = *filter_kind;
     }
     if (const std::string problem = render_settings_problem(r); !problem.empty()) json_fail(s, pointer, problem);
     return r;
