@@ -4,8 +4,10 @@
 #   cmake -DSRC=path/to/src -P tools/check-layering.cmake
 #
 # Each rule names a folder and the folders its code must not include: the
-# renderer's stages never reach the file readers (io/), and the scene model
-# includes nothing but core/ and itself. Test code is exempt, a file whose
+# renderer's stages never reach the file readers (io/) or the front ends;
+# the library API (api/) reads no file; the front ends (app/, python/,
+# view/) call the API, and neither Python nor the viewer reaches into the
+# command line (app/); the scene model includes nothing but core/ and itself. Test code is exempt, a file whose
 # name contains "test" (foo_test.cpp, test_meshes.h, chi2_test_util.h): a
 # test may read a scene file to render it, and its executable links
 # sombra_io for that. Fails, listing every offending line, when a rule is
@@ -17,13 +19,16 @@ if(NOT DEFINED SRC)
 endif()
 
 set(rules
-  "accel:io"
-  "render:io"
-  "explain:io"
-  "image:io"
-  "view:io,app"
-  "scene:io,accel,render,explain,image,app"
-  "core:scene,io,accel,render,explain,image,app")
+  "accel:io,api,distributed,view,python,app"
+  "render:io,api,distributed,view,python,app"
+  "explain:io,api,distributed,view,python,app"
+  "image:io,api,distributed,view,python,app"
+  "api:io,distributed,view,python,app"
+  "distributed:io,view,python,app"
+  "view:io,distributed,python,app"
+  "python:app,view,distributed"
+  "scene:io,accel,render,explain,image,api,distributed,view,python,app"
+  "core:scene,io,accel,render,explain,image,api,distributed,view,python,app")
 
 set(broken "")
 set(checked 0)

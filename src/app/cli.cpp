@@ -5,7 +5,7 @@
 #include <charconv>
 #include <filesystem>
 #include <iostream>
-#include <sstream>
+#include <type_traits>
 
 #include "accel/accel.h"
 #include "app/display_server.h"
@@ -19,11 +19,6 @@ namespace {
 // The most shards one render may be split into (spec §21): far more than a
 // cluster's nodes, far fewer than an image's blocks.
 constexpr int kMaxShards = 4096;
-
-// More workers than this is a typo, not a machine.
-constexpr int kMaxThreads = 4096;
-// Ten million seconds (116 days): more is a typo, and would overflow the clock's deadline.
-constexpr double kMaxTimeBudget = 1e7;
 
 std::string accel_list() {
     std::string names;
@@ -39,87 +34,117 @@ std::string one_line(std::string text) {
     return text;
 }
 
+// A number option checked by the library's own check (check_render_options)
+// on `set`'s field, so that its words are the same from every front end.
+template <class T, class Set>
+CLI::Validator library_check(Set set) {
+    return CLI::Validator(
+        [set](std::string& text) -> std::string {
+            T value{};
+            if (!CLI::detail::lexical_cast(text, value))
+                return std::string(std::is_integral_v<T> ? "must be a whole number" : "must be a number") + ", not '" +
+                       text + "'";
+            RenderOptions probe;
+            set(probe, value);
+            try {
+                check_render_options(probe);
+            } catch (const Error& e) {
+                return e.message();
+            }
+            return {};
+        },
+        "");
+}
+
+// A named option's value read by the library's own function (`read`, e.g.
+// integrator_option), whose message CLI11 reports for a name it refuses.
+template <class Read>
+CLI::Validator library_name_check(Read read) {
+    return CLI::Validator(
+        [read](std::string& text) -> std::string {
+            try {
+                read(text);
+            } catch (const Error& e) {
+                return e.message();
+            }
+            return {};
+        },
+        "");
+}
+
 // The options of §1 that decide what is rendered; `render` and `explain` share them.
 void add_render_options(CLI::App& command, CliOptions& o) {
-    command.add_option("--frame", o.frame, "Frame F of an animated scene (time F / fps, spec §22)")
-        ->check(CLI::Range(std::int64_t{0}, std::int64_t{1} << 31));
-    command.add_option("--width", o.width, "Image width in pixels (overrides the scene)");
-    command.add_option("--height", o.height, "Image height in pixels (overrides the scene)");
-    command.add_option("--spp", o.spp, "Samples per pixel (overrides the scene)");
-    command.add_option("--seed", o.seed, "Random seed, a non-negative integer (overrides the scene)")
+    RenderOptions& r = o.render;
+    command
+        .add_option("--frame", r.frame,
+                    "Frame F of an animated scene (time F / fps, spec §22), 0 to " + std::to_string(kMaxFrame))
+        ->check(library_check<std::int64_t>([](RenderOptions& p, std::int64_t v) { p.frame = v; }));
+    command.add_option("--width", r.overrides.width, "Image width in pixels (overrides the scene)");
+    command.add_option("--height", r.overrides.height, "Image height in pixels (overrides the scene)");
+    command.add_option("--spp", r.overrides.spp, "Samples per pixel (overrides the scene)");
+    command.add_option("--seed", r.overrides.seed, "Random seed, a non-negative integer (overrides the scene)")
         ->check(CLI::NonNegativeNumber);
-    command.add_option("--threads", o.threads, "Worker threads; 0 = all hardware threads")
-        ->check(CLI::Range(0, kMaxThreads))
+    command
+        .add_option("--threads", r.threads,
+                    "Worker threads, 0 to " + std::to_string(kMaxThreads) + "; 0 = all hardware threads")
+        ->check(library_check<int>([](RenderOptions& p, int v) { p.threads = v; }))
         ->capture_default_str();
     command.add_option("--exposure", o.exposure, "Multiply radiance by 2^E before PNG encoding")
         ->check(CLI::Number)
         ->capture_default_str();
-    command.add_option("--accel", o.accel, "Acceleration structure: " + accel_list())
-        ->check([](const std::string& name) {
-            return parse_accel_kind(name) ? std::string{}
-                                          : "unknown accelerator '" + name + "' (available: " + accel_list() + ")";
-        })
-        ->capture_default_str();
     command
-        .add_option("--integrator", o.integrator,
-                    "direct (point lights, spec §4) or path (path tracing; overrides the scene)")
-        ->check(CLI::IsMember({"direct", "path"}));
+        .add_option_function<std::string>(
+            "--accel", [&r](const std::string& name) { r.accel = accel_option(name); },
+            "Acceleration structure: " + accel_list())
+        ->check(library_name_check(accel_option))
+        ->default_str(std::string(accel_name(r.accel)));
     command
-        .add_option("--max-depth", o.max_depth,
+        .add_option_function<std::string>(
+            "--integrator", [&r](const std::string& name) { r.overrides.integrator = integrator_option(name); },
+            "direct (point lights, spec §4) or path (path tracing; overrides the scene)")
+        ->check(library_name_check(integrator_option));
+    command
+        .add_option("--max-depth", r.overrides.max_depth,
                     "Most scattering events on a path, 0 to 1024 (path; overrides the scene)")
-        ->check(CLI::Range(0, kMaxDepth));
+        ->check(library_check<int>([](RenderOptions& p, int v) { p.overrides.max_depth = v; }));
     command
-        .add_option("--light-tree", o.light_tree,
-                    "Choose emitters by a light tree: auto (from 8 emitters on), on, or off (in proportion to power)")
-        ->check(CLI::IsMember({"auto", "on", "off"}))
-        ->capture_default_str();
+        .add_option_function<std::string>(
+            "--light-tree", [&r](const std::string& name) { r.light_selection = light_selection_option(name); },
+            "Choose emitters by a light tree: auto (from 8 emitters on), on, or off (in proportion to power)")
+        ->check(library_name_check(light_selection_option))
+        ->default_str(std::string(light_selection_name(r.light_selection)));
     command
-        .add_option("--texture-filter", o.texture_filter,
-                    "Texture lookups: bilinear (full resolution, the default) or mipmap (by the ray's footprint; "
-                    "overrides the scene)")
-        ->check(CLI::IsMember({"bilinear", "mipmap"}));
+        .add_option_function<std::string>(
+            "--texture-filter",
+            [&r](const std::string& name) { r.overrides.texture_filter = texture_filter_option(name); },
+            "Texture lookups: bilinear (full resolution, the default) or mipmap (by the ray's footprint; "
+            "overrides the scene)")
+        ->check(library_name_check(texture_filter_option));
     command.add_flag("-q,--quiet", o.quiet, "No progress bar, no summary");
-}
-
-// A positive, finite number (CLI11's PositiveNumber lets "inf" through).
-CLI::Validator positive_finite(double most) {
-    return CLI::Validator(
-        [most](std::string& text) {
-            double value = 0;
-            if (!CLI::detail::lexical_cast(text, value) || !(value > 0.0) || !(value <= most))
-                return "must be a number above 0 and at most " + std::to_string(static_cast<long long>(most)) +
-                       ", not '" + text + "'";
-            return std::string{};
-        },
-        "POSITIVE");
 }
 
 // The render outputs of spec §18: time budget, adaptive sampling, AOVs.
 void add_output_options(CLI::App& render, CliOptions& o) {
+    RenderOptions& r = o.render;
     render
-        .add_option("--time", o.time_budget,
+        .add_option("--time", r.time_budget,
                     "Render passes until the next would end past SECONDS after the start (at least one pass)")
-        ->check(positive_finite(kMaxTimeBudget));
+        ->check(library_check<double>([](RenderOptions& p, double v) { p.time_budget = v; }));
     render
-        .add_option("--noise-threshold", o.noise_threshold,
+        .add_option("--noise-threshold", r.noise_threshold,
                     "Adaptive sampling: a pixel stops once the standard error of its mean luminance is at most "
                     "T times that mean")
-        ->check(positive_finite(1e6));
-    render.add_option("--min-spp", o.min_spp, "Adaptive sampling: samples every pixel takes before it may stop")
-        ->check(CLI::Range(1, kMaxSpp))
+        ->check(library_check<double>([](RenderOptions& p, double v) { p.noise_threshold = v; }));
+    render
+        .add_option("--min-spp", r.min_spp,
+                    "Adaptive sampling: samples every pixel takes before it may stop, 1 to " + std::to_string(kMaxSpp))
+        ->check(library_check<int>([](RenderOptions& p, int v) { p.min_spp = v; }))
         ->capture_default_str();
-    render.add_option_function<std::string>(
-        "--aov",
-        [&o](const std::string& list) {
-            std::string bad;
-            const std::optional<AovSet> set = parse_aov_list(list, bad);
-            if (!set)
-                throw CLI::ValidationError("--aov", "unknown AOV '" + bad +
-                                                        "' (expected a comma-separated list of albedo, normal, "
-                                                        "depth, position, spp)");
-            o.aovs = *set;
-        },
-        "Float layers added to an .exr output: any of albedo, normal, depth, position, spp, comma-separated");
+    render
+        .add_option_function<std::string>(
+            "--aov", [&r](const std::string& list) { r.aovs = aov_option(list); },
+            "Float layers added to an .exr output: any of albedo, normal, depth, position, spp, comma-separated")
+        ->check(library_name_check(aov_option));
     render
         .add_option("--display-server", o.display_server,
                     "Stream the image as it refines to the tev viewer listening at HOST:PORT (e.g. 127.0.0.1:14158)")
@@ -242,17 +267,17 @@ CliParse parse(int argc, const char* const* argv, std::ostream& out, std::ostrea
         err << "sombra: error: command line: " << problem << " (see 'sombra render --help')\n";
         return CliParse{std::nullopt, 2};
     };
-    if (o.frame && o.first_frame) return refuse("give --frame or --frames, not both");
+    if (o.render.frame && o.first_frame) return refuse("give --frame or --frames, not both");
     if (o.first_frame && o.output.find('#') == std::string::npos)
         return refuse("--frames needs '#' in the output name (out_####.png): each frame's number replaces them");
-    if (o.first_frame && o.time_budget)
+    if (o.first_frame && o.render.time_budget)
         return refuse("--frames and --time cannot go together: the budget is for one image");
     // With --frames, --shard splits the frames, and each is a whole image in any format.
     if (o.sharded && !o.first_frame) {
         const char* problem = nullptr;
         if (std::filesystem::path(o.output).extension() != ".exr")
             problem = "--shard writes an .exr (the shard's float pixels and what merging needs)";
-        else if (o.noise_threshold)
+        else if (o.render.noise_threshold)
             problem =
                 "--shard and --noise-threshold cannot go together: a pixel's stopping reads its neighbours, "
                 "which another shard renders";
@@ -261,7 +286,7 @@ CliParse parse(int argc, const char* const* argv, std::ostream& out, std::ostrea
             return {std::nullopt, 2};
         }
     }
-    if (o.aovs.any()) {
+    if (o.render.aovs.any()) {
         std::string ext = std::filesystem::path(o.output).extension().string();
         for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
         if (ext != ".exr") {
@@ -293,19 +318,5 @@ std::string frame_file_name(const std::string& output, std::int64_t frame) {
 }
 
 CliParse parse_command_line(int argc, const char* const* argv) { return parse(argc, argv, std::cout, std::cerr); }
-
-CliOptions parse_options(const std::string& command, const std::vector<std::string>& words) {
-    std::vector<const char*> argv{"sombra", command.c_str()};
-    for (const std::string& word : words) argv.push_back(word.c_str());
-    std::ostringstream out, err;
-    const CliParse parsed = parse(static_cast<int>(argv.size()), argv.data(), out, err);
-    if (parsed.options) return *parsed.options;
-    // The line without its frame: the caller is not at a command line.
-    std::string message = err.str().empty() ? out.str() : err.str();
-    const std::string prefix = "sombra: error: command line: ";
-    if (message.starts_with(prefix)) message.erase(0, prefix.size());
-    if (const std::size_t see = message.find(" (see 'sombra "); see != std::string::npos) message.erase(see);
-    throw Error("command line", one_line(message));
-}
 
 }  // namespace sombra

@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "render/aov_set.h"
+#include "api/render_options.h"
 
 namespace sombra {
 
@@ -22,28 +22,15 @@ struct CliOptions {
     Command command = Command::Render;
     std::string input;  // scene .json, or a model .obj/.ply/.gltf/.glb for the quick look
     std::string output = "render.png";
-    std::optional<int> width, height, spp;
-    std::optional<std::uint64_t> seed;
-    int threads = 0;     // 0 = all hardware threads
-    float exposure = 0;  // PNG only: radiance × 2^exposure
-    std::string accel = "bvh";
-    std::optional<std::string> integrator;      // "direct" or "path", overrides the scene
-    std::optional<int> max_depth;               // overrides the scene; checked against kMaxDepth
-    std::string light_tree = "auto";            // "auto", "on" or "off": how path chooses among emitters
-    std::optional<std::string> texture_filter;  // "bilinear" or "mipmap", overrides the scene
-    std::string stats_json;                     // empty = none
-    // Spec §18: a time budget in seconds, adaptive sampling and the AOVs.
-    std::optional<double> time_budget;
-    std::optional<double> noise_threshold;
-    int min_spp = 16;
-    AovSet aovs;
+    RenderOptions render;        // what is rendered and how: the library's options (api/render_options.h)
+    float exposure = 0;          // PNG only: radiance × 2^exposure
+    std::string stats_json;      // empty = none
     std::string display_server;  // --display-server HOST:PORT (tev); empty = none
     // --shard I/N (spec §21): render share I of N of the pixels; count 1 = all.
     int shard_index = 0, shard_count = 1;
     bool sharded = false;  // --shard given (0/1 included: a shard of one, for merge)
-    // Spec §22: one frame (time = frame / fps), or frames first … last
-    // written to the output name with its '#'s replaced by the frame number.
-    std::optional<std::int64_t> frame;
+    // Spec §22: frames first … last (render.frame is one frame), written to
+    // the output name with its '#'s replaced by the frame number.
     std::optional<std::int64_t> first_frame, last_frame;
     // sombra merge PART... -o OUT [--exposure E]
     std::vector<std::string> parts;
@@ -76,12 +63,5 @@ std::string frame_file_name(const std::string& output, std::int64_t frame);
 // Parses argv. Prints help/version to stdout and command-line errors as one
 // line "sombra: error: command line: ..." to stderr (exit code 2).
 CliParse parse_command_line(int argc, const char* const* argv);
-
-// The options of `sombra render` or `sombra explain` (`command`) given as the
-// words after the subcommand, checked exactly as the command line checks them,
-// printing nothing: the Python module's keyword arguments (spec §19) go
-// through here. Throws Error("command line", what) with the message the
-// command line would print.
-CliOptions parse_options(const std::string& command, const std::vector<std::string>& words);
 
 }  // namespace sombra

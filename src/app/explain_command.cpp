@@ -7,13 +7,15 @@
 #include <iostream>
 
 #include "accel/accel.h"
+#include "api/session.h"
 #include "app/interrupt.h"
-#include "app/prepare.h"
 #include "app/progress.h"
+#include "app/report.h"
 #include "app/run.h"
 #include "core/error.h"
 #include "explain/explain.h"
 #include "image/atomic_file.h"
+#include "io/scene_input.h"
 #include "render/render.h"
 
 namespace sombra {
@@ -32,22 +34,19 @@ void check_svg_path(const std::filesystem::path& path) {
 int run_explain(const CliOptions& o) {
     RenderProgress progress;
     InterruptWatcher interrupt(progress);  // first: before any other thread starts
-    return reporting_errors(o, [&] {
+    return reporting_errors(o.input, [&] {
         if (!o.svg.empty()) check_svg_path(o.svg);
         Diagnostics diag;
         LoadedScene input = load_input(o.input, diag);
         Scene& scene = input.scene;
-        const RenderSettings settings = resolve_settings(input.settings, o);
-        print_warnings(diag, scene, settings, o);
-        check_explain_pixel(o, settings);
-        prepare_textures(scene, settings);  // the lookups must be the render's
-        move_to_frame(scene, o);
+        const RenderSettings settings = resolve_settings(input.settings, o.render.overrides);
+        print_warnings(diag, scene, settings, o.input);
+        check_explain_pixel(o.pixel_x, o.pixel_y, o.sample, settings);
+        prepare_scene(scene, settings, o.render, o.input);
 
-        const Accel accel = make_accel(scene, *parse_accel_kind(o.accel));
-        const RenderJob job = make_render_job(scene, accel, settings, o.threads, light_selection(o));
-        SampleRecord record;
-        RayCounters counters;
-        trace_pixel_sample(job, o.pixel_x, o.pixel_y, o.sample, counters, record);
+        const Accel accel = make_accel(scene, o.render.accel);
+        const RenderJob job = make_job(scene, accel, settings, o.render, std::chrono::steady_clock::now());
+        const SampleRecord record = record_pixel_sample(job, o.pixel_x, o.pixel_y, o.sample);
 
         const ExplainContext context{scene, job, o.input};
         // The whole story is made before any of it is printed or written.

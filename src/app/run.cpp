@@ -12,16 +12,18 @@
 #include <vector>
 
 #include "accel/accel.h"
+#include "api/session.h"
 #include "app/display_server.h"
 #include "app/interrupt.h"
-#include "app/mpi_render.h"
-#include "app/prepare.h"
 #include "app/progress.h"
-#include "app/shards.h"
+#include "app/report.h"
 #include "app/stats.h"
 #include "core/error.h"
 #include "core/peak_rss.h"
+#include "distributed/mpi_render.h"
+#include "distributed/shards.h"
 #include "image/image_io.h"
+#include "io/scene_input.h"
 #include "render/render.h"
 
 namespace sombra {
@@ -73,15 +75,13 @@ int render_frame(const CliOptions& o, const Scene& scene, const Accel& accel, co
                  const std::filesystem::path& output, Clock::time_point start, InterruptWatcher& interrupt,
                  RenderProgress& progress, RunStats& stats, const MpiRun& mpi) {
     const bool distributed = mpi.active() && !o.first_frame;
-    RenderJob job = make_render_job(scene, accel, settings, o.threads, light_selection(o));
-    job.limits = sampling_limits(o, start);
-    job.aovs = o.aovs;
+    RenderJob job = make_job(scene, accel, settings, o.render, start);
     // With --frames, --shard splits frames, not pixels (spec §21).
     const bool pixel_shard = o.sharded && !o.first_frame;
     if (pixel_shard) job.shard = ShardSpec{o.shard_index, o.shard_count};
     // A shard's header says which share it is, of which render (spec §21).
     const std::vector<ImageAttribute> shard_header =
-        pixel_shard ? shard_attributes(o, settings) : std::vector<ImageAttribute>{};
+        pixel_shard ? shard_attributes(o.input, o.render, settings, job.shard) : std::vector<ImageAttribute>{};
     std::optional<DisplayConnection> display;
     if (!o.display_server.empty()) {
         display.emplace(*parse_display_address(o.display_server), output.filename().string(), settings.width,
@@ -116,7 +116,8 @@ int render_frame(const CliOptions& o, const Scene& scene, const Accel& accel, co
                 aov_layers(rendered.aovs), shard_header);
     stats.write_seconds += seconds_since(write_start);
 
-    stats.spp = o.time_budget && !o.spp ? static_cast<int>(rendered.max_pixel_spp) : settings.spp;
+    stats.spp =
+        o.render.time_budget && !o.render.overrides.spp ? static_cast<int>(rendered.max_pixel_spp) : settings.spp;
     stats.spp_uniform = rendered.min_pixel_spp == rendered.max_pixel_spp;
     stats.spp_reached =
         static_cast<double>(rendered.samples) / static_cast<double>(std::max<std::uint64_t>(rendered.pixels, 1));
@@ -127,6 +128,22 @@ int render_frame(const CliOptions& o, const Scene& scene, const Accel& accel, co
     stats.shadow_rays += rendered.counters.shadow_rays;
     stats.nonfinite_samples += rendered.counters.nonfinite_samples;
     return 0;
+}
+
+// Why `o` cannot run as K > 1 ranks, as a command-line problem (exit 2), or
+// nothing: --time and --noise-threshold on a still (a block would take the
+// budget, a stopping rule reads neighbours in other blocks), --shard,
+// --display-server, or a build without MPI.
+std::optional<std::string> mpi_option_problem(const CliOptions& o) {
+    if (!mpi_built()) return "this sombra was built without MPI: run it without mpirun, or rebuild with Open MPI";
+    if (o.sharded) return "--shard and mpirun cannot go together: mpirun already splits the work";
+    if (!o.display_server.empty()) return "--display-server and mpirun cannot go together";
+    if (!o.first_frame && o.render.time_budget)
+        return "--time and mpirun cannot go together on one image: the budget is per process (use --spp)";
+    if (!o.first_frame && o.render.noise_threshold)
+        return "--noise-threshold and mpirun cannot go together on one image: a pixel's stopping reads its "
+               "neighbours, which another rank renders (it works with --frames)";
+    return std::nullopt;
 }
 
 }  // namespace
@@ -142,7 +159,7 @@ std::vector<std::int64_t> frames_to_render(const CliOptions& o, const Scene& sce
         for (std::int64_t f = *o.first_frame + index; f <= *o.last_frame; f += step) frames.push_back(f);
         return frames;
     }
-    if (o.frame) return {*o.frame};
+    if (o.render.frame) return {*o.render.frame};
     return {scene.animation ? scene.animation->first_frame : 0};
 }
 
@@ -159,9 +176,9 @@ int run_render(const CliOptions& options) {
     }
     const MpiRun mpi;  // starts MPI only under a launcher
     CliOptions o = options;
-    o.threads = mpi.threads_per_rank(o.threads);
+    o.render.threads = mpi.threads_per_rank(o.render.threads);
     const bool writes = mpi.rank() == 0 || o.first_frame;  // under mpirun frames are written by their rank
-    const int exit_status = reporting_errors(o, [&] {
+    const int exit_status = reporting_errors(o.input, [&] {
         // Fail before a long render, not after it.
         if (writes) check_output_path(o.output);
         if (!o.stats_json.empty() && mpi.rank() == 0) check_side_file_path(o.stats_json);
@@ -173,9 +190,9 @@ int run_render(const CliOptions& options) {
         Scene& scene = input.scene;
         stats.load_seconds = seconds_since(load_start);
         // Under a time budget the scene's spp does not limit the passes; --spp does (spec §18).
-        const RenderSettings settings = resolve_render_settings(input.settings, o);
-        print_warnings(diag, scene, settings, o);
-        const AccelKind kind = *parse_accel_kind(o.accel);  // the command line checked the name
+        const RenderSettings settings = resolve_render_settings(input.settings, o.render);
+        print_warnings(diag, scene, settings, o.input);
+        const AccelKind kind = o.render.accel;
 
         const auto mipmap_start = Clock::now();
         prepare_textures(scene, settings);
@@ -222,12 +239,12 @@ int run_render(const CliOptions& options) {
         stats.processes = mpi.size();
         stats.width = settings.width;
         stats.height = settings.height;
-        stats.threads = o.threads > 0 ? o.threads : tbb::info::default_concurrency();
+        stats.threads = o.render.threads > 0 ? o.render.threads : tbb::info::default_concurrency();
         stats.accel = std::string(accel_name(kind));
         stats.accel_bytes = accel_memory_bytes(accel);
-        stats.integrator = settings.integrator == IntegratorKind::Path ? "path" : "direct";
+        stats.integrator = std::string(integrator_name(settings.integrator));
         stats.max_depth = settings.max_depth;
-        stats.texture_filter = settings.texture_filter == TextureFilter::Mipmap ? "mipmap" : "bilinear";
+        stats.texture_filter = std::string(texture_filter_name(settings.texture_filter));
         stats.peak_rss_bytes = peak_rss_bytes();
         stats.total_seconds = seconds_since(start);
         if (!o.stats_json.empty()) write_stats_json(o.stats_json, stats);

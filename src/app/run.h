@@ -24,6 +24,10 @@ int run_explain(const CliOptions& options);
 // for a wrong input or a port that cannot be bound.
 int run_view(const CliOptions& options);
 
+// Runs `sombra merge` (spec §21): joins o.parts into o.output. Exit status
+// 0, or 1 after one error line with nothing written.
+int run_merge(const CliOptions& options);
+
 // Parses the command line and runs it: what main() does.
 int run_sombra(int argc, const char* const* argv);
 

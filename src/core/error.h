@@ -23,6 +23,14 @@ private:
     std::string what_;
 };
 
+// `text` kept to one line whatever the paths in it hold: control characters
+// (a newline or NUL in a file name) are shown as '?'.
+inline std::string one_line_message(std::string text) {
+    for (char& c : text)
+        if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) c = '?';
+    return text;
+}
+
 // Non-fatal findings (a missing MTL file, clamped colours, dropped faces),
 // gathered while loading and printed by the app as "sombra: warning: WHERE: WHAT".
 struct Diagnostics {

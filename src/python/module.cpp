@@ -4,7 +4,6 @@
 
 #include <new>
 
-#include "app/prepare.h"
 #include "core/error.h"
 #include "python/py_bindings.h"
 
@@ -20,7 +19,7 @@ PYBIND11_MODULE(_sombra, m) {
         try {
             if (p) std::rethrow_exception(p);
         } catch (const sombra::Error& e) {
-            error(sombra::one_line(e.where() + ": " + e.message()).c_str());
+            error(sombra::one_line_message(e.where() + ": " + e.message()).c_str());
         }
     });
     sombra::python::bind_parts(m);

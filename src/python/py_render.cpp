@@ -1,7 +1,7 @@
-// sombra.render and sombra.explain: the command line's options parsed and
-// applied by its own code (app/cli.h, app/prepare.h), the render run by
-// render_image on a thread of its own while the caller's thread, holding the
-// GIL only briefly, watches for Ctrl-C and reports progress.
+// sombra.render and sombra.explain: the keyword options as the library's
+// typed options (python/py_options.h), the render run through the library
+// (api/session.h) on a thread of its own while the caller's thread, holding
+// the GIL only briefly, watches for Ctrl-C and reports progress.
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
@@ -13,11 +13,12 @@
 #include <vector>
 
 #include "accel/accel.h"
-#include "app/cli.h"
-#include "app/prepare.h"
+#include "api/session.h"
+#include "core/error.h"
 #include "explain/explain.h"
 #include "python/py_arrays.h"
 #include "python/py_bindings.h"
+#include "python/py_options.h"
 #include "python/py_scene.h"
 #include "render/render.h"
 
@@ -31,15 +32,6 @@ namespace {
 // spec §19 allows, and rare enough to cost nothing.
 constexpr std::chrono::milliseconds kPollInterval{50};
 
-CliOptions parse_with_input(const char* command, const PyScene& scene, const std::vector<std::string>& words) {
-    std::vector<std::string> argv{scene.source};
-    argv.insert(argv.end(), words.begin(), words.end());
-    return parse_options(command, argv);
-}
-
-// The scene, read-locked for a render; its mip pyramids built first (under
-// the write lock, once) when the settings ask for them, as prepare_textures
-// does for the command line.
 // A scene's render lock: shared, so renders of one scene run together;
 // but an animated scene is moved to the asked frame first (spec §22), and
 // holds its lock alone while it renders at that moment.
@@ -47,8 +39,10 @@ struct RenderLock {
     std::shared_lock<std::shared_mutex> shared;
     std::unique_lock<std::shared_mutex> alone;
 };
-RenderLock lock_at_frame(PyScene& scene, const RenderSettings& settings, const CliOptions& options);
+RenderLock lock_at_frame(PyScene& scene, const RenderSettings& settings, const RenderOptions& options);
 
+// The scene, read-locked for a render; its mip pyramids built first (under
+// the write lock, once) when the settings ask for them.
 std::shared_lock<std::shared_mutex> lock_for_render(PyScene& scene, const RenderSettings& settings) {
     if (settings.texture_filter == TextureFilter::Mipmap) {
         const std::unique_lock write(scene.access);
@@ -60,14 +54,14 @@ std::shared_lock<std::shared_mutex> lock_for_render(PyScene& scene, const Render
     return std::shared_lock(scene.access);
 }
 
-RenderLock lock_at_frame(PyScene& scene, const RenderSettings& settings, const CliOptions& options) {
+RenderLock lock_at_frame(PyScene& scene, const RenderSettings& settings, const RenderOptions& options) {
     if (!scene.loaded.scene.animation) return {lock_for_render(scene, settings), {}};
     std::unique_lock alone(scene.access);
     if (settings.texture_filter == TextureFilter::Mipmap && !scene.mip_pyramids_built) {
         prepare_textures(scene.loaded.scene, settings);
         scene.mip_pyramids_built = true;
     }
-    move_to_frame(scene.loaded.scene, options);
+    move_to_frame(scene.loaded.scene, options.frame, scene.source);
     return {{}, std::move(alone)};
 }
 
@@ -107,10 +101,9 @@ void run_watched(Work&& work, RenderProgress& watched, std::uint64_t total, cons
     if (!progress.is_none()) progress(watched.samples_done.load(), total);
 }
 
-py::object render(const std::shared_ptr<PyScene>& scene, const std::vector<std::string>& words,
-                  const py::object& progress) {
+py::object render(const std::shared_ptr<PyScene>& scene, const py::dict& options, const py::object& progress) {
     const auto start = std::chrono::steady_clock::now();
-    const CliOptions o = parse_with_input("render", *scene, words);
+    const RenderOptions o = render_options_from(options);
     const RenderSettings settings = resolve_render_settings(scene->loaded.settings, o);
     RenderProgress watched;
     RenderOutput rendered;
@@ -120,11 +113,8 @@ py::object render(const std::shared_ptr<PyScene>& scene, const std::vector<std::
         [&] {
             const RenderLock lock = lock_at_frame(*scene, settings, o);
             const Scene& s = scene->loaded.scene;
-            const Accel accel = make_accel(s, *parse_accel_kind(o.accel));  // the parser checked the name
-            RenderJob job = make_render_job(s, accel, settings, o.threads, light_selection(o));
-            job.limits = sampling_limits(o, start);
-            job.aovs = o.aovs;
-            rendered = render_image(job, watched);
+            const Accel accel = make_accel(s, o.accel);
+            rendered = render_image(make_job(s, accel, settings, o, start), watched);
         },
         watched, total, progress);
     const py::ssize_t w = settings.width, h = settings.height;
@@ -147,26 +137,30 @@ py::object render(const std::shared_ptr<PyScene>& scene, const std::vector<std::
     return out;
 }
 
-std::string explain(const std::shared_ptr<PyScene>& scene, const std::vector<std::string>& words) {
-    const CliOptions o = parse_with_input("explain", *scene, words);
-    const RenderSettings settings = resolve_settings(scene->loaded.settings, o);
-    check_explain_pixel(o, settings);
+std::string explain(const std::shared_ptr<PyScene>& scene, const py::int_& column, const py::int_& row,
+                    const py::int_& sample_index, const py::dict& options) {
+    const int x = int_value(column), y = int_value(row), sample = int_value(sample_index);
+    const RenderOptions o = render_options_from(options);
+    const RenderSettings settings = resolve_settings(scene->loaded.settings, o.overrides);
+    // A pixel beyond int's range is outside every image; the message shows it as given.
+    if (!py::int_(x).equal(column) || !py::int_(y).equal(row))
+        throw Error("pixel (" + std::string(py::repr(column)) + ", " + std::string(py::repr(row)) + ")",
+                    "outside the " + std::to_string(settings.width) + "x" + std::to_string(settings.height) + " image");
+    check_explain_pixel(x, y, sample, settings);
     py::gil_scoped_release release;
     const RenderLock lock = lock_at_frame(*scene, settings, o);
     const Scene& s = scene->loaded.scene;
-    const Accel accel = make_accel(s, *parse_accel_kind(o.accel));
-    const RenderJob job = make_render_job(s, accel, settings, o.threads, light_selection(o));
-    SampleRecord record;
-    RayCounters counters;
-    trace_pixel_sample(job, o.pixel_x, o.pixel_y, o.sample, counters, record);
+    const Accel accel = make_accel(s, o.accel);
+    const RenderJob job = make_job(s, accel, settings, o, std::chrono::steady_clock::now());
+    const SampleRecord record = record_pixel_sample(job, x, y, sample);
     return explain_json(ExplainContext{s, job, scene->source}, record);
 }
 
 }  // namespace
 
 void bind_render(py::module_& m) {
-    m.def("render", &render, py::arg("scene"), py::arg("words"), py::arg("progress") = py::none());
-    m.def("explain", &explain, py::arg("scene"), py::arg("words"));
+    m.def("render", &render, py::arg("scene"), py::arg("options"), py::arg("progress") = py::none());
+    m.def("explain", &explain, py::arg("scene"), py::arg("x"), py::arg("y"), py::arg("sample"), py::arg("options"));
 }
 
 }  // namespace sombra::python

@@ -1,6 +1,6 @@
 // sombra.Scene and how one is read: a scene file or model (load) or scene
 // JSON text (load_text, which Scene.from_dict sends its dict through), with
-// the overrides checked as the command line checks them.
+// the overrides checked as the command line checks them (python/py_options.h).
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
@@ -8,10 +8,10 @@
 #include <string>
 #include <vector>
 
-#include "app/cli.h"
-#include "app/prepare.h"
+#include "io/scene_input.h"
 #include "io/scene_json/scene_file.h"
 #include "python/py_bindings.h"
+#include "python/py_options.h"
 #include "python/py_scene.h"
 
 namespace py = pybind11;
@@ -20,17 +20,10 @@ namespace sombra::python {
 
 namespace {
 
-// The overrides, command-line words ("--spp=4") after the input, checked
-// before the (possibly long) load as the command line checks them.
-CliOptions overrides(const std::string& source, const std::vector<std::string>& words) {
-    std::vector<std::string> argv{source};
-    argv.insert(argv.end(), words.begin(), words.end());
-    return parse_options("render", argv);
-}
-
+// The overrides are converted and checked before the (possibly long) load.
 template <class Read>
-std::shared_ptr<PyScene> read_scene(const std::string& source, const std::vector<std::string>& words, Read&& read) {
-    const CliOptions options = overrides(source, words);
+std::shared_ptr<PyScene> read_scene(const std::string& source, const py::dict& overrides, Read&& read) {
+    const RenderOptions options = render_options_from(overrides);
     Diagnostics diag;
     LoadedScene loaded;
     {
@@ -38,25 +31,24 @@ std::shared_ptr<PyScene> read_scene(const std::string& source, const std::vector
         loaded = read(diag);
     }
     auto scene = std::make_shared<PyScene>();
-    scene->loaded.settings = resolve_settings(loaded.settings, options);
+    scene->loaded.settings = resolve_settings(loaded.settings, options.overrides);
     scene->loaded.scene = std::move(loaded.scene);
     scene->source = source;
     scene->warnings = diag.warnings;
     return scene;
 }
 
-std::shared_ptr<PyScene> load(const std::string& path, const std::vector<std::string>& words) {
-    return read_scene(path, words, [&path](Diagnostics& diag) { return load_input(path, diag); });
+std::shared_ptr<PyScene> load(const std::string& path, const py::dict& overrides) {
+    return read_scene(path, overrides, [&path](Diagnostics& diag) { return load_input(path, diag); });
 }
 
 // `name` names the text in messages; its folder anchors relative mesh paths.
 // `meshes`: those the text's objects name as {"mesh": i} (a scene from code).
-std::shared_ptr<PyScene> load_text(const std::string& text, const std::string& name,
-                                   const std::vector<std::string>& words,
+std::shared_ptr<PyScene> load_text(const std::string& text, const std::string& name, const py::dict& overrides,
                                    const std::vector<std::shared_ptr<LoadedMesh>>& meshes) {
     std::vector<const LoadedMesh*> given;
     for (const auto& m : meshes) given.push_back(m.get());
-    return read_scene(name, words, [&](Diagnostics& diag) { return load_scene_text(text, name, diag, given); });
+    return read_scene(name, overrides, [&](Diagnostics& diag) { return load_scene_text(text, name, diag, given); });
 }
 
 }  // namespace
@@ -67,9 +59,9 @@ py::dict settings_dict(const RenderSettings& r) {
     d["height"] = r.height;
     d["spp"] = r.spp;
     d["seed"] = r.seed;
-    d["integrator"] = r.integrator == IntegratorKind::Path ? "path" : "direct";
+    d["integrator"] = std::string(integrator_name(r.integrator));
     d["max_depth"] = r.max_depth;
-    d["texture_filter"] = r.texture_filter == TextureFilter::Mipmap ? "mipmap" : "bilinear";
+    d["texture_filter"] = std::string(texture_filter_name(r.texture_filter));
     return d;
 }
 
@@ -111,8 +103,8 @@ void bind_scene(py::module_& m) {
         .def_property_readonly("triangle_count", [](const PyScene& s) { return stored_triangle_count(s.loaded.scene); })
         .def_property_readonly("instanced_triangle_count",
                                [](const PyScene& s) { return drawn_triangle_count(s.loaded.scene); });
-    m.def("load", &load, py::arg("path"), py::arg("words"));
-    m.def("load_text", &load_text, py::arg("text"), py::arg("name"), py::arg("words"),
+    m.def("load", &load, py::arg("path"), py::arg("overrides"));
+    m.def("load_text", &load_text, py::arg("text"), py::arg("name"), py::arg("overrides"),
           py::arg("meshes") = std::vector<std::shared_ptr<LoadedMesh>>{});
 }
 

@@ -90,7 +90,7 @@ struct RenderJob {
     ShardSpec shard;  // the pixels to render; the others stay black with no samples
     // Set: only the window's pixels, each exactly as in the whole image, and
     // the output (film, AOVs, counts) is the window's size: one block of an
-    // MPI render (app/mpi_render.cpp). Not with a shard or a noise threshold.
+    // MPI render (distributed/mpi_render.cpp). Not with a shard or a noise threshold.
     std::optional<PixelWindow> window;
     // Called on the render's thread after each pass that ran to its end (not
     // after a cancelled one) with what the passes have gathered and the

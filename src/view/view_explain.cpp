@@ -9,6 +9,7 @@
 #include <optional>
 #include <string>
 
+#include "api/session.h"
 #include "explain/explain.h"
 #include "view/query_values.h"
 #include "view/view_context.h"
@@ -32,9 +33,7 @@ void explain_pixel(ViewContext& c, const httplib::Request& req, httplib::Respons
         return;
     }
     const RenderJob job = c.live.job_for(s);
-    SampleRecord record;
-    RayCounters counters;
-    trace_pixel_sample(job, *x, *y, *sample, counters, record);
+    const SampleRecord record = record_pixel_sample(job, *x, *y, *sample);
     const ExplainContext context{c.scene, job, c.scene_file};
 
     std::shared_ptr<const Film> image = c.live.latest().image;

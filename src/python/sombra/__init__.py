@@ -21,7 +21,7 @@ from typing import Any, Sequence, Union
 import numpy as np
 
 from . import _sombra
-from ._options import _RENDER_OPTIONS, _RUN_OPTIONS, _SCENE_OPTIONS, PathLike, Progress, _path, _words
+from ._options import _RENDER_OPTIONS, _RUN_OPTIONS, _SCENE_OPTIONS, PathLike, Progress, _options, _path
 from ._progress import Bar as _Bar
 from ._scene import Scene
 
@@ -43,7 +43,7 @@ def load(path: PathLike, **overrides: Any) -> Scene:
     The reader's warnings are issued as RuntimeWarning.
     Raises Error for a file that is missing or wrong.
     """
-    return Scene._wrap(_sombra.load(_path(path, "load"), _words("load", overrides, _SCENE_OPTIONS)))
+    return Scene._wrap(_sombra.load(_path(path, "load"), _options("load", overrides, _SCENE_OPTIONS)))
 
 
 def _scene_impl(scene: Any, function: str) -> Any:
@@ -80,13 +80,13 @@ def render(scene: Scene, *, aov: Union[Sequence[str], str, None] = None, progres
     within a second.
     """
     impl = _scene_impl(scene, "render")
-    words = _words("render", options, _RENDER_OPTIONS)
+    checked = _options("render", options, _RENDER_OPTIONS)
     if aov is not None:
         names = [aov] if isinstance(aov, str) else aov
         if not isinstance(names, (list, tuple)) or not all(isinstance(n, str) for n in names):
             raise TypeError("render(): aov must be a list of str (albedo, normal, depth, position, spp)")
         if names:
-            words += ["--aov=" + ",".join(names), "--output=python.exr"]
+            checked["aov"] = list(names)
     bar = None
     if progress is True:
         bar = progress = _Bar.for_here()
@@ -95,7 +95,7 @@ def render(scene: Scene, *, aov: Union[Sequence[str], str, None] = None, progres
     elif progress is not None and not callable(progress):
         raise TypeError("render(): progress must be True, False, None or a callable(done, total)")
     try:
-        out = _sombra.render(impl, words, progress)
+        out = _sombra.render(impl, checked, progress)
     finally:
         if bar is not None:
             bar.close()
@@ -117,8 +117,7 @@ def explain(scene: Scene, x: int, y: int, sample: int = 0, **options: Any) -> di
     for name, value in (("x", x), ("y", y), ("sample", sample)):
         if isinstance(value, bool) or not isinstance(value, int):
             raise TypeError(f"explain(): {name} must be int, not {type(value).__name__}")
-    words = _words("explain", options, _RUN_OPTIONS) + [f"--sample={sample}", "--", str(x), str(y)]
-    return json.loads(_sombra.explain(impl, words))
+    return json.loads(_sombra.explain(impl, x, y, sample, _options("explain", options, _RUN_OPTIONS)))
 
 
 def write_image(path: PathLike, array: np.ndarray, exposure: float = 0) -> None:

@@ -1,5 +1,6 @@
-"""The keyword options of sombra's functions as command-line words, and
-the small conversions every function shares (private to the package)."""
+"""The keyword options of sombra's functions, type-checked for the compiled
+module (which checks their values as the command line does), and the small
+conversions every function shares (private to the package)."""
 
 from __future__ import annotations
 
@@ -16,7 +17,8 @@ PathLike = Union[str, "os.PathLike[str]"]
 Progress = Union[bool, Callable[[int, int], Any], None]
 
 # keyword → (command-line option, the Python types it takes). bool is refused
-# where a number is asked for, though Python counts it an int.
+# where a number is asked for, though Python counts it an int. The option's
+# name is what errors about its value say, as on the command line.
 _INT = (int,)
 _NUMBER = (int, float)
 _STR = (str,)
@@ -44,20 +46,20 @@ _RENDER_OPTIONS = {
 }
 
 
-def _words(function: str, options: Mapping[str, Any], table: Mapping[str, tuple]) -> list[str]:
-    """The keyword options as command-line words ("--spp=64"), types checked."""
-    words = []
+def _options(function: str, options: Mapping[str, Any], table: Mapping[str, tuple]) -> dict:
+    """The keyword options given (not None), their types checked."""
+    checked = {}
     for key, value in options.items():
         if key not in table:
             raise TypeError(f"{function}() got an unexpected keyword argument '{key}'")
         if value is None:
             continue  # None means "as the scene says", like leaving the option out
-        flag, types = table[key]
+        _, types = table[key]
         if isinstance(value, bool) or not isinstance(value, types):
             names = " or ".join(t.__name__ for t in types)
             raise TypeError(f"{function}(): {key} must be {names}, not {type(value).__name__}")
-        words.append(f"{flag}={value!r}" if isinstance(value, float) else f"{flag}={value}")
-    return words
+        checked[key] = value
+    return checked
 
 
 def _warn(scene_impl: Any) -> None:

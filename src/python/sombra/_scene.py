@@ -10,7 +10,7 @@ from typing import Any, Mapping, Optional, Sequence
 import numpy as np
 
 from . import _sombra
-from ._options import _SCENE_OPTIONS, PathLike, _path, _plain, _warn, _words
+from ._options import _SCENE_OPTIONS, PathLike, _options, _path, _plain, _warn
 
 Error = _sombra.Error
 
@@ -65,7 +65,7 @@ class Scene:
             raise TypeError(f"Scene.from_dict: expected a dict, not {type(d).__name__}")
         text = json.dumps(_plain(d))
         name = os.path.join(_path(base_dir, "Scene.from_dict: base_dir"), "<dict>")
-        return cls._wrap(_sombra.load_text(text, name, _words("from_dict", overrides, _SCENE_OPTIONS)))
+        return cls._wrap(_sombra.load_text(text, name, _options("from_dict", overrides, _SCENE_OPTIONS)))
 
     def _from_code(self, what: str) -> None:
         if self._meshes is None:
@@ -96,7 +96,7 @@ class Scene:
                 d["background"] = self._background
             if self._environment is not None:
                 d["environment"] = self._environment
-            self._impl = _sombra.load_text(json.dumps(d), "<scene>", [], self._meshes)
+            self._impl = _sombra.load_text(json.dumps(d), "<scene>", {}, self._meshes)
             _warn(self._impl)
         return self._impl
 

@@ -8,7 +8,6 @@
 #include <optional>
 #include <string>
 
-#include "app/cli.h"
 #include "render/render.h"
 
 namespace sombra {
@@ -21,11 +20,8 @@ struct LaunchedRanks {
 };
 LaunchedRanks launched_ranks();
 
-// Why `o` cannot run as K > 1 ranks, as a command-line problem (exit 2), or
-// nothing: --time and --noise-threshold on a still (a block would take the
-// budget, a stopping rule reads neighbours in other blocks), --shard,
-// --display-server, or a build without MPI.
-std::optional<std::string> mpi_option_problem(const CliOptions& o);
+// Whether this build can run as several MPI ranks (built with Open MPI).
+bool mpi_built();
 
 // MPI for one `sombra render`: initialised only when launched as one of
 // several ranks, finalised at the end.

@@ -1,4 +1,4 @@
-#include "app/mpi_render.h"
+#include "distributed/mpi_render.h"
 
 #include <tbb/info.h>
 #include <algorithm>
@@ -85,7 +85,7 @@ RenderOutput render_block(RenderJob& job, int b, RenderProgress& progress) {
 }
 
 // Test hook: SOMBRA_TEST_KILL_RANK=R makes rank R die by SIGKILL after its
-// first block, as a crashed node would (app/mpi_render_test.cpp).
+// first block, as a crashed node would (app/mpi_render_test.cpp, through the command line).
 void maybe_die_for_test(int rank) {
     const char* victim = std::getenv("SOMBRA_TEST_KILL_RANK");
     if (victim && std::atoi(victim) == rank) std::raise(SIGKILL);
@@ -107,19 +107,11 @@ LaunchedRanks launched_ranks() {
             env_int({"OMPI_COMM_WORLD_SIZE", "PMI_SIZE"}, 1)};
 }
 
-std::optional<std::string> mpi_option_problem(const CliOptions& o) {
-#ifndef SOMBRA_HAVE_MPI
-    (void)o;
-    return "this sombra was built without MPI: run it without mpirun, or rebuild with Open MPI";
+bool mpi_built() {
+#ifdef SOMBRA_HAVE_MPI
+    return true;
 #else
-    if (o.sharded) return "--shard and mpirun cannot go together: mpirun already splits the work";
-    if (!o.display_server.empty()) return "--display-server and mpirun cannot go together";
-    if (!o.first_frame && o.time_budget)
-        return "--time and mpirun cannot go together on one image: the budget is per process (use --spp)";
-    if (!o.first_frame && o.noise_threshold)
-        return "--noise-threshold and mpirun cannot go together on one image: a pixel's stopping reads its "
-               "neighbours, which another rank renders (it works with --frames)";
-    return std::nullopt;
+    return false;
 #endif
 }
 

@@ -1,0 +1,55 @@
+#include "api/session.h"
+
+#include "core/error.h"
+#include "scene/animation.h"
+#include "scene/texture_mipmap.h"
+
+namespace sombra {
+
+void prepare_textures(Scene& scene, const RenderSettings& settings) {
+    if (settings.texture_filter == TextureFilter::Mipmap) build_mip_pyramids(scene.textures);
+}
+
+double frame_time(const Scene& scene, std::int64_t frame) {
+    return static_cast<double>(frame) / (scene.animation ? scene.animation->fps : 24.0);
+}
+
+void move_to_frame(Scene& scene, std::optional<std::int64_t> frame, const std::string& source) {
+    if (!scene.animation) return;
+    set_scene_time(scene, frame_time(scene, frame.value_or(scene.animation->first_frame)), source);
+}
+
+void prepare_scene(Scene& scene, const RenderSettings& settings, const RenderOptions& options,
+                   const std::string& source) {
+    prepare_textures(scene, settings);  // the lookups must be the render's
+    move_to_frame(scene, options.frame, source);
+}
+
+RenderJob make_job(const Scene& scene, const Accel& accel, const RenderSettings& settings, const RenderOptions& options,
+                   std::chrono::steady_clock::time_point start) {
+    RenderJob job = make_render_job(scene, accel, settings, options.threads, options.light_selection);
+    job.limits = sampling_limits(options, start);
+    job.aovs = options.aovs;
+    return job;
+}
+
+void check_explain_pixel(int x, int y, int sample, const RenderSettings& s) {
+    const std::string where = "pixel (" + std::to_string(x) + ", " + std::to_string(y) + ")";
+    if (x < 0 || x >= s.width || y < 0 || y >= s.height)
+        throw Error(where, "outside the " + std::to_string(s.width) + "x" + std::to_string(s.height) +
+                               " image (columns 0 to " + std::to_string(s.width - 1) + ", rows 0 to " +
+                               std::to_string(s.height - 1) + ")");
+    if (sample < 0 || sample >= s.spp)
+        throw Error("--sample", "sample " + std::to_string(sample) + " does not exist: the pixel has " +
+                                    std::to_string(s.spp) + " sample" + (s.spp == 1 ? "" : "s") + " (0 to " +
+                                    std::to_string(s.spp - 1) + ")");
+}
+
+SampleRecord record_pixel_sample(const RenderJob& job, int x, int y, int sample) {
+    SampleRecord record;
+    RayCounters counters;
+    trace_pixel_sample(job, x, y, sample, counters, record);
+    return record;
+}
+
+}  // namespace sombra

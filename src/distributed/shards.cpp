@@ -1,0 +1,165 @@
+#include "distributed/shards.h"
+
+#include <algorithm>
+#include <charconv>
+#include <cstdint>
+#include <fstream>
+#include <map>
+#include <optional>
+#include <span>
+#include <utility>
+
+#include "core/error.h"
+#include "render/render.h"
+
+namespace sombra {
+
+namespace {
+
+constexpr const char* kShardAttribute = "sombra.shard";
+constexpr const char* kRenderAttribute = "sombra.render";
+
+// FNV-1a, 64 bits, over the file's bytes: an identity, not a defence.
+std::string content_hash(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw Error(path, "cannot read it to name the render its shard belongs to");
+    std::uint64_t h = 14695981039346656037ull;
+    char buffer[1 << 16];
+    while (in.read(buffer, sizeof buffer) || in.gcount() > 0) {
+        for (std::streamsize k = 0; k < in.gcount(); ++k) {
+            h ^= static_cast<unsigned char>(buffer[k]);
+            h *= 1099511628211ull;
+        }
+    }
+    char hex[17];
+    for (int k = 15; k >= 0; --k, h >>= 4) hex[k] = "0123456789abcdef"[h & 15u];
+    hex[16] = '\0';
+    return hex;
+}
+
+std::optional<ShardSpec> parse_shard(const std::string& text) {
+    const auto slash = text.find('/');
+    ShardSpec s{-1, 0};
+    if (slash == std::string::npos ||
+        std::from_chars(text.data(), text.data() + slash, s.index).ptr != text.data() + slash ||
+        std::from_chars(text.data() + slash + 1, text.data() + text.size(), s.count).ptr != text.data() + text.size() ||
+        s.count < 1 || s.index < 0 || s.index >= s.count)
+        return std::nullopt;
+    return s;
+}
+
+// The first item ("seed 3", "input 0a1b…") where two renders' descriptions differ.
+std::string first_difference(const std::string& a, const std::string& b) {
+    const auto items = [](const std::string& text) {
+        std::vector<std::string> out;
+        std::size_t start = 0;
+        for (std::size_t k = 0; k <= text.size(); ++k)
+            if (k == text.size() || text[k] == ',' || text[k] == ';') {
+                out.push_back(text.substr(start, k - start));
+                start = k + 2;  // past ", " or "; "
+                k = std::min(k + 1, text.size());
+            }
+        return out;
+    };
+    const std::vector<std::string> x = items(a), y = items(b);
+    for (std::size_t k = 0; k < std::min(x.size(), y.size()); ++k)
+        if (x[k] != y[k]) return x[k] + " against " + y[k];
+    return a + " against " + b;
+}
+
+const std::string* attribute(const ExrChannels& exr, const char* name) {
+    for (const ImageAttribute& a : exr.attributes)
+        if (a.name == name) return &a.value;
+    return nullptr;
+}
+
+struct Part {
+    std::string path;
+    ShardSpec shard;
+    ExrChannels exr;
+};
+
+Part read_part(const std::string& path) {
+    Part part{path, {}, read_exr_channels(path)};
+    const std::string* shard = attribute(part.exr, kShardAttribute);
+    const std::string* render = attribute(part.exr, kRenderAttribute);
+    const std::optional<ShardSpec> spec = shard ? parse_shard(*shard) : std::nullopt;
+    if (!spec || !render) throw Error(path, "not a shard written by 'sombra render --shard I/N'");
+    part.shard = *spec;
+    return part;
+}
+
+}  // namespace
+
+std::vector<ImageAttribute> shard_attributes(const std::string& input, const RenderOptions& o, const RenderSettings& s,
+                                             ShardSpec shard) {
+    const std::string render =
+        std::string("sombra ") + SOMBRA_VERSION + "; input " + content_hash(input) + "; " + std::to_string(s.width) +
+        "x" + std::to_string(s.height) + ", spp " + std::to_string(s.spp) + ", seed " + std::to_string(s.seed) + ", " +
+        std::string(integrator_name(s.integrator)) + ", max_depth " + std::to_string(s.max_depth) +
+        ", texture_filter " + std::string(texture_filter_name(s.texture_filter)) + ", accel " +
+        std::string(accel_name(o.accel)) + ", light_tree " + std::string(light_selection_name(o.light_selection)) +
+        (o.time_budget ? ", time " + std::to_string(*o.time_budget) : std::string()) + ", aov [" + aov_list(o.aovs) +
+        "]";
+    return {{kShardAttribute, std::to_string(shard.index) + "/" + std::to_string(shard.count)},
+            {kRenderAttribute, render}};
+}
+
+MergedShards merge_shards(const std::vector<std::string>& paths, const std::filesystem::path& output, float exposure) {
+    check_output_path(output);
+    std::vector<Part> parts;
+    for (const std::string& path : paths) parts.push_back(read_part(path));
+    const Part& first = parts.front();
+    const int count = first.shard.count;
+    std::map<int, const Part*> by_index;
+    for (const Part& p : parts) {
+        if (*attribute(p.exr, kRenderAttribute) != *attribute(first.exr, kRenderAttribute))
+            throw Error(p.path, "a shard of another render than " + first.path + "'s (" +
+                                    first_difference(*attribute(p.exr, kRenderAttribute),
+                                                     *attribute(first.exr, kRenderAttribute)) +
+                                    ")");
+        if (p.shard.count != count)
+            throw Error(p.path, "one of " + std::to_string(p.shard.count) + " shards, but " + first.path +
+                                    " is one of " + std::to_string(count));
+        if (p.exr.width != first.exr.width || p.exr.height != first.exr.height || p.exr.names != first.exr.names)
+            throw Error(p.path, "its size or channels differ from " + first.path + "'s");
+        if (const auto [it, added] = by_index.emplace(p.shard.index, &p); !added)
+            throw Error(p.path, "shard " + std::to_string(p.shard.index) + "/" + std::to_string(count) +
+                                    " given twice (also " + it->second->path + ")");
+    }
+    for (int i = 0; i < count; ++i)
+        if (!by_index.count(i))
+            throw Error(first.path, "shard " + std::to_string(i) + "/" + std::to_string(count) +
+                                        " of this render is missing (" + std::to_string(parts.size()) + " of " +
+                                        std::to_string(count) + " given)");
+
+    // Every pixel from the shard that rendered it.
+    const int width = first.exr.width, height = first.exr.height;
+    std::vector<std::vector<float>> channels(first.exr.names.size(),
+                                             std::vector<float>(static_cast<std::size_t>(width) * height));
+    for (const Part& p : parts)
+        for (int j = 0; j < height; ++j)
+            for (int i = 0; i < width; ++i) {
+                if (!shard_owns(p.shard, width, i, j)) continue;
+                const std::size_t k = static_cast<std::size_t>(j) * width + i;
+                for (std::size_t c = 0; c < channels.size(); ++c) channels[c][k] = p.exr.values[c][k];
+            }
+    std::vector<float> rgb(static_cast<std::size_t>(width) * height * 3, 0.0f);
+    std::vector<ImageChannel> layers;
+    for (std::size_t c = 0; c < channels.size(); ++c) {
+        const std::string& name = first.exr.names[c];
+        const int rgb_channel = name == "R" ? 0 : name == "G" ? 1 : name == "B" ? 2 : -1;
+        if (rgb_channel >= 0) {
+            for (std::size_t k = 0; k < channels[c].size(); ++k) rgb[3 * k + rgb_channel] = channels[c][k];
+        } else {
+            layers.push_back({name, channels[c].data(), 1});
+        }
+    }
+    // The AOV layers go into an .exr output only, as `render --aov` allows only that.
+    const bool exr = image_format_for(output) == ImageFormat::Exr;
+    write_image(output, ImageView{width, height, rgb.data()}, exposure,
+                exr ? std::span<const ImageChannel>(layers) : std::span<const ImageChannel>());
+    return MergedShards{static_cast<int>(parts.size()), width, height};
+}
+
+}  // namespace sombra

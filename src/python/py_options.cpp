@@ -1,0 +1,86 @@
+#include "python/py_options.h"
+
+#include <pybind11/stl.h>
+
+#include <algorithm>
+#include <climits>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "core/error.h"
+
+namespace py = pybind11;
+
+namespace sombra::python {
+
+namespace {
+
+// A Python int clamped into [lowest, highest]: a value beyond them then
+// fails the option's own range check with its usual message.
+std::int64_t clamped_int(const py::handle& value, std::int64_t lowest, std::int64_t highest) {
+    int overflow = 0;
+    const long long v = PyLong_AsLongLongAndOverflow(value.ptr(), &overflow);
+    if (overflow != 0) return overflow > 0 ? highest : lowest;
+    if (v == -1 && PyErr_Occurred()) throw py::error_already_set();
+    return std::clamp<std::int64_t>(v, lowest, highest);
+}
+
+}  // namespace
+
+int int_value(const py::handle& value) { return static_cast<int>(clamped_int(value, INT_MIN, INT_MAX)); }
+
+RenderOptions render_options_from(const py::dict& options) {
+    RenderOptions r;
+    SettingOverrides& s = r.overrides;
+    for (const auto& [key_handle, value] : options) {
+        const std::string key = py::cast<std::string>(key_handle);
+        if (key == "width") {
+            s.width = int_value(value);
+        } else if (key == "height") {
+            s.height = int_value(value);
+        } else if (key == "spp") {
+            s.spp = int_value(value);
+        } else if (key == "seed") {
+            if (py::cast<py::int_>(value) < py::int_(0))
+                throw Error("--seed", "must be a non-negative integer, not " + std::string(py::str(value)));
+            const unsigned long long seed = PyLong_AsUnsignedLongLong(value.ptr());
+            if (seed == static_cast<unsigned long long>(-1) && PyErr_Occurred()) {
+                PyErr_Clear();
+                throw Error("--seed", "must be below 2^64, not " + std::string(py::str(value)));
+            }
+            s.seed = seed;
+        } else if (key == "integrator") {
+            s.integrator = integrator_option(py::cast<std::string>(value));
+        } else if (key == "max_depth") {
+            s.max_depth = int_value(value);
+        } else if (key == "texture_filter") {
+            s.texture_filter = texture_filter_option(py::cast<std::string>(value));
+        } else if (key == "threads") {
+            r.threads = int_value(value);
+        } else if (key == "accel") {
+            r.accel = accel_option(py::cast<std::string>(value));
+        } else if (key == "light_tree") {
+            r.light_selection = light_selection_option(py::cast<std::string>(value));
+        } else if (key == "frame") {
+            r.frame = clamped_int(value, INT64_MIN, INT64_MAX);
+        } else if (key == "time") {
+            r.time_budget = py::cast<double>(value);
+        } else if (key == "noise_threshold") {
+            r.noise_threshold = py::cast<double>(value);
+        } else if (key == "min_spp") {
+            r.min_spp = int_value(value);
+        } else if (key == "aov") {
+            std::string list;
+            for (const std::string& name : py::cast<std::vector<std::string>>(value))
+                list += (list.empty() ? "" : ",") + name;
+            r.aovs = aov_option(list);
+        } else {
+            throw py::type_error("unexpected option '" + key + "'");
+        }
+    }
+    check_render_options(r);
+    return r;
+}
+
+}  // namespace sombra::python
