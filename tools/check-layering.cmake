@@ -5,7 +5,8 @@
 #
 # Each rule names a folder and the folders its code must not include: the
 # renderer's stages never reach the file readers (io/) or the front ends;
-# the library API (api/) reads no file; the front ends (app/, python/,
+# inside render/, the BSDFs (render/bsdf/) and the lights (render/lights/)
+# know nothing of each other; the library API (api/) reads no file; the front ends (app/, python/,
 # view/) call the API, and neither Python nor the viewer reaches into the
 # command line (app/); the scene model includes nothing but core/ and itself. Test code is exempt, a file whose
 # name contains "test" (foo_test.cpp, test_meshes.h, chi2_test_util.h): a
@@ -21,6 +22,8 @@ endif()
 set(rules
   "accel:io,api,distributed,view,python,app"
   "render:io,api,distributed,view,python,app"
+  "render/bsdf:render/lights"
+  "render/lights:render/bsdf"
   "explain:io,api,distributed,view,python,app"
   "image:io,api,distributed,view,python,app"
   "api:io,distributed,view,python,app"

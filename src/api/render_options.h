@@ -12,7 +12,7 @@
 
 #include "accel/accel.h"
 #include "render/aov_set.h"
-#include "render/lights.h"
+#include "render/lights/lights.h"
 #include "render/render.h"
 #include "render/render_settings.h"
 

@@ -1,7 +1,7 @@
 // Three-component double vector, for the few computations where float is not
 // precise enough: the look-at camera basis, polygon triangulation far from the
 // origin, the scene file's perpendicularity and determinant checks, and
-// spherical triangles (render/spherical_triangle.cpp).
+// spherical triangles (render/lights/spherical_triangle.cpp).
 #pragma once
 
 #include <cmath>

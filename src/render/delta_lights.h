@@ -9,9 +9,9 @@
 #include <limits>
 
 #include "accel/accel.h"
-#include "render/bsdf.h"
+#include "render/bsdf/bsdf.h"
 #include "render/interaction.h"
-#include "render/lights.h"
+#include "render/lights/lights.h"
 #include "render/ray_counters.h"
 #include "render/sample_record.h"
 #include "render/shading_view.h"

@@ -4,7 +4,7 @@
 
 #include <cmath>
 
-#include "render/bsdf.h"
+#include "render/bsdf/bsdf.h"
 #include "render/delta_lights.h"
 #include "render/first_hit.h"
 #include "render/interaction.h"

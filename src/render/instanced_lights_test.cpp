@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "render/instanced_emitters_test_util.h"
-#include "render/lights.h"
+#include "render/lights/lights.h"
 #include "render/path_test_util.h"
 #include "render/sampler.h"
 #include "scene/texture.h"

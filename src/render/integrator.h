@@ -3,14 +3,14 @@
 // (point, spot, directional: render/delta_lights.h) to what the camera sees; `path`
 // (spec §10) estimates the whole rendering equation by unidirectional path
 // tracing with next-event estimation and multiple importance sampling. Both
-// read the same lights (render/lights.h) and BSDFs (render/bsdf.h).
+// read the same lights (render/lights/lights.h) and BSDFs (render/bsdf/bsdf.h).
 #pragma once
 
 #include <cstdint>
 
 #include "accel/accel.h"
 #include "core/ray.h"
-#include "render/lights.h"
+#include "render/lights/lights.h"
 #include "render/ray_counters.h"
 #include "render/sample_record.h"
 #include "render/sampler.h"

@@ -8,7 +8,7 @@
 #include <limits>
 #include <optional>
 
-#include "render/bsdf.h"
+#include "render/bsdf/bsdf.h"
 #include "render/delta_lights.h"
 #include "render/first_hit.h"
 #include "render/integrator.h"

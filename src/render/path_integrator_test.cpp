@@ -10,9 +10,9 @@
 #include <vector>
 
 #include "io/scene_json/scene_file.h"
+#include "render/bsdf/pbr_test_util.h"
 #include "render/integrator.h"
 #include "render/path_test_util.h"
-#include "render/pbr_test_util.h"
 #include "render/render.h"
 #include "render/test_meshes.h"
 
@@ -76,7 +76,7 @@ TEST(PathIntegrator, PbrPlaneUnderAConstantSkyShowsItsAlbedo) {
     // Under a sky of radiance 1 a plane reflects its directional albedo
     // ∫ f cos θ_i dω_i at the view angle: next-event estimation of the sky
     // and BSDF sampling, MIS-weighted with the pbr pdf, against quadrature of
-    // the glTF Appendix B formulas (render/pbr_test_util.h).
+    // the glTF Appendix B formulas (render/bsdf/pbr_test_util.h).
     struct Case {
         Vec3 base;
         float metallic, roughness;

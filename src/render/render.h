@@ -13,7 +13,7 @@
 #include "render/camera.h"
 #include "render/film.h"
 #include "render/integrator.h"
-#include "render/lights.h"
+#include "render/lights/lights.h"
 #include "render/render_settings.h"
 #include "scene/scene.h"
 
@@ -102,7 +102,7 @@ struct RenderJob {
 // The job for rendering `scene` with `accel` at `settings`, with the scene's
 // camera resolved for that image size and its lights gathered for the
 // integrator (under `path` the background is a constant environment light),
-// emitters chosen as `light_selection` says (render/lights.h).
+// emitters chosen as `light_selection` says (render/lights/lights.h).
 RenderJob make_render_job(const Scene& scene, const Accel& accel, const RenderSettings& settings, int threads = 0,
                           LightSelection light_selection = LightSelection::Automatic);
 

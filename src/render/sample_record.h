@@ -91,7 +91,7 @@ struct DeltaLightRecord {
 struct SampledLightRecord {
     bool sampled = false;                  // false: no light could be sampled (or none carries anything)
     bool environment = false;              // the environment rather than an emitting triangle
-    std::uint32_t light = kNoTriangle;     // its identity in the light set (render/lights.h)
+    std::uint32_t light = kNoTriangle;     // its identity in the light set (render/lights/lights.h)
     std::uint32_t triangle = kNoTriangle;  // of surface_mesh(scene, instance)
     std::uint32_t instance = kNoInstance;  // the instance the emitter lies in (kNoInstance: the world)
     Vec3 wi;                               // unit, towards the sampled point

@@ -8,9 +8,9 @@
 
 #include "accel/accel.h"
 #include "core/ray.h"
-#include "render/bsdf.h"
+#include "render/bsdf/bsdf.h"
 #include "render/interaction.h"
-#include "render/lights.h"
+#include "render/lights/lights.h"
 #include "render/sample_record.h"
 #include "render/shading_view.h"
 #include "scene/scene.h"

@@ -3,7 +3,7 @@
 // integrators hand it to the sample recorder with each term.
 #pragma once
 
-#include "render/bsdf.h"
+#include "render/bsdf/bsdf.h"
 #include "render/interaction.h"
 #include "scene/material.h"
 

@@ -15,8 +15,8 @@
 #include "io/gltf/gltf_test_files.h"
 #include "io/polygon_test_files.h"
 #include "io/scene_json/scene_file.h"
+#include "render/bsdf/sheen.h"
 #include "render/render.h"
-#include "render/sheen.h"
 
 namespace sombra {
 namespace {

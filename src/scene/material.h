@@ -1,5 +1,5 @@
 // Surface materials of spec §5 and §11, as plain data. The BSDFs that
-// evaluate and sample them live in render/bsdf.h (render/brdf.h holds the
+// evaluate and sample them live in render/bsdf/bsdf.h (render/bsdf/brdf.h holds the
 // version-1 BRDF terms that the direct integrator evaluates).
 #pragma once
 
@@ -135,7 +135,7 @@ struct Material {
     float clearcoat = 0.0f;
     float clearcoat_roughness = 0.0f;
     // Pbr, glTF's KHR_materials_sheen: a layer of "Charlie" micro-fibres
-    // (render/bsdf_pbr_sheen.cpp) of colour sheen_color (each channel in
+    // (render/bsdf/bsdf_pbr_sheen.cpp) of colour sheen_color (each channel in
     // [0, 1]) and roughness in [0, 1] (α = r²) between the base and the coat.
     // A black colour (the default) is no layer at all. glTF only.
     Vec3 sheen_color{0.0f};

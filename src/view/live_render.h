@@ -14,7 +14,7 @@
 
 #include "accel/accel.h"
 #include "render/film.h"
-#include "render/lights.h"
+#include "render/lights/lights.h"
 #include "render/render.h"
 #include "render/render_settings.h"
 #include "scene/scene.h"

@@ -16,7 +16,7 @@
 #include <string>
 
 #include "accel/accel.h"
-#include "render/lights.h"
+#include "render/lights/lights.h"
 #include "scene/scene.h"
 #include "view/live_render.h"
 
