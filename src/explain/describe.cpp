@@ -55,14 +55,7 @@ std::string instance_words(const TriangleOrigin& origin) {
     return origin.instance ? ", instance " + std::to_string(*origin.instance) : std::string();
 }
 
-const char* light_type_name(LightType type) {
-    switch (type) {
-        case LightType::Point: return "point";
-        case LightType::Spot: return "spot";
-        case LightType::Directional: return "directional";
-    }
-    return "?";
-}
+const char* light_type_name(LightType type) { return light_type_traits(type).name; }
 
 const char* outcome_name(LightOutcome outcome) {
     switch (outcome) {

@@ -104,13 +104,15 @@ private:
         return j;
     }
 
-    // The terms of f_r; a pbr material's transmission, clearcoat and sheen
-    // terms only where they are not 0 (other materials have none).
-    static Json f_terms(Vec3 diffuse, Vec3 lobe, Vec3 transmission, Vec3 coat, Vec3 sheen, Vec3 f) {
-        Json j{{"diffuse", vec(diffuse)}, {"lobe", vec(lobe)}, {"total", vec(f)}};
-        if (transmission != Vec3{0.0f}) j["transmission"] = vec(transmission);
-        if (coat != Vec3{0.0f}) j["coat"] = vec(coat);
-        if (sheen != Vec3{0.0f}) j["sheen"] = vec(sheen);
+    // The terms of f_r: the lobes always shown, the total, then the others
+    // (a pbr material's transmission, clearcoat, sheen) where they are not 0.
+    static Json f_terms(const BsdfTerms& terms, Vec3 f) {
+        Json j;
+        for (const LobeName& lobe : kLobeNames)
+            if (lobe.always_shown) j[lobe.name] = vec(terms.*lobe.term);
+        j["total"] = vec(f);
+        for (const LobeName& lobe : kLobeNames)
+            if (!lobe.always_shown && terms.*lobe.term != Vec3{0.0f}) j[lobe.name] = vec(terms.*lobe.term);
         return j;
     }
 
@@ -135,28 +137,25 @@ private:
 
     Json delta_light(const DeltaLightRecord& l) const {
         const PunctualLight& light = c_.job.lights.delta[l.light];
-        Json j = {{"type", light_type_name(light.type)}, {"index", l.light}};
-        if (light.type != LightType::Directional) j["position"] = vec(light.position);
-        if (light.type != LightType::Point) j["direction"] = vec(light.direction);
-        if (light.type == LightType::Directional) {
-            j["irradiance"] = vec(light.intensity);
-        } else {
-            j["intensity"] = vec(light.intensity);
-        }
-        if (light.type == LightType::Spot) {
+        const LightTypeTraits type = light_type_traits(light.type);
+        Json j = {{"type", type.name}, {"index", l.light}};
+        if (type.positioned) j["position"] = vec(light.position);
+        if (type.directed) j["direction"] = vec(light.direction);
+        j[type.power_key] = vec(light.intensity);
+        if (type.coned) {
             j["cos_outer"] = number(light.cos_outer);
             j["cos_inner"] = number(light.cos_inner);
         }
         j["outcome"] = outcome_name(l.outcome);
         if (l.outcome != LightOutcome::OnSurface) {
             j["omega_i"] = vec(l.wi);
-            // A directional light is unbounded: no distance (spec §16).
-            j["distance"] = light.type == LightType::Directional ? Json(nullptr) : number(l.distance);
+            // A light at infinity is unbounded: no distance (spec §16).
+            j["distance"] = type.positioned ? number(l.distance) : Json(nullptr);
             j["cos_g"] = number(l.cos_g);
             j["cos_s"] = number(l.cos_s);
-            if (light.type == LightType::Spot) j["spot_factor"] = number(l.spot_factor);
+            if (type.coned) j["spot_factor"] = number(l.spot_factor);
             j["incident"] = vec(l.incident);
-            j["f_r"] = f_terms(l.f_diffuse, l.f_lobe, l.f_transmission, l.f_coat, l.f_sheen, l.f);
+            j["f_r"] = f_terms(l.f_terms, l.f);
         }
         if (l.outcome == LightOutcome::Blocked) j["blocker"] = blocker(l.blocker);
         if (l.outcome == LightOutcome::Visible) {
@@ -183,7 +182,7 @@ private:
         j["mis_weight"] = number(l.mis_weight);
         j["cos_s"] = number(l.cos_s);
         if (!l.environment) j["cos_light"] = number(l.cos_light);
-        j["f_r"] = f_terms(l.f_diffuse, l.f_lobe, l.f_transmission, l.f_coat, l.f_sheen, l.f);
+        j["f_r"] = f_terms(l.f_terms, l.f);
         if (l.outcome == LightOutcome::Blocked) j["blocker"] = blocker(l.blocker);
         if (l.outcome == LightOutcome::Visible) {
             j["holes"] = holes(l.holes);

@@ -132,7 +132,7 @@ private:
         for (const VertexRecord& v : r_.vertices)
             if (v.hit) add(v.surface.position);
         for (const PunctualLight& l : c_.job.lights.delta)
-            if (l.type != LightType::Directional) add(l.position);  // a directional light has no place
+            if (light_type_traits(l.type).positioned) add(l.position);  // a light at infinity has no place
         const Point2 interest_lo = lo, interest_hi = hi;
         Point2 scene_lo{INFINITY, INFINITY}, scene_hi{-INFINITY, -INFINITY};
         for (const Vec3 p : c_.scene.geometry.positions) {
@@ -250,7 +250,7 @@ private:
     void lights() {
         const std::vector<PunctualLight>& delta = c_.job.lights.delta;
         for (std::size_t i = 0; i < delta.size(); ++i) {
-            if (delta[i].type == LightType::Directional) continue;  // drawn as its shadow rays only
+            if (!light_type_traits(delta[i].type).positioned) continue;  // drawn as its shadow rays only
             const Vec3 p = delta[i].position;
             const Point2 q = view_.screen(p);
             svg_ << "<circle cx=\"" << num(q.x) << "\" cy=\"" << num(q.y)
@@ -296,10 +296,10 @@ private:
             const Vec3 x = v.surface.position;
             line(from, x, kPathColour, 2.2f);
             for (const DeltaLightRecord& l : v.delta_lights) {
-                // Toward a directional light the ray has no end: drawn as far as the environment's.
+                // Toward a light at infinity the ray has no end: drawn as far as the environment's.
                 const PunctualLight& light = c_.job.lights.delta[l.light];
                 const Vec3 target =
-                    light.type == LightType::Directional ? x + 0.3f * view_.extent() * l.wi : light.position;
+                    light_type_traits(light.type).positioned ? light.position : x + 0.3f * view_.extent() * l.wi;
                 shadow_ray(x, target, l.outcome, l.blocker);
             }
             const SampledLightRecord& s = v.sampled_light;

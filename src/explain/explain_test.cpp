@@ -236,8 +236,8 @@ TEST(ExplainRecord, NamesTheBlockerTheLightBehindAndEachFactorOfTheVisibleLight)
     const float d2 = dot(to_light, to_light);
     EXPECT_NEAR(side.distance, std::sqrt(d2), 1e-5f);
     EXPECT_NEAR(side.incident.x, 8.0f / d2, 1e-5f);
-    EXPECT_NEAR(side.f_diffuse.x, 0.5f / 3.14159265f, 1e-6f);
-    EXPECT_EQ(side.f_lobe, Vec3{0.0f});
+    EXPECT_NEAR(side.f_terms.diffuse.x, 0.5f / 3.14159265f, 1e-6f);
+    EXPECT_EQ(side.f_terms.lobe, Vec3{0.0f});
     EXPECT_NEAR(side.cos_s, to_light.y / std::sqrt(d2), 1e-5f);
     EXPECT_NEAR(side.contribution.x, side.incident.x * side.f.x * side.cos_s, 1e-6f);
     EXPECT_TRUE(same_bits(r.value, side.contribution));
@@ -281,13 +281,13 @@ TEST(ExplainRecord, NamesThePbrTransmissionAndCoatTerms) {
     ASSERT_EQ(v.delta_lights.size(), 3u);
     const DeltaLightRecord& below = v.delta_lights[1];
     EXPECT_EQ(below.outcome, LightOutcome::Visible);
-    EXPECT_GT(below.f_transmission.x, 0.0f);
-    EXPECT_EQ(below.f_coat, Vec3{0.0f});
-    EXPECT_EQ(below.f, below.f_transmission);
+    EXPECT_GT(below.f_terms.transmission.x, 0.0f);
+    EXPECT_EQ(below.f_terms.coat, Vec3{0.0f});
+    EXPECT_EQ(below.f, below.f_terms.transmission);
     const DeltaLightRecord& side = v.delta_lights[2];
-    EXPECT_GT(side.f_coat.x, 0.0f);
-    EXPECT_EQ(side.f_transmission, Vec3{0.0f});
-    const Vec3 sum = side.f_diffuse + side.f_lobe + side.f_coat;
+    EXPECT_GT(side.f_terms.coat.x, 0.0f);
+    EXPECT_EQ(side.f_terms.transmission, Vec3{0.0f});
+    const Vec3 sum = side.f_terms.diffuse + side.f_terms.lobe + side.f_terms.coat;
     EXPECT_NEAR(side.f.x, sum.x, 1e-6f * sum.x);
 
     const ExplainContext context{story.scene, story.job, "test.json"};
@@ -317,11 +317,11 @@ TEST(ExplainRecord, NamesThePbrSheenTerm) {
     ASSERT_EQ(r.vertices.size(), 1u);
     const VertexRecord& v = r.vertices[0];
     ASSERT_EQ(v.delta_lights.size(), 3u);
-    EXPECT_EQ(v.delta_lights[1].f_sheen, Vec3{0.0f});
+    EXPECT_EQ(v.delta_lights[1].f_terms.sheen, Vec3{0.0f});
     const DeltaLightRecord& side = v.delta_lights[2];
-    EXPECT_GT(side.f_sheen.x, side.f_sheen.y);
-    EXPECT_GT(side.f_sheen.y, 0.0f);
-    const Vec3 sum = side.f_diffuse + side.f_lobe + side.f_sheen;
+    EXPECT_GT(side.f_terms.sheen.x, side.f_terms.sheen.y);
+    EXPECT_GT(side.f_terms.sheen.y, 0.0f);
+    const Vec3 sum = side.f_terms.diffuse + side.f_terms.lobe + side.f_terms.sheen;
     EXPECT_NEAR(side.f.x, sum.x, 1e-6f * sum.x);
 
     const ExplainContext context{story.scene, story.job, "test.json"};
@@ -394,7 +394,7 @@ TEST(ExplainRecord, TexturedMaterialShowsItsValuesAtTheHit) {
             EXPECT_TRUE(h.has_uv);
             for (const DeltaLightRecord& l : r.vertices[0].delta_lights) {
                 if (l.outcome == LightOutcome::Visible) {
-                    EXPECT_EQ(l.f_diffuse, h.shaded.kd * std::numbers::inv_pi_v<float>);
+                    EXPECT_EQ(l.f_terms.diffuse, h.shaded.kd * std::numbers::inv_pi_v<float>);
                 }
             }
         }

@@ -1,21 +1,33 @@
 // The story as text: written for a student who has just read the
 // assignment, so each number comes with the name of the term it is.
+#include <algorithm>
 #include <sstream>
 
 #include "explain/describe.h"
 #include "explain/explain.h"
+#include "render/lights/delta_light_types.h"
 
 namespace sombra {
 
 namespace {
 
-// " + transmission T + coat C + sheen S" for the pbr terms that are not 0
-// (glTF's KHR_materials_transmission, _clearcoat and _sheen); "" otherwise.
-std::string extra_terms(Vec3 transmission, Vec3 coat, Vec3 sheen) {
+// The width of the factor names' column ("f_r        = ..."), in characters.
+constexpr std::size_t kFactorColumn = 11;
+
+// Characters (code points) of UTF-8 text, as a terminal lays them out.
+std::size_t characters(const std::string& text) {
+    std::size_t n = 0;
+    for (const char c : text) n += (static_cast<unsigned char>(c) & 0xC0u) != 0x80u ? 1 : 0;
+    return n;
+}
+
+// "diffuse D + lobe L + transmission T": f_r's lobes, those that are shown
+// only where they are not 0 (a pbr material's transmission, coat, sheen) left out when they are.
+std::string lobe_sum(const BsdfTerms& terms) {
     std::string s;
-    if (transmission != Vec3{0.0f}) s += " + transmission " + readable(transmission);
-    if (coat != Vec3{0.0f}) s += " + coat " + readable(coat);
-    if (sheen != Vec3{0.0f}) s += " + sheen " + readable(sheen);
+    for (const LobeName& lobe : kLobeNames)
+        if (lobe.always_shown || terms.*lobe.term != Vec3{0.0f})
+            s += (s.empty() ? "" : " + ") + std::string(lobe.name) + " " + readable(terms.*lobe.term);
     return s;
 }
 
@@ -190,40 +202,40 @@ private:
 
     void delta_light(const DeltaLightRecord& l, Vec3 beta) {
         const PunctualLight& light = c_.job.lights.delta[l.light];
-        const bool directional = light.type == LightType::Directional, spot = light.type == LightType::Spot;
+        const LightTypeTraits type = light_type_traits(light.type);
         // What arrives, named as its factor in the equation; the column of
-        // '=' moves one to the right for a spot's longer name.
-        const char* incident = directional ? "E" : spot ? "I·s²/|c−x|²" : "I/|c−x|²";
-        const char* pad = directional ? "          " : spot ? " " : "   ";
-        const char* wide = spot ? " " : "";
-        if (directional) {
-            out_ << "  directional light " << l.light << " travelling along " << readable(light.direction)
-                 << ", E = " << readable(light.intensity) << "\n";
-        } else if (spot) {
-            out_ << "  spot light " << l.light << " at " << readable(light.position) << " pointing along "
-                 << readable(light.direction) << ", I = " << readable(light.intensity) << ", cone cos "
-                 << readable(light.cos_outer) << " (outer) to " << readable(light.cos_inner) << " (inner)\n";
-        } else {
-            out_ << "  point light " << l.light << " at " << readable(light.position)
-                 << ", I = " << readable(light.intensity) << "\n";
-        }
+        // '=' moves right for a name longer than the others'.
+        const std::string incident = delta_incident_symbol(light.type);
+        const std::size_t width = std::max<std::size_t>(kFactorColumn, characters(incident) + 1);
+        const std::string pad(width - characters(incident), ' ');
+        const std::string wide(width - kFactorColumn, ' ');
+        out_ << "  " << type.name << " light " << l.light;
+        if (type.positioned) out_ << " at " << readable(light.position);
+        if (type.directed)
+            out_ << (type.positioned ? " pointing along " : " travelling along ") << readable(light.direction);
+        out_ << ", " << type.power_symbol << " = " << readable(light.intensity);
+        if (type.coned)
+            out_ << ", cone cos " << readable(light.cos_outer) << " (outer) to " << readable(light.cos_inner)
+                 << " (inner)";
+        out_ << "\n";
         if (l.outcome == LightOutcome::OnSurface) {
             out_ << "    sits exactly on x: it lights nothing\n";
             return;
         }
-        out_ << "    ω_i = " << readable(l.wi) << ", |c − x| = " << (directional ? "unbounded" : readable(l.distance))
+        out_ << "    ω_i = " << readable(l.wi)
+             << ", |c − x| = " << (type.positioned ? readable(l.distance) : "unbounded")
              << ", n_g·ω_i = " << readable(l.cos_g) << "\n";
         if (l.outcome == LightOutcome::Behind) {
             out_ << "    BEHIND the surface (n_g·ω_i ≤ 0): no contribution\n";
             return;
         }
-        if (spot) out_ << "    spot falloff s² = " << readable(l.spot_factor) << "\n";
+        if (type.coned) out_ << "    spot falloff s² = " << readable(l.spot_factor) << "\n";
         if (l.outcome == LightOutcome::OutsideCone) {
             out_ << "    OUTSIDE the spot's cone (s = 0): no contribution\n";
             return;
         }
         if (l.outcome == LightOutcome::Blocked) {
-            blocked(l.blocker, directional ? "" : ", before the light");
+            blocked(l.blocker, type.positioned ? ", before the light" : "");
             out_ << "    (unblocked it would give " << incident << " = " << readable(l.incident)
                  << ", f_r = " << readable(l.f) << ", |n_s·ω_i| = " << readable(l.cos_s) << ")\n";
             return;
@@ -231,8 +243,7 @@ private:
         out_ << "    visible\n";
         holes(l.holes, l.holes_crossed, "    the shadow ray went through ", "      ");
         out_ << "    " << incident << pad << "= " << readable(l.incident) << "\n";
-        out_ << "    f_r        " << wide << "= " << readable(l.f) << " = diffuse " << readable(l.f_diffuse)
-             << " + lobe " << readable(l.f_lobe) << extra_terms(l.f_transmission, l.f_coat, l.f_sheen) << "\n";
+        out_ << "    f_r        " << wide << "= " << readable(l.f) << " = " << lobe_sum(l.f_terms) << "\n";
         out_ << "    |n_s·ω_i|  " << wide << "= " << readable(l.cos_s) << "\n";
         if (r_.path) out_ << "    β          " << wide << "= " << readable(beta) << "\n";
         out_ << "    product    " << wide << "= " << readable(l.contribution) << "\n";
@@ -265,9 +276,8 @@ private:
             return;
         }
         holes(l.holes, l.holes_crossed, "    the shadow ray went through ", "      ");
-        out_ << "    f_r = " << readable(l.f) << " = diffuse " << readable(l.f_diffuse) << " + lobe "
-             << readable(l.f_lobe) << extra_terms(l.f_transmission, l.f_coat, l.f_sheen)
-             << ", |n_s·ω_i| = " << readable(l.cos_s) << "\n";
+        out_ << "    f_r = " << readable(l.f) << " = " << lobe_sum(l.f_terms) << ", |n_s·ω_i| = " << readable(l.cos_s)
+             << "\n";
         out_ << "    MIS weight w = " << readable(l.mis_weight) << " (power heuristic)\n";
         out_ << "    adds β·f_r·|n_s·ω_i|·L_e·w/pdf = " << readable(l.contribution) << "\n";
     }

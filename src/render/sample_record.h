@@ -12,6 +12,7 @@
 
 #include "core/vec2.h"
 #include "core/vec3.h"
+#include "render/bsdf/bsdf.h"
 #include "scene/material.h"
 #include "scene/scene.h"
 
@@ -76,9 +77,7 @@ struct DeltaLightRecord {
     float cos_s = 0;                // |n_s·ω_i|
     float spot_factor = 1;          // a spot's falloff s² at ω_i (1 for other kinds)
     Vec3 incident;                  // point: I/|c − x|²; spot: I·s²/|c − x|²; directional: E
-    Vec3 f_diffuse, f_lobe;         // f_r split into its diffuse term and its lobe (specular) term
-    Vec3 f_transmission, f_coat;    // pbr's transmission (through the surface) and clearcoat terms; 0 elsewhere
-    Vec3 f_sheen;                   // pbr's sheen term (KHR_materials_sheen); 0 elsewhere
+    BsdfTerms f_terms;              // f_r split into its lobes (render/bsdf/bsdf.h's kLobeNames)
     Vec3 f;                         // f_r as the integrator evaluated it
     BlockerRecord blocker;          // when Blocked
     std::vector<HoleRecord> holes;  // when Visible: the cut-outs the shadow ray went through
@@ -102,10 +101,9 @@ struct SampledLightRecord {
     float bsdf_pdf = 0;                    // the BSDF's density for the same direction
     float mis_weight = 0;                  // power heuristic (1 when only lights are sampled)
     float cos_s = 0;                       // |n_s·ω_i|
-    float cos_light = 0;        // |n_light·ω_i| at the sampled point of an emitting triangle (0 for the environment)
-    Vec3 f_diffuse, f_lobe, f;  // f_r split and whole
-    Vec3 f_transmission, f_coat;                   // pbr's transmission and clearcoat terms of f_r; 0 elsewhere
-    Vec3 f_sheen;                                  // pbr's sheen term of f_r; 0 elsewhere
+    float cos_light = 0;  // |n_light·ω_i| at the sampled point of an emitting triangle (0 for the environment)
+    BsdfTerms f_terms;    // f_r split into its lobes (render/bsdf/bsdf.h's kLobeNames)
+    Vec3 f;               // f_r whole
     LightOutcome outcome = LightOutcome::Visible;  // Behind (f_r = 0, no shadow ray), Blocked, or Visible
     BlockerRecord blocker;
     std::vector<HoleRecord> holes;  // when Visible: the cut-outs the shadow ray went through

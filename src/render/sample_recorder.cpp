@@ -1,5 +1,7 @@
 #include "render/sample_recorder.h"
 
+#include "render/lights/delta_light_types.h"
+
 #include "accel/triangle.h"
 
 #include <algorithm>
@@ -94,28 +96,21 @@ void SampleRecorder::emission(Vec3 le, float w, float bsdf_pdf, float light_pdf,
 
 void SampleRecorder::delta_material() { vertex().delta_material = true; }
 
-void SampleRecorder::delta_light(std::uint32_t light, LightOutcome outcome, const ShadingView& view, Vec3 wi,
-                                 float distance_squared, const Ray* shadow, Vec3 contribution) {
+void SampleRecorder::delta_light(std::uint32_t light, LightOutcome outcome, const ShadingView& view,
+                                 const DeltaArrival& arrival, const Ray* shadow, Vec3 contribution) {
     DeltaLightRecord r;
     r.light = light;
     r.outcome = outcome;
+    const Vec3 wi = arrival.wi;
     r.wi = wi;
-    r.distance = std::sqrt(distance_squared);
+    r.distance = std::sqrt(arrival.distance_squared);
     r.cos_g = dot(view.si.n_g, wi);
     r.cos_s = std::fabs(dot(view.si.n_s, wi));
     if (outcome != LightOutcome::OnSurface) {
-        // The same arithmetic as add_delta_lights (render/delta_lights.h).
         const PunctualLight& l = lights_.delta[light];
-        if (l.type == LightType::Spot) r.spot_factor = spot_falloff(l, -dot(l.direction, wi));
-        r.incident = l.type == LightType::Directional ? l.intensity
-                     : l.type == LightType::Spot      ? l.intensity * r.spot_factor / distance_squared
-                                                      : l.intensity / distance_squared;
-        const BsdfTerms terms = eval_bsdf_terms(view.material, view.bsdf_point, view.wo, wi);
-        r.f_diffuse = terms.diffuse;
-        r.f_lobe = terms.lobe;
-        r.f_transmission = terms.transmission;
-        r.f_coat = terms.coat;
-        r.f_sheen = terms.sheen;
+        r.spot_factor = delta_factor(l, wi);
+        r.incident = incident_radiance_factor(l, arrival, r.spot_factor);
+        r.f_terms = eval_bsdf_terms(view.material, view.bsdf_point, view.wo, wi);
         r.f = eval_bsdf(view.material, view.bsdf_point, view.wo, wi);
     }
     if (outcome == LightOutcome::Blocked && shadow) r.blocker = find_blocker(*shadow);
@@ -144,12 +139,7 @@ void SampleRecorder::sampled_light(const LightSample* ls, const ShadingView& vie
             const auto [p0, p1, p2] = world_triangle_corners(scene_, ls->triangle, ls->instance);
             r.cos_light = std::fabs(dot(normalize(cross(p1 - p0, p2 - p0)), ls->wi));
         }
-        const BsdfTerms terms = eval_bsdf_terms(view.material, view.bsdf_point, view.wo, ls->wi);
-        r.f_diffuse = terms.diffuse;
-        r.f_lobe = terms.lobe;
-        r.f_transmission = terms.transmission;
-        r.f_coat = terms.coat;
-        r.f_sheen = terms.sheen;
+        r.f_terms = eval_bsdf_terms(view.material, view.bsdf_point, view.wo, ls->wi);
         r.f = eval_bsdf(view.material, view.bsdf_point, view.wo, ls->wi);
         // Shown for blocked and zero-f samples too: what MIS would have weighed.
         r.bsdf_pdf = shadow && !blocked ? bsdf_pdf : pdf_bsdf(view.material, view.bsdf_point, view.wo, ls->wi);

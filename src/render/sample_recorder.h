@@ -10,6 +10,7 @@
 #include "core/ray.h"
 #include "render/bsdf/bsdf.h"
 #include "render/interaction.h"
+#include "render/lights/delta_arrival.h"
 #include "render/lights/lights.h"
 #include "render/sample_record.h"
 #include "render/shading_view.h"
@@ -57,8 +58,8 @@ public:
     void delta_material();
     // One delta light's term; `shadow` is the shadow ray traced (Blocked,
     // Visible), else null; distance_squared is +∞ for a directional light.
-    void delta_light(std::uint32_t light, LightOutcome outcome, const ShadingView& view, Vec3 wi,
-                     float distance_squared, const Ray* shadow, Vec3 contribution);
+    void delta_light(std::uint32_t light, LightOutcome outcome, const ShadingView& view, const DeltaArrival& arrival,
+                     const Ray* shadow, Vec3 contribution);
     // Next-event estimation of one sampled emitter or environment point: `ls`
     // null when nothing was sampled; `shadow` null when no ray was traced.
     void sampled_light(const LightSample* ls, const ShadingView& view, const Ray* shadow, bool blocked, float bsdf_pdf,

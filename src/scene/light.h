@@ -19,6 +19,26 @@ enum class LightType : std::uint8_t {
     Directional,  // from infinitely far, travelling along `direction`
 };
 
+// What a type of light has, one row per type: what explain shows of it and
+// what a transform moves (transform_light).
+struct LightTypeTraits {
+    const char* name;          // "point", "spot", "directional": the scene file's and explain's word
+    bool positioned;           // it sits at `position`, at a finite distance
+    bool directed;             // it has a `direction`: a spot's axis, the way a sun's light travels
+    bool coned;                // a spot's cone (cos_outer, cos_inner) and falloff
+    const char* power_key;     // what `intensity` holds: "intensity" (I, W/sr) or "irradiance" (E, W/m²)
+    const char* power_symbol;  // "I" or "E"
+};
+
+constexpr LightTypeTraits light_type_traits(LightType type) {
+    switch (type) {
+        case LightType::Spot: return {"spot", true, true, true, "intensity", "I"};
+        case LightType::Directional: return {"directional", false, true, false, "irradiance", "E"};
+        case LightType::Point: break;
+    }
+    return {"point", true, false, false, "intensity", "I"};
+}
+
 // One record for the three kinds: what each needs fits in a few floats, and
 // the integrators switch on `type` (no virtual call per shadow ray).
 struct PunctualLight {
@@ -84,11 +104,12 @@ enum class LightPlacement {
 // directional light turns with the linear part and is renormalised. On a
 // problem the light is left unusable and the caller reports it.
 inline LightPlacement transform_light(PunctualLight& light, const Transform& transform) {
-    if (light.type != LightType::Directional) {
+    const LightTypeTraits traits = light_type_traits(light.type);
+    if (traits.positioned) {
         light.position = transform_point(transform, light.position);
         if (!is_finite(light.position)) return LightPlacement::NonFinitePosition;
     }
-    if (light.type != LightType::Point) {
+    if (traits.directed) {
         const Vec3 direction = transform_vector(transform, light.direction);
         if (!is_finite(direction) || !(length(to_double(direction)) > 0)) return LightPlacement::NonFiniteDirection;
         light.direction = unit_direction(direction);

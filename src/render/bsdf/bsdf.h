@@ -149,6 +149,20 @@ struct BsdfTerms {
 };
 BsdfTerms eval_bsdf_terms(const Material& m, const BsdfPoint& p, Vec3 wo, Vec3 wi);
 
+// The lobes as explain lists them (spec §14), in its order: the name it
+// prints, whether it is shown when 0, and the term of BsdfTerms. A new lobe
+// is a term above and a row here; explain iterates the table.
+struct LobeName {
+    const char* name;
+    bool always_shown;
+    Vec3 BsdfTerms::*term;
+};
+inline constexpr LobeName kLobeNames[] = {{"diffuse", true, &BsdfTerms::diffuse},
+                                          {"lobe", true, &BsdfTerms::lobe},
+                                          {"transmission", false, &BsdfTerms::transmission},
+                                          {"coat", false, &BsdfTerms::coat},
+                                          {"sheen", false, &BsdfTerms::sheen}};
+
 // Solid-angle density (1/sr) with which sample_bsdf draws wi: non-delta lobes
 // only, 0 for a delta material and wherever sample_bsdf never succeeds.
 float pdf_bsdf(const Material& m, const BsdfPoint& p, Vec3 wo, Vec3 wi);
