@@ -4,7 +4,9 @@
 #   cmake -DSRC=path/to/src -P tools/check-layering.cmake
 #
 # Each rule names a folder and the folders its code must not include: the
-# renderer's stages never reach the file readers (io/) or the front ends;
+# file readers (io/) reach no stage after the model but image/'s checked EXR
+# reader and render/'s settings; the renderer's stages never reach the file
+# readers or the front ends;
 # inside render/, the BSDFs (render/bsdf/) and the lights (render/lights/)
 # know nothing of each other; the library API (api/) reads no file; the front ends (app/, python/,
 # view/) call the API, and neither Python nor the viewer reaches into the
@@ -20,6 +22,7 @@ if(NOT DEFINED SRC)
 endif()
 
 set(rules
+  "io:accel,explain,api,distributed,view,python,app"
   "accel:io,api,distributed,view,python,app"
   "render:io,api,distributed,view,python,app"
   "render/bsdf:render/lights"

@@ -1,5 +1,6 @@
-// OpenEXR files read back whole (image_io.h: read_exr_channels), for
-// `sombra merge` (spec §21), which joins the shards a render wrote.
+// OpenEXR files read back whole (image_io.h: read_exr_channels), after
+// sombra's own check of their layout (exr_check.h): the shards `sombra merge`
+// joins (spec §21), and every EXR texture and environment map.
 #include <ImfChannelList.h>
 #include <ImfFrameBuffer.h>
 #include <ImfHeader.h>
@@ -19,7 +20,18 @@
 
 namespace sombra {
 
-ExrChannels read_exr_channels(const std::filesystem::path& path) {
+namespace {
+
+// A library's message on one line (OpenEXR's may span several).
+std::string one_line(std::string s) {
+    std::replace(s.begin(), s.end(), '\n', ' ');
+    std::replace(s.begin(), s.end(), '\r', ' ');
+    return s;
+}
+
+}  // namespace
+
+ExrChannels read_exr_channels(const std::filesystem::path& path, const std::vector<std::string>& only) {
     const std::string where = path.string();
     const int rows_per_chunk = check_exr_file(path, where);
     try {
@@ -35,7 +47,9 @@ ExrChannels read_exr_channels(const std::filesystem::path& path) {
         ExrChannels out;
         out.width = static_cast<int>(width);
         out.height = static_cast<int>(height);
-        for (auto c = header.channels().begin(); c != header.channels().end(); ++c) out.names.emplace_back(c.name());
+        for (auto c = header.channels().begin(); c != header.channels().end(); ++c)
+            if (only.empty() || std::find(only.begin(), only.end(), c.name()) != only.end())
+                out.names.emplace_back(c.name());
         out.values.resize(out.names.size());
         // Read a chunk at a time, the channels growing only by rows that
         // decoded: a few hundred bytes can claim the largest image, and a
@@ -68,7 +82,7 @@ ExrChannels read_exr_channels(const std::filesystem::path& path) {
     } catch (const Error&) {
         throw;
     } catch (const std::exception& e) {
-        throw Error(where, std::string("not a readable EXR file: ") + e.what());
+        throw Error(where, "cannot read as OpenEXR: " + one_line(e.what()));
     }
 }
 

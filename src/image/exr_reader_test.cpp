@@ -124,8 +124,8 @@ TEST_F(ExrReader, RefusesOffsetsOutsideThePixelDataOrAtAnotherChunk) {
 
 TEST_F(ExrReader, RefusesTiledMultipartDeepAndBadHeaders) {
     Bytes bytes = good_;
-    bytes[5] |= 0x02;  // version flags: single-part tiled
-    expect_refused(bytes, "a tiled EXR file");
+    bytes[5] |= 0x02;  // version flags: single-part tiled, but the header says nothing of tiles
+    expect_refused(bytes, "no 'tiles' attribute in a tiled file");
     for (const int flag : {0x08, 0x10}) {  // non-image (deep), multi-part
         bytes = good_;
         bytes[5] = static_cast<unsigned char>(bytes[5] | flag);
@@ -184,6 +184,56 @@ TEST_F(ExrReader, ReadsEveryCompressionAndLineOrder) {
                 EXPECT_EQ(exr.values[0], values);
             }
         }
+}
+
+// Tiled files, every level mode: the first level, as written (the check walks
+// every level's tiles, so a level numbered unlike OpenEXR would be refused).
+TEST_F(ExrReader, ReadsTiledFilesAsTheirFirstLevel) {
+    const fs::path file = folder_ / "tiled.exr";
+    for (const Imf::LevelMode mode : {Imf::ONE_LEVEL, Imf::MIPMAP_LEVELS, Imf::RIPMAP_LEVELS})
+        for (const Imf::LevelRoundingMode rounding : {Imf::ROUND_DOWN, Imf::ROUND_UP}) {
+            SCOPED_TRACE(std::to_string(mode) + " " + std::to_string(rounding));
+            test::write_tiled_exr(file, kWidth, kHeight, rgb_, Imf::TileDescription(16, 9, mode, rounding),
+                                  Imf::ZIP_COMPRESSION);
+            const ExrChannels exr = read_exr_channels(file, {"R", "B"});
+            ASSERT_EQ(exr.width, kWidth);
+            ASSERT_EQ(exr.height, kHeight);
+            ASSERT_EQ(exr.names, (std::vector<std::string>{"B", "R"}));
+            for (std::size_t k = 0; k < rgb_.size() / 3; ++k) {
+                ASSERT_EQ(exr.values[1][k], rgb_[3 * k]) << k;
+                ASSERT_EQ(exr.values[0][k], rgb_[3 * k + 2]) << k;
+            }
+        }
+}
+
+TEST_F(ExrReader, RefusesTilesThatAreNotWhatTheTableSays) {
+    // 71 × 49 pixels in 8 × 7 = 56 tiles of 9 × 7, 12 bytes a pixel, uncompressed.
+    test::write_tiled_exr(folder_ / "tiled.exr", kWidth, kHeight, rgb_, Imf::TileDescription(9, 7),
+                          Imf::NO_COMPRESSION);
+    const Bytes tiled = test::read_bytes(folder_ / "tiled.exr");
+    const std::size_t table = test::exr_header_end(tiled);
+    const auto tile = [&](int k) { return get_le(tiled, table + 8 * static_cast<std::size_t>(k), 8); };
+    Bytes bytes = tiled;
+    put_le(bytes, table + 8, 8, tile(0));  // tile (0, 0) twice
+    expect_refused(bytes, "pixel chunk 1 is tile (0, 0) of level (0, 0), not tile (1, 0) of level (0, 0)");
+    bytes = tiled;
+    put_le(bytes, tile(0) + 16, 4, 0x7fffffffu);
+    expect_refused(bytes, "pixel chunk 0 claims 2147483647 bytes, more than the " +
+                              std::to_string(tiled.size() - tile(0) - 20) + " left in the file");
+    bytes = tiled;
+    bytes.resize(bytes.size() + 4096, 0);
+    put_le(bytes, tile(7) + 16, 4, 1000);  // the last tile of the first row is 8 pixels wide
+    expect_refused(bytes, "pixel chunk 7 claims 1000 bytes, more than its 8×7 pixels hold uncompressed (672)");
+    expect_refused(Bytes(tiled.begin(), tiled.begin() + static_cast<std::ptrdiff_t>(table + 100)),
+                   "its line-offset table of 56 entries is cut short");
+    const std::size_t description = static_cast<std::size_t>(
+        std::search(tiled.begin(), tiled.end(), std::begin("tiledesc"), std::end("tiledesc")) - tiled.begin() + 13);
+    bytes = tiled;
+    put_le(bytes, description, 4, 1u << 30);  // tiles 2^30 pixels wide
+    expect_refused(bytes, "EXR tiles of 1073741824×7 pixels of 12 bytes across 71 pixels are past the reader's limit");
+    bytes = tiled;
+    bytes[description + 8] = 3;
+    expect_refused(bytes, "an EXR file of unknown tile levels 3");
 }
 
 // The reproducers fuzz_shard found (fuzz/regressions/shard/): each is read

@@ -63,10 +63,15 @@ struct ExrChannels {
     std::vector<std::vector<float>> values;  // one per name, width × height
     std::vector<ImageAttribute> attributes;  // the string attributes
 };
-// Reads `path`; throws Error(path, ...) for a file that is not a readable
-// single-part scanline EXR (image/exr_check.h says what is checked before
-// OpenEXR reads it), or whose size passes the image limits.
-ExrChannels read_exr_channels(const std::filesystem::path& path);
+// Reads `path`: every channel, or only those named in `only` that the file
+// has (none when it has none of them); the data window's corner is pixel
+// (0, 0). Throws Error(path, what) with a one-line `what` for a file that is
+// not a single-part flat EXR, scanline or tiled (a tiled one reads as its
+// first level; image/exr_check.h says what is checked before OpenEXR reads
+// a byte), or that OpenEXR cannot read ("cannot read as OpenEXR: ...").
+// sombra merge reads its shards with it, io/images/hdr_image.h its textures
+// and environment maps.
+ExrChannels read_exr_channels(const std::filesystem::path& path, const std::vector<std::string>& only = {});
 
 // The bytes of the PNG file write_image would write for `image` (for
 // embedding, e.g. in `sombra explain`'s SVG). Throws Error("png", ...) on failure.

@@ -85,7 +85,7 @@ TEST_F(FuzzRegression, EveryReproducerLoadsOrFailsCleanly) {
 
 // The hand-written seeds of the version-2 keys (fuzz/seeds/scene) load
 // through the harness and pass its checks.
-TEST_F(FuzzRegression, VersionTwoSceneSeedsLoad) {
+TEST_F(FuzzRegression, SceneSeedsLoad) {
     const fs::path seeds = fs::path(SOMBRA_SOURCE_DIR) / "fuzz" / "seeds" / "scene";
     std::size_t count = 0;
     for (const fs::directory_entry& entry : fs::directory_iterator(seeds)) {

@@ -1,9 +1,5 @@
 #include "io/images/hdr_image.h"
 
-#include <ImfChannelList.h>
-#include <ImfFrameBuffer.h>
-#include <ImfHeader.h>
-#include <ImfInputFile.h>
 #include <stb_image.h>
 
 #include <algorithm>
@@ -11,13 +7,13 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
-#include <exception>
 #include <memory>
 #include <string>
 
 #include "core/error.h"
 #include "core/format.h"
 #include "core/image_limits.h"
+#include "image/image_io.h"
 
 namespace sombra {
 
@@ -25,13 +21,6 @@ namespace {
 
 std::string lowercase(std::string s) {
     std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-    return s;
-}
-
-// A library's message on one line (OpenEXR's may span several).
-std::string one_line(std::string s) {
-    std::replace(s.begin(), s.end(), '\n', ' ');
-    std::replace(s.begin(), s.end(), '\r', ' ');
     return s;
 }
 
@@ -75,46 +64,28 @@ std::size_t check_pixels(const std::filesystem::path& path, HdrImage& image, con
     return clamped;
 }
 
+// Through image/'s EXR reader, which checks the file's layout before OpenEXR
+// allocates what the file claims.
 HdrImage read_exr(const std::filesystem::path& path) {
+    const ExrChannels exr = read_exr_channels(path, {"R", "G", "B", "Y"});
+    const auto channel = [&](const char* name) -> const std::vector<float>* {
+        const auto it = std::find(exr.names.begin(), exr.names.end(), name);
+        return it == exr.names.end() ? nullptr : &exr.values[static_cast<std::size_t>(it - exr.names.begin())];
+    };
+    const std::vector<float>* rgb[3] = {channel("R"), channel("G"), channel("B")};
+    const std::vector<float>* y = channel("Y");
+    const bool has_rgb = rgb[0] || rgb[1] || rgb[2];
+    if (!has_rgb && !y) throw Error(path.string(), "OpenEXR file has no R, G, B or Y channel");
     HdrImage image;
-    bool grey = false;
-    try {
-        Imf::InputFile file(path.c_str());  // single-threaded: the global OpenEXR thread count is 0
-        const Imf::Header& header = file.header();
-        const Imath::Box2i window = header.dataWindow();
-        const std::int64_t width = std::int64_t{window.max.x} - window.min.x + 1;
-        const std::int64_t height = std::int64_t{window.max.y} - window.min.y + 1;
-        check_size(path, width, height);
-
-        const Imf::ChannelList& channels = header.channels();
-        const bool has_rgb = channels.findChannel("R") || channels.findChannel("G") || channels.findChannel("B");
-        const bool has_y = channels.findChannel("Y") != nullptr;
-        if (!has_rgb && !has_y) throw Error(path.string(), "OpenEXR file has no R, G, B or Y channel");
-        grey = !has_rgb;
-
-        image.width = static_cast<int>(width);
-        image.height = static_cast<int>(height);
-        image.rgb.assign(static_cast<std::size_t>(width * height) * 3, 0.0f);
-        const std::size_t x_stride = 3 * sizeof(float);
-        const std::size_t y_stride = x_stride * static_cast<std::size_t>(width);
-        Imf::FrameBuffer frame;
-        if (has_rgb) {
-            const char* names[3] = {"R", "G", "B"};
-            for (std::size_t c = 0; c < 3; ++c)  // a channel the file lacks reads as 0
-                frame.insert(names[c], Imf::Slice::Make(Imf::FLOAT, image.rgb.data() + c, window, x_stride, y_stride));
-        } else {
-            frame.insert("Y", Imf::Slice::Make(Imf::FLOAT, image.rgb.data(), window, x_stride, y_stride));
-        }
-        file.setFrameBuffer(frame);
-        file.readPixels(window.min.y, window.max.y);
-        if (!file.isComplete()) throw Error(path.string(), "OpenEXR file is incomplete (truncated?)");
-    } catch (const Error&) {
-        throw;
-    } catch (const std::exception& e) {
-        throw Error(path.string(), "cannot read as OpenEXR: " + one_line(e.what()));
+    image.width = exr.width;
+    image.height = exr.height;
+    const std::size_t pixels = static_cast<std::size_t>(exr.width) * static_cast<std::size_t>(exr.height);
+    image.rgb.assign(pixels * 3, 0.0f);
+    for (std::size_t c = 0; c < 3; ++c) {
+        const std::vector<float>* from = has_rgb ? rgb[c] : y;  // a missing colour channel reads as 0; Y alone as grey
+        if (from)
+            for (std::size_t p = 0; p < pixels; ++p) image.rgb[3 * p + c] = (*from)[p];
     }
-    if (grey)  // copy the one channel, read into R, into G and B
-        for (std::size_t i = 0; i < image.rgb.size(); i += 3) image.rgb[i + 1] = image.rgb[i + 2] = image.rgb[i];
     return image;
 }
 

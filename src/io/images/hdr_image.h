@@ -1,5 +1,5 @@
 // Reading high-dynamic-range images (spec §10; §12 for EXR and HDR
-// textures): OpenEXR through the OpenEXR library, Radiance .hdr through
+// textures): OpenEXR through image/'s checked reader, Radiance .hdr through
 // stb_image, into the model's HdrImage (scene/hdr_image.h), checked so that
 // the renderer can trust every pixel.
 #pragma once
@@ -15,8 +15,10 @@ namespace sombra {
 // Reads an OpenEXR (.exr) or Radiance (.hdr) file; the extension, in any
 // case, decides which. EXR: the R, G and B channels (a missing one reads as
 // 0), or a single Y channel as grey; the data window becomes the image (its
-// top-left corner is pixel (0, 0)). HDR: stb_image's decoder (RLE or flat
-// RGBE scanlines, "-Y H +X W" layout).
+// top-left corner is pixel (0, 0)), a tiled file's first level; read by
+// image/'s read_exr_channels, which refuses multi-part and deep files and
+// any whose layout claims more than the file holds (image/exr_check.h).
+// HDR: stb_image's decoder (RLE or flat RGBE scanlines, "-Y H +X W" layout).
 //
 // Throws Error(path, what) when the file is missing or unreadable, is not
 // that format (or is truncated), has another extension, has no pixels or more

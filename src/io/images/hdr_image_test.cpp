@@ -16,11 +16,13 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <iterator>
 #include <limits>
 #include <string>
 #include <vector>
 
 #include "core/error.h"
+#include "image/exr_test_bytes.h"
 #include "io/images/exr_test_file.h"
 #include "io/polygon_test_files.h"
 
@@ -130,6 +132,24 @@ TEST(HdrImage, ExrMissingChannelReadsAsZero) {
     EXPECT_EQ(read_hdr_image(folder.path / "rg.exr").rgb, (std::vector<float>{0.5f, 1.5f, 0.0f}));
 }
 
+// Tiled files (textures are often tiled and mip-mapped) read as their first level.
+TEST(HdrImage, ExrTiledFilesReadTheirFirstLevel) {
+    TempFolder folder;
+    const std::vector<float> rgb = ramp(11, 7);
+    for (const Imf::LevelMode mode : {Imf::ONE_LEVEL, Imf::MIPMAP_LEVELS, Imf::RIPMAP_LEVELS})
+        for (const Imf::LevelRoundingMode rounding : {Imf::ROUND_DOWN, Imf::ROUND_UP})
+            for (const Imf::Compression compression :
+                 {Imf::NO_COMPRESSION, Imf::ZIP_COMPRESSION, Imf::PIZ_COMPRESSION}) {
+                SCOPED_TRACE(std::to_string(mode) + " " + std::to_string(rounding) + " " + std::to_string(compression));
+                test::write_tiled_exr(folder.path / "tiled.exr", 11, 7, rgb, Imf::TileDescription(4, 3, mode, rounding),
+                                      compression);
+                const HdrImage image = read_hdr_image(folder.path / "tiled.exr");
+                EXPECT_EQ(image.width, 11);
+                EXPECT_EQ(image.height, 7);
+                EXPECT_EQ(image.rgb, rgb);
+            }
+}
+
 TEST(HdrImage, RadianceFlatAndRunLengthReadBack) {
     TempFolder folder;
     for (const int width : {3, 10, 200}) {
@@ -185,6 +205,20 @@ TEST(HdrImage, GarbageAndTruncatedFiles) {
     const std::string exr((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
     for (std::size_t cut = 0; cut < exr.size(); cut += 7)
         EXPECT_NE(error_of(folder.write("cut.exr", exr.substr(0, cut))), "") << "cut at " << cut;
+}
+
+// Textures and environment maps go through the layout check shards do
+// (image/exr_check.h): a chunk claiming 2 GiB is refused before OpenEXR reads it.
+TEST(HdrImage, ExrLayoutIsCheckedBeforeOpenExrReadsIt) {
+    TempFolder folder;
+    write_exr(folder.path / "sky.exr", 3, 2, ramp(3, 2));
+    std::ifstream in(folder.path / "sky.exr", std::ios::binary);
+    std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    const std::size_t chunk = test::exr_chunk(bytes, 0);
+    test::put_le(bytes, chunk + 4, 4, 0x7fffffffu);
+    EXPECT_EQ(error_of(folder.write("claims.exr", bytes)),
+              "damaged EXR file: pixel chunk 0 claims 2147483647 bytes, more than the " +
+                  std::to_string(bytes.size() - chunk - 8) + " left in the file");
 }
 
 TEST(HdrImage, NegativeNanAndInfinitePixelsNameThePixel) {

@@ -14,14 +14,7 @@
 namespace sombra {
 namespace {
 
-class SceneInstances : public testing::SceneFileTest {
-protected:
-    static void SetUpTestSuite() { make_folder("scene_instances_test"); }
-};
-
-std::string with_objects(const std::string& objects) {
-    return R"({"camera": {"origin": [0, 0, 5], "look_at": [0, 0, 0]}, "objects": [)" + objects + "]}";
-}
+class SceneInstances : public testing::SceneFileTest {};
 
 TEST_F(SceneInstances, AListStoresTheMeshOnceAndPlacesEachEntryAfterTheObjectsTransform) {
     const Scene s = load(with_objects(R"({"file": "tri.obj"},

@@ -197,7 +197,7 @@ TEST(Bsdf, EvalIsReciprocal) {
     }
 }
 
-TEST(Bsdf, EvalMatchesTheVersionOneBrdfBitForBit) {
+TEST(Bsdf, EvalMatchesEvalBrdfBitForBit) {
     for (const Material& m : non_delta_materials()) {
         if (m.type == MaterialType::Conductor) continue;
         for (std::uint32_t i = 0; i < 2000; ++i) {

@@ -6,7 +6,7 @@
 
 #include <vector>
 
-#include "cli_test_fixture.h"
+#include "hostile_test_fixture.h"
 #include "io/images/image_test_files.h"
 
 namespace {
@@ -17,10 +17,10 @@ const std::string kHead =
     R"({"render": {"width": 16, "height": 12}, "camera": {"origin": [0, 0, 4], "look_at": [0, 0, 0], "fov": 40},
   "lights": [{"position": [0, 0, 3], "intensity": [5, 5, 5]}], )";
 
-class HostileTextures : public CliFixture {
+class HostileTextures : public HostileFixture {
 protected:
     void SetUp() override {
-        CliFixture::SetUp();
+        HostileFixture::SetUp();
         write_text(dir_ / "uv.obj",
                    "v -1 -1 0\nv 1 -1 0\nv 1 1 0\nv -1 1 0\nvt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\nf 1/1 2/2 3/3 4/4\n");
         sombra::testing::write_png_file(dir_ / "good.png", 2, 2, 3, 8,
@@ -30,14 +30,8 @@ protected:
         sombra::testing::write_png_file(dir_ / "deep.png", 32, 32, 3, 16, noise);
     }
     // A scene whose square (with uvs) has material `m`.
-    RunResult render(const std::string& material, const std::string& args = "") {
-        write_text(dir_ / "s.json", kHead + R"("materials": {"m": )" + material +
-                                        R"(}, "objects": [{"file": "uv.obj", "material": "m"}]})");
-        return run("render s.json -o out.png --quiet --threads 2 " + args);
-    }
-    void expect_error_at(const RunResult& r, const std::string& where, const std::string& what) {
-        expect_input_error(r, what);
-        EXPECT_EQ(r.err.rfind("sombra: error: " + where + ": ", 0), 0u) << "expected WHERE " << where << ": " << r.err;
+    std::string textured_scene(const std::string& material) {
+        return kHead + R"("materials": {"m": )" + material + R"(}, "objects": [{"file": "uv.obj", "material": "m"}]})";
     }
     std::string bytes_of(const char* name) {
         const std::vector<unsigned char> b = sombra::testing::read_file_bytes(dir_ / name);
@@ -83,7 +77,7 @@ TEST_F(HostileTextures, BadSceneTexturesAreOneLineErrors) {
     };
     for (const auto& c : cases) {
         SCOPED_TRACE(c.material);
-        const RunResult r = render(c.material);
+        const RunResult r = render(textured_scene(c.material));
         expect_error_at(r, c.where, c.what);
         EXPECT_LT(r.seconds, 10.0);
     }
@@ -113,12 +107,12 @@ TEST_F(HostileTextures, BadMtlTexturesWarnAndRenderTheConstant) {
 }
 
 TEST_F(HostileTextures, GoodTexturesAndCutOutsRenderQuietly) {
-    RunResult r = render(
+    RunResult r = render(textured_scene(
         R"({"type": "phong", "kd": {"texture": "good.png"}, "ks": {"texture": "deep.png", "scale": [0.2, 0.2, 0.2]},
-                             "shininess": 10, "normal_map": "deep.png"})");
+                             "shininess": 10, "normal_map": "deep.png"})"));
     EXPECT_EQ(r.status, 0) << r.err;
     EXPECT_TRUE(r.err.empty()) << r.err;
-    r = render(R"({"type": "diffuse", "kd": [1, 1, 1], "alpha": {"texture": "good.png"}})",
+    r = render(textured_scene(R"({"type": "diffuse", "kd": [1, 1, 1], "alpha": {"texture": "good.png"}})"),
                "--integrator path --spp 1");
     EXPECT_EQ(r.status, 0) << r.err;
     EXPECT_TRUE(r.err.empty()) << r.err;
