@@ -281,13 +281,7 @@ float pdf_light_triangle(const LightSet& lights, const Scene& scene, std::uint32
 }
 
 LightKind light_kind(const LightSet& lights, const Scene& scene, std::uint32_t light) {
-    if (light < lights.first_emitter()) {
-        switch (lights.delta[light].type) {
-            case LightType::Point: return LightKind::Point;
-            case LightType::Spot: return LightKind::Spot;
-            case LightType::Directional: return LightKind::Directional;
-        }
-    }
+    if (light < lights.first_emitter()) return LightKind::Delta;
     if (light >= lights.environment_light()) return LightKind::Environment;
     const Emitter e = lights.emitters[light - lights.first_emitter()];
     return scene.materials[surface_mesh(scene, e.instance).material_ids[e.triangle]].emits_front_only

@@ -37,9 +37,7 @@ constexpr std::size_t kLightTreeMinEmitters = 8;
 
 // What kind of light an entry of the light set is (spec §4, §10, §16).
 enum class LightKind : std::uint8_t {
-    Point,
-    Spot,
-    Directional,
+    Delta,        // a point, spot or directional light: LightSet::delta[light], its type there
     Quad,         // an emitting triangle of a quad light (one-sided)
     Triangle,     // an emitting triangle of a material with ke (two-sided)
     Environment,  // the background or environment map, when it lights (path)

@@ -220,8 +220,10 @@ TEST(Lights, EveryLightHasOneIdentityInTheSet) {
     ASSERT_EQ(lights.light_count(), 5u);
     EXPECT_EQ(lights.first_emitter(), 2u);
     EXPECT_EQ(lights.environment_light(), 4u);
-    EXPECT_EQ(light_kind(lights, scene, 0), LightKind::Spot);
-    EXPECT_EQ(light_kind(lights, scene, 1), LightKind::Directional);
+    EXPECT_EQ(light_kind(lights, scene, 0), LightKind::Delta);
+    EXPECT_EQ(lights.delta[0].type, LightType::Spot);
+    EXPECT_EQ(light_kind(lights, scene, 1), LightKind::Delta);
+    EXPECT_EQ(lights.delta[1].type, LightType::Directional);
     EXPECT_EQ(light_kind(lights, scene, 2), LightKind::Triangle);
     EXPECT_EQ(light_kind(lights, scene, 3), LightKind::Quad);
     EXPECT_EQ(light_kind(lights, scene, 4), LightKind::Environment);
