@@ -113,8 +113,9 @@ AovSet aov_option(std::string_view list) {
     std::string bad;
     const std::optional<AovSet> set = parse_aov_list(list, bad);
     if (!set)
-        throw Error("--aov", "unknown AOV '" + bad +
-                                 "' (expected a comma-separated list of albedo, normal, depth, position, spp)");
+        throw Error("--aov",
+                    "unknown AOV '" + bad +
+                        "' (expected a comma-separated list of albedo, normal, depth, position, spp, variance)");
     return *set;
 }
 
@@ -136,11 +137,9 @@ std::string_view light_selection_name(LightSelection selection) {
 
 std::string aov_list(const AovSet& aovs) {
     std::string list;
-    const std::pair<bool, const char*> named[] = {{aovs.albedo, "albedo"},
-                                                  {aovs.normal, "normal"},
-                                                  {aovs.depth, "depth"},
-                                                  {aovs.position, "position"},
-                                                  {aovs.spp, "spp"}};
+    const std::pair<bool, const char*> named[] = {{aovs.albedo, "albedo"}, {aovs.normal, "normal"},
+                                                  {aovs.depth, "depth"},   {aovs.position, "position"},
+                                                  {aovs.spp, "spp"},       {aovs.variance, "variance"}};
     for (const auto& [on, name] : named)
         if (on) list += std::string(list.empty() ? "" : ",") + name;
     return list;

@@ -117,7 +117,8 @@ TEST(RenderOptions, AovListsReadBackInSpecOrder) {
     EXPECT_EQ(aov_list(set), "albedo,depth,spp");
     EXPECT_EQ(aov_list(AovSet{}), "");
     EXPECT_EQ(error_of([] { aov_option("albedo,,depth"); }),
-              "--aov: unknown AOV '' (expected a comma-separated list of albedo, normal, depth, position, spp)");
+              "--aov: unknown AOV '' (expected a comma-separated list of albedo, normal, depth, position, spp, "
+              "variance)");
 }
 
 TEST(Session, TheJobCarriesTheOptions) {

@@ -143,7 +143,8 @@ void add_output_options(CLI::App& render, CliOptions& o) {
     render
         .add_option_function<std::string>(
             "--aov", [&r](const std::string& list) { r.aovs = aov_option(list); },
-            "Float layers added to an .exr output: any of albedo, normal, depth, position, spp, comma-separated")
+            "Float layers added to an .exr output: any of albedo, normal, depth, position, spp, variance, "
+            "comma-separated")
         ->check(library_name_check(aov_option));
     render
         .add_option("--display-server", o.display_server,

@@ -82,7 +82,7 @@ TEST_F(RenderOutputs, AdaptiveStatisticsAndSppLayer) {
 
 TEST_F(RenderOutputs, AovLayersAreNamedAsTheContractSays) {
     write_text(dir_ / "s.json", scene());
-    const RunResult r = run("render s.json -o out.exr --spp 1 --aov albedo,normal,depth,position,spp --quiet");
+    const RunResult r = run("render s.json -o out.exr --spp 1 --aov albedo,normal,depth,position,spp,variance --quiet");
     ASSERT_EQ(r.status, 0) << r.err;
     Imf::InputFile file((dir_ / "out.exr").c_str());
     std::set<std::string> names;
@@ -90,9 +90,10 @@ TEST_F(RenderOutputs, AovLayersAreNamedAsTheContractSays) {
         names.insert(c.name());
         EXPECT_EQ(c.channel().type, Imf::FLOAT) << c.name();
     }
-    const std::set<std::string> expected{"R",        "G",          "B",          "albedo.R",  "albedo.G",
-                                         "albedo.B", "normal.X",   "normal.Y",   "normal.Z",  "depth.Z",
-                                         "spp.Y",    "position.X", "position.Y", "position.Z"};
+    const std::set<std::string> expected{"R",          "G",          "B",          "albedo.R",   "albedo.G",
+                                         "albedo.B",   "normal.X",   "normal.Y",   "normal.Z",   "depth.Z",
+                                         "spp.Y",      "position.X", "position.Y", "position.Z", "variance.R",
+                                         "variance.G", "variance.B"};
     EXPECT_EQ(names, expected);
 
     // The square z = 0, seen from (0, 0, 4): the pixel at the image's centre
@@ -119,6 +120,7 @@ TEST_F(RenderOutputs, AovLayersAreNamedAsTheContractSays) {
     EXPECT_NEAR(value("normal.Z", ci, cj), 1.0f, 1e-6f);
     EXPECT_NEAR(value("position.Z", ci, cj), 0.0f, 1e-5f);
     EXPECT_EQ(value("spp.Y", ci, cj), 1.0f);
+    EXPECT_EQ(value("variance.G", ci, cj), std::numeric_limits<float>::infinity()) << "one sample: unknown";
     EXPECT_EQ(value("depth.Z", 0, 0), std::numeric_limits<float>::infinity());
     EXPECT_EQ(value("albedo.R", 0, 0), 0.0f);
     EXPECT_GT(value("G", ci, cj), 0.0f);

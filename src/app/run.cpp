@@ -46,6 +46,7 @@ std::vector<ImageChannel> aov_layers(const AovImages& aovs) {
     if (!aovs.depth.empty()) layers.push_back({"depth.Z", aovs.depth.data(), 1});
     add3(aovs.position, "position", "XYZ");
     if (!aovs.spp.empty()) layers.push_back({"spp.Y", aovs.spp.data(), 1});
+    add3(aovs.variance, "variance", "RGB");
     return layers;
 }
 

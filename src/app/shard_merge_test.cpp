@@ -32,7 +32,7 @@ protected:
 };
 
 TEST_F(Shards, MergedShardsAreTheWholeRenderBitForBit) {
-    for (const std::string options : {"--integrator direct", "--integrator path --aov albedo,depth,spp"}) {
+    for (const std::string options : {"--integrator direct", "--integrator path --aov albedo,depth,spp,variance"}) {
         SCOPED_TRACE(options);
         for (int i = 0; i < 3; ++i) shard(i, 3, options);
         for (const std::string ext : {"exr", "png", "pfm"}) {

@@ -46,8 +46,9 @@ int block_count(int width, int height) {
 }
 
 // A block's output's images, in a fixed order both ends know: RGB, then the AOVs asked.
-std::array<std::vector<float>*, 6> images_of(RenderOutput& r) {
-    return {&r.film.rgb, &r.aovs.albedo, &r.aovs.normal, &r.aovs.depth, &r.aovs.position, &r.aovs.spp};
+std::array<std::vector<float>*, 7> images_of(RenderOutput& r) {
+    return {&r.film.rgb,      &r.aovs.albedo, &r.aovs.normal,  &r.aovs.depth,
+            &r.aovs.position, &r.aovs.spp,    &r.aovs.variance};
 }
 
 std::vector<float> pack(RenderOutput& block) {
@@ -59,9 +60,9 @@ std::vector<float> pack(RenderOutput& block) {
 // Copies a block's packed floats into the whole image's arrays, each
 // allocated on first use with the channels the block's own has.
 void place(RenderOutput& image, const RenderJob& job, const PixelWindow& w, const std::vector<float>& floats) {
-    const std::array<std::size_t, 6> channels{3, 3, 3, 1, 3, 1};
+    const std::array<std::size_t, 7> channels{3, 3, 3, 1, 3, 1, 3};
     const AovSet& a = job.aovs;
-    const std::array<bool, 6> present{true, a.albedo, a.normal, a.depth, a.position, a.spp};
+    const std::array<bool, 7> present{true, a.albedo, a.normal, a.depth, a.position, a.spp, a.variance};
     const std::size_t width = static_cast<std::size_t>(job.settings.width);
     std::size_t at = 0;
     const auto targets = images_of(image);

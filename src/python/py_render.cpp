@@ -132,6 +132,7 @@ py::object render(const std::shared_ptr<PyScene>& scene, const py::dict& options
     add("depth", rendered.aovs.depth, 1);
     add("position", rendered.aovs.position, 3);
     add("spp", rendered.aovs.spp, 1);
+    add("variance", rendered.aovs.variance, 3);
     out["spp_reached"] = static_cast<double>(rendered.samples) / static_cast<double>(w * h);
     out["passes"] = rendered.passes;
     return out;

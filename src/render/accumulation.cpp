@@ -52,6 +52,10 @@ Accumulation::Accumulation(int width, int height, bool moments, AovSet aovs)
         depth_sum_.assign(n, 0.0f);
         hits_.assign(n, 0);
     }
+    if (aovs.variance) {
+        channel_sum_.assign(3 * n, 0.0);
+        channel_squares_.assign(3 * n, 0.0);
+    }
 }
 
 void Accumulation::add(std::size_t pixel, Vec3 radiance, const FirstHit* first) {
@@ -62,6 +66,13 @@ void Accumulation::add(std::size_t pixel, Vec3 radiance, const FirstHit* first) 
         const double y = luminance(radiance);
         luminance_sum_[pixel] += y;
         luminance_squares_[pixel] += y * y;
+    }
+    if (!channel_sum_.empty()) {
+        const double c[3] = {radiance.x, radiance.y, radiance.z};
+        for (int k = 0; k < 3; ++k) {
+            channel_sum_[3 * pixel + k] += c[k];
+            channel_squares_[3 * pixel + k] += c[k] * c[k];
+        }
     }
     if (first == nullptr || !first->hit) return;  // a miss adds 0 to every AOV
     if (!albedo_sum_.empty()) add3(albedo_sum_, pixel, first->albedo);
@@ -125,6 +136,22 @@ AovImages Accumulation::aov_images() const {
                 hits_[p] > 0 ? depth_sum_[p] / static_cast<float>(hits_[p]) : std::numeric_limits<float>::infinity();
     }
     if (aovs_.spp) out.spp.assign(count_.begin(), count_.end());
+    if (aovs_.variance) {
+        out.variance.resize(3 * count_.size());
+        for (std::size_t p = 0; p < count_.size(); ++p) {
+            const auto n = static_cast<double>(count_[p]);
+            for (std::size_t k = 3 * p; k < 3 * p + 3; ++k) {
+                if (n < 2) {
+                    out.variance[k] = std::numeric_limits<float>::infinity();
+                    continue;
+                }
+                const double mean = channel_sum_[k] / n;
+                // max(): rounding can take a constant pixel's sum of squares just below n·m².
+                const double sample_variance = std::max(0.0, channel_squares_[k] - n * mean * mean) / (n - 1.0);
+                out.variance[k] = static_cast<float>(sample_variance / n);
+            }
+        }
+    }
     return out;
 }
 

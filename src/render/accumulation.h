@@ -20,9 +20,11 @@ namespace sombra {
 // The AOV images, each empty unless asked: albedo, normal and position 3
 // floats a pixel (the mean over all the pixel's samples, a miss adding 0),
 // depth and spp one (depth: the mean over the samples that hit, +∞ where
-// none does; spp: the samples taken).
+// none does; spp: the samples taken), variance 3 (per channel, the
+// unbiased estimate s²/n of the variance of the pixel's mean from its own n
+// samples; +∞ where n < 2, since one sample says nothing of its spread).
 struct AovImages {
-    std::vector<float> albedo, normal, position, depth, spp;
+    std::vector<float> albedo, normal, position, depth, spp, variance;
 };
 
 class Accumulation {
@@ -80,6 +82,9 @@ private:
     std::vector<float> albedo_sum_, normal_sum_, position_sum_;  // 3 a pixel, when asked
     std::vector<float> depth_sum_;
     std::vector<std::uint32_t> hits_;  // samples whose camera ray hit a surface, with depth
+    // With the variance AOV: each channel's sum and sum of squares, in
+    // double so that s² = (Σx² − n·m²)/(n − 1) keeps its digits.
+    std::vector<double> channel_sum_, channel_squares_;  // 3 a pixel
 };
 
 }  // namespace sombra

@@ -1,5 +1,5 @@
-// Which AOVs (arbitrary output variables, spec §18) a render gathers beside
-// the image, as `--aov albedo,normal,depth,position,spp` names them.
+// Which AOVs (arbitrary output variables, spec §18, §25) a render gathers
+// beside the image, as `--aov albedo,normal,depth,position,spp,variance` names them.
 #pragma once
 
 #include <optional>
@@ -14,8 +14,9 @@ struct AovSet {
     bool depth = false;
     bool position = false;
     bool spp = false;
+    bool variance = false;  // the estimated variance of each pixel's mean, per channel (spec §25)
 
-    bool any() const { return albedo || normal || depth || position || spp; }
+    bool any() const { return albedo || normal || depth || position || spp || variance; }
     // Whether the samples must report their first hit.
     bool needs_first_hit() const { return albedo || normal || depth || position; }
 };
@@ -37,6 +38,8 @@ inline std::optional<AovSet> parse_aov_list(std::string_view list, std::string& 
             set.position = true;
         else if (name == "spp")
             set.spp = true;
+        else if (name == "variance")
+            set.variance = true;
         else {
             bad = std::string(name);
             return std::nullopt;

@@ -69,9 +69,10 @@ def render(scene: Scene, *, aov: Union[Sequence[str], str, None] = None, progres
       time                       seconds: render sample passes until the next would
                                  end past the budget (counted from this call)
       noise_threshold, min_spp   adaptive sampling
-    aov: any of "albedo", "normal", "depth", "position", "spp": then the result
+    aov: any of "albedo", "normal", "depth", "position", "spp", "variance": then the result
       is a dict of arrays, "color" the image, "albedo"/"normal"/"position"
-      (height, width, 3), "depth"/"spp" (height, width).
+      (height, width, 3), "depth"/"spp" (height, width), "variance" (height,
+      width, 3): the estimated variance of each pixel's mean, per channel.
     progress: True for a text bar (on stderr, redrawn in place; in Jupyter
       one text output that updates), or a callable receiving
       (samples done, samples in all) about every 50 ms.
@@ -84,7 +85,7 @@ def render(scene: Scene, *, aov: Union[Sequence[str], str, None] = None, progres
     if aov is not None:
         names = [aov] if isinstance(aov, str) else aov
         if not isinstance(names, (list, tuple)) or not all(isinstance(n, str) for n in names):
-            raise TypeError("render(): aov must be a list of str (albedo, normal, depth, position, spp)")
+            raise TypeError("render(): aov must be a list of str (albedo, normal, depth, position, spp, variance)")
         if names:
             checked["aov"] = list(names)
     bar = None

@@ -57,6 +57,17 @@ def test_aovs_come_back_as_a_dict_of_arrays():
     assert np.isfinite(out["depth"][18, 24]) and out["depth"][18, 24] > 0
 
 
+def test_the_variance_aov_comes_back_per_channel():
+    scene = sombra.load("scenes/cornell-box-path.json")
+    out = sombra.render(scene, spp=4, aov=["variance"], **SMALL)
+    assert set(out) == {"color", "variance"}
+    assert out["variance"].shape == (36, 48, 3) and out["variance"].dtype == np.float32
+    assert (out["variance"] >= 0).all() and out["variance"].max() > 0
+    again = sombra.render(scene, spp=4, aov=["variance"], threads=1, **SMALL)
+    assert again["variance"].tobytes() == out["variance"].tobytes()
+    assert out["color"].tobytes() == sombra.render(scene, spp=4, **SMALL).tobytes()  # the AOV changes nothing
+
+
 def test_a_time_budget_returns_and_equals_the_spp_it_reached():
     scene = sombra.load("scenes/cornell-box-path.json")
     start = time.monotonic()
