@@ -16,19 +16,36 @@ namespace sombra::python {
 
 namespace {
 
-// A Python int clamped into [lowest, highest]: a value beyond them then
-// fails the option's own range check with its usual message.
-std::int64_t clamped_int(const py::handle& value, std::int64_t lowest, std::int64_t highest) {
+// The option's name as the command line spells it: "max_depth" → "--max-depth".
+std::string option_name(std::string key) {
+    std::replace(key.begin(), key.end(), '_', '-');
+    return "--" + key;
+}
+
+// A Python int within [lowest, highest]; beyond them, which no option's own
+// range reaches, an error naming the option and the value as given.
+std::int64_t whole_number(const std::string& key, const py::handle& value, std::int64_t lowest, std::int64_t highest) {
     int overflow = 0;
     const long long v = PyLong_AsLongLongAndOverflow(value.ptr(), &overflow);
-    if (overflow != 0) return overflow > 0 ? highest : lowest;
-    if (v == -1 && PyErr_Occurred()) throw py::error_already_set();
-    return std::clamp<std::int64_t>(v, lowest, highest);
+    if (overflow == 0 && v == -1 && PyErr_Occurred()) throw py::error_already_set();
+    if (overflow != 0 || v < lowest || v > highest)
+        throw Error(option_name(key), "out of range: " + std::string(py::str(value)));
+    return v;
+}
+
+int int_option(const std::string& key, const py::handle& value) {
+    return static_cast<int>(whole_number(key, value, INT_MIN, INT_MAX));
 }
 
 }  // namespace
 
-int int_value(const py::handle& value) { return static_cast<int>(clamped_int(value, INT_MIN, INT_MAX)); }
+int int_value(const py::handle& value) {
+    int overflow = 0;
+    const long long v = PyLong_AsLongLongAndOverflow(value.ptr(), &overflow);
+    if (overflow == 0 && v == -1 && PyErr_Occurred()) throw py::error_already_set();
+    if (overflow != 0) return overflow > 0 ? INT_MAX : INT_MIN;
+    return static_cast<int>(std::clamp<long long>(v, INT_MIN, INT_MAX));
+}
 
 RenderOptions render_options_from(const py::dict& options) {
     RenderOptions r;
@@ -36,11 +53,11 @@ RenderOptions render_options_from(const py::dict& options) {
     for (const auto& [key_handle, value] : options) {
         const std::string key = py::cast<std::string>(key_handle);
         if (key == "width") {
-            s.width = int_value(value);
+            s.width = int_option(key, value);
         } else if (key == "height") {
-            s.height = int_value(value);
+            s.height = int_option(key, value);
         } else if (key == "spp") {
-            s.spp = int_value(value);
+            s.spp = int_option(key, value);
         } else if (key == "seed") {
             if (py::cast<py::int_>(value) < py::int_(0))
                 throw Error("--seed", "must be a non-negative integer, not " + std::string(py::str(value)));
@@ -53,23 +70,23 @@ RenderOptions render_options_from(const py::dict& options) {
         } else if (key == "integrator") {
             s.integrator = integrator_option(py::cast<std::string>(value));
         } else if (key == "max_depth") {
-            s.max_depth = int_value(value);
+            s.max_depth = int_option(key, value);
         } else if (key == "texture_filter") {
             s.texture_filter = texture_filter_option(py::cast<std::string>(value));
         } else if (key == "threads") {
-            r.threads = int_value(value);
+            r.threads = int_option(key, value);
         } else if (key == "accel") {
             r.accel = accel_option(py::cast<std::string>(value));
         } else if (key == "light_tree") {
             r.light_selection = light_selection_option(py::cast<std::string>(value));
         } else if (key == "frame") {
-            r.frame = clamped_int(value, INT64_MIN, INT64_MAX);
+            r.frame = whole_number(key, value, INT64_MIN, INT64_MAX);
         } else if (key == "time") {
             r.time_budget = py::cast<double>(value);
         } else if (key == "noise_threshold") {
             r.noise_threshold = py::cast<double>(value);
         } else if (key == "min_spp") {
-            r.min_spp = int_value(value);
+            r.min_spp = int_option(key, value);
         } else if (key == "aov") {
             std::string list;
             for (const std::string& name : py::cast<std::vector<std::string>>(value))

@@ -42,6 +42,26 @@ def test_bad_option_values_are_errors_naming_the_option():
         sombra.render(scene, time=float("nan"))
     with pytest.raises(sombra.Error, match=r"pixel \(48, 0\): outside the 48x36 image"):
         sombra.explain(scene, 48, 0, width=48, height=36)
+    # The same words as the command line's, from the library's own checks.
+    with pytest.raises(sombra.Error, match="^--threads: must be between 0 and 4096, not 5000$"):
+        sombra.render(scene, threads=5000)
+    with pytest.raises(sombra.Error, match="^--max-depth: must be between 0 and 1024, not -1$"):
+        sombra.render(scene, max_depth=-1)
+    with pytest.raises(sombra.Error, match="^--seed: must be a non-negative integer, not -1$"):
+        sombra.render(scene, seed=-1)
+    with pytest.raises(sombra.Error, match="^--seed: must be below 2\\^64"):
+        sombra.render(scene, seed=2**64)
+    with pytest.raises(sombra.Error, match="^--width: out of range: 1000000000000000000000$"):
+        sombra.render(scene, width=10**21)
+    with pytest.raises(sombra.Error, match=r"^pixel \(1099511627776, 0\): outside the 48x36 image$"):
+        sombra.explain(scene, 2**40, 0, width=48, height=36)
+    for option, value, keyword in (("--threads", 5000, "threads"), ("--integrator", "pth", "integrator"),
+                                   ("--min-spp", 0, "min_spp"), ("--time", 0.0, "time")):
+        status, _, err = run_cli("render", "scenes/cornell-box.json", option, value, "-o", "/tmp/never.png", "-q")
+        assert status == 2
+        with pytest.raises(sombra.Error) as caught:
+            sombra.render(scene, **{keyword: value})
+        assert "command line: " + str(caught.value) + " (see" in err
 
 
 def test_a_bad_dict_names_its_json_path():
