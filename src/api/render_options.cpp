@@ -1,7 +1,6 @@
 #include "api/render_options.h"
 
 #include <string>
-#include <utility>
 
 #include "core/error.h"
 #include "core/format.h"
@@ -133,16 +132,6 @@ std::string_view light_selection_name(LightSelection selection) {
         case LightSelection::Automatic: break;
     }
     return "auto";
-}
-
-std::string aov_list(const AovSet& aovs) {
-    std::string list;
-    const std::pair<bool, const char*> named[] = {{aovs.albedo, "albedo"}, {aovs.normal, "normal"},
-                                                  {aovs.depth, "depth"},   {aovs.position, "position"},
-                                                  {aovs.spp, "spp"},       {aovs.variance, "variance"}};
-    for (const auto& [on, name] : named)
-        if (on) list += std::string(list.empty() ? "" : ",") + name;
-    return list;
 }
 
 }  // namespace sombra

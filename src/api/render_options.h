@@ -75,7 +75,4 @@ AovSet aov_option(std::string_view list);  // "albedo,depth"
 std::optional<LightSelection> parse_light_selection(std::string_view name);
 std::string_view light_selection_name(LightSelection selection);
 
-// The AOV names of a set, comma-separated in the order spec §18 lists them ("albedo,depth").
-std::string aov_list(const AovSet& aovs);
-
 }  // namespace sombra
