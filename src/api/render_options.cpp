@@ -102,10 +102,14 @@ LightSelection light_selection_option(std::string_view name) {
     return named_value("--light-tree", parse_light_selection(name), name, "light choice", "expected auto, on or off");
 }
 
-AccelKind accel_option(std::string_view name) {
+std::string accel_names() {
     std::string names;
     for (std::string_view n : available_accels()) names += (names.empty() ? "" : ", ") + std::string(n);
-    return named_value("--accel", parse_accel_kind(name), name, "accelerator", "available: " + names);
+    return names;
+}
+
+AccelKind accel_option(std::string_view name) {
+    return named_value("--accel", parse_accel_kind(name), name, "accelerator", "available: " + accel_names());
 }
 
 AovSet aov_option(std::string_view list) {

@@ -8,6 +8,7 @@
 #include <chrono>
 #include <cstdint>
 #include <optional>
+#include <string>
 #include <string_view>
 
 #include "accel/accel.h"
@@ -70,6 +71,9 @@ TextureFilter texture_filter_option(std::string_view name);
 LightSelection light_selection_option(std::string_view name);
 AccelKind accel_option(std::string_view name);
 AovSet aov_option(std::string_view list);  // "albedo,depth"
+
+// The accelerators this build has, as --accel names them: "bvh, brute, embree".
+std::string accel_names();
 
 // --light-tree's names: "auto", "on" (the tree), "off" (by power).
 std::optional<LightSelection> parse_light_selection(std::string_view name);

@@ -20,12 +20,6 @@ namespace {
 // cluster's nodes, far fewer than an image's blocks.
 constexpr int kMaxShards = 4096;
 
-std::string accel_list() {
-    std::string names;
-    for (std::string_view name : available_accels()) names += (names.empty() ? "" : ", ") + std::string(name);
-    return names;
-}
-
 // CLI11 messages can span lines; the contract wants one.
 std::string one_line(std::string text) {
     for (char& c : text)
@@ -95,7 +89,7 @@ void add_render_options(CLI::App& command, CliOptions& o) {
     command
         .add_option_function<std::string>(
             "--accel", [&r](const std::string& name) { r.accel = accel_option(name); },
-            "Acceleration structure: " + accel_list())
+            "Acceleration structure: " + accel_names())
         ->check(library_name_check(accel_option))
         ->default_str(std::string(accel_name(r.accel)));
     command
