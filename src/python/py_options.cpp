@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <climits>
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -22,15 +23,22 @@ std::string option_name(std::string key) {
     return "--" + key;
 }
 
-// A Python int within [lowest, highest]; beyond them, which no option's own
-// range reaches, an error naming the option and the value as given.
-std::int64_t whole_number(const std::string& key, const py::handle& value, std::int64_t lowest, std::int64_t highest) {
+// A Python int as a long long; nullopt when it does not fit.
+std::optional<long long> long_long_of(const py::handle& value) {
     int overflow = 0;
     const long long v = PyLong_AsLongLongAndOverflow(value.ptr(), &overflow);
     if (overflow == 0 && v == -1 && PyErr_Occurred()) throw py::error_already_set();
-    if (overflow != 0 || v < lowest || v > highest)
-        throw Error(option_name(key), "out of range: " + std::string(py::str(value)));
+    if (overflow != 0) return std::nullopt;
     return v;
+}
+
+// A Python int within [lowest, highest]; beyond them, which no option's own
+// range reaches, an error naming the option and the value as given.
+std::int64_t whole_number(const std::string& key, const py::handle& value, std::int64_t lowest, std::int64_t highest) {
+    const std::optional<long long> v = long_long_of(value);
+    if (!v || *v < lowest || *v > highest)
+        throw Error(option_name(key), "out of range: " + std::string(py::str(value)));
+    return *v;
 }
 
 int int_option(const std::string& key, const py::handle& value) {
@@ -40,11 +48,9 @@ int int_option(const std::string& key, const py::handle& value) {
 }  // namespace
 
 int int_value(const py::handle& value) {
-    int overflow = 0;
-    const long long v = PyLong_AsLongLongAndOverflow(value.ptr(), &overflow);
-    if (overflow == 0 && v == -1 && PyErr_Occurred()) throw py::error_already_set();
-    if (overflow != 0) return overflow > 0 ? INT_MAX : INT_MIN;
-    return static_cast<int>(std::clamp<long long>(v, INT_MIN, INT_MAX));
+    const std::optional<long long> v = long_long_of(value);
+    if (!v) return py::int_(0) < py::reinterpret_borrow<py::int_>(value) ? INT_MAX : INT_MIN;
+    return static_cast<int>(std::clamp<long long>(*v, INT_MIN, INT_MAX));
 }
 
 RenderOptions render_options_from(const py::dict& options) {
