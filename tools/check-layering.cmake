@@ -10,7 +10,8 @@
 # inside render/, the BSDFs (render/bsdf/) and the lights (render/lights/)
 # know nothing of each other; the library API (api/) reads no file; the front ends (app/, python/,
 # view/) call the API, and neither Python nor the viewer reaches into the
-# command line (app/); the scene model includes nothing but core/ and itself. Test code is exempt, a file whose
+# command line (app/); the denoiser (denoise/) works on plain arrays and
+# includes nothing but core/ and itself; the scene model includes nothing but core/ and itself. Test code is exempt, a file whose
 # name contains "test" (foo_test.cpp, test_meshes.h, chi2_test_util.h): a
 # test may read a scene file to render it, and its executable links
 # sombra_io for that. Fails, listing every offending line, when a rule is
@@ -29,6 +30,7 @@ set(rules
   "render/lights:render/bsdf"
   "explain:io,api,distributed,view,python,app"
   "image:io,api,distributed,view,python,app"
+  "denoise:scene,io,accel,render,explain,image,api,distributed,view,python,app"
   "api:io,distributed,view,python,app"
   "distributed:io,view,python,app"
   "view:io,distributed,python,app"

@@ -12,6 +12,7 @@ packages=(
   libopenexr-dev         # EXR output, EXR environment maps
   libstb-dev             # stb_image: textures (PNG, JPEG, TGA, BMP) and Radiance .hdr (headers in /usr/include/stb, libstb)
   libcli11-dev           # command line
+  libeigen3-dev          # the denoiser's per-pixel regressions (header-only)
   libcpp-httplib-dev     # sombra view: the HTTP server on 127.0.0.1 (plain HTTP; the library is built with OpenSSL, zlib, Brotli)
   libtinygltf-dev        # glTF 2.0 parsing (header-only; src/io/gltf/gltf_file.cpp)
   libdraco-dev           # KHR_draco_mesh_compression

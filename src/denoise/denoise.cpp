@@ -1,0 +1,259 @@
+#include "denoise/denoise.h"
+
+#include <tbb/task_arena.h>
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <limits>
+
+#include "denoise/nl_means.h"
+#include "denoise/raster.h"
+#include "denoise/regression.h"
+
+namespace sombra {
+
+namespace {
+
+// NFOR's parameters (the paper's §5): patches of 7 × 7 pixels; features
+// cross-filtered over 11 × 11 windows; colour regressed over 19 × 19 with
+// two bandwidths; the error estimates and the choice between bandwidths
+// smoothed with 3 × 3 patches; the second pass's features over 5 × 5.
+constexpr NlMeansParams kFeaturePrefilter{5, 3, 0.5f};
+constexpr float kBandwidths[2] = {0.5f, 1.0f};
+constexpr int kRegressionRadius = 9;
+constexpr int kRegressionPatch = 3;
+constexpr NlMeansParams kSelectionFilter{9, 1, 1.0f};
+constexpr NlMeansParams kSecondFeatureFilter{2, 3, 0.5f};
+constexpr NlMeansParams kSecondRegression{kRegressionRadius, kRegressionPatch, 1.0f};
+
+// The feature groups, each filtered with its own weights: albedo, normal, depth.
+struct FeatureGroup {
+    int first, count;
+};
+constexpr FeatureGroup kFeatureGroups[3] = {{0, 3}, {3, 3}, {6, 1}};
+// Depth is divided by the image's largest finite depth; a half that hit
+// nothing reads as a bit beyond the farthest surface.
+constexpr float kMissDepth = 1.25f;
+
+Raster raster_of(const std::vector<float>& values, int width, int height, int channels) {
+    Raster r(width, height, channels);
+    r.values = values;
+    return r;
+}
+
+Raster channels_of(const Raster& r, int first, int count) {
+    Raster out(r.width, r.height, count);
+    for (std::size_t p = 0; p < static_cast<std::size_t>(r.width) * static_cast<std::size_t>(r.height); ++p)
+        for (int c = 0; c < count; ++c)
+            out.values[p * static_cast<std::size_t>(count) + static_cast<std::size_t>(c)] =
+                r.values[p * static_cast<std::size_t>(r.channels) + static_cast<std::size_t>(first + c)];
+    return out;
+}
+
+void put_channels(const Raster& part, int first, Raster& r) {
+    for (std::size_t p = 0; p < static_cast<std::size_t>(r.width) * static_cast<std::size_t>(r.height); ++p)
+        for (int c = 0; c < part.channels; ++c)
+            r.values[p * static_cast<std::size_t>(r.channels) + static_cast<std::size_t>(first + c)] =
+                part.values[p * static_cast<std::size_t>(part.channels) + static_cast<std::size_t>(c)];
+}
+
+// Each value of `a` and `b` combined pointwise.
+template <typename Combine>
+Raster pointwise(const Raster& a, const Raster& b, Combine combine) {
+    Raster out(a.width, a.height, a.channels);
+    for (std::size_t i = 0; i < out.values.size(); ++i) out.values[i] = combine(a.values[i], b.values[i]);
+    return out;
+}
+
+// The mean over the 3 × 3 pixels around each pixel (those in the image):
+// steadies a variance estimated from two halves (one degree of freedom).
+Raster box3(const Raster& r) {
+    Raster out(r.width, r.height, r.channels);
+    for (int y = 0; y < r.height; ++y)
+        for (int x = 0; x < r.width; ++x) {
+            float* o = out.at(x, y);
+            int n = 0;
+            for (int v = std::max(y - 1, 0); v <= std::min(y + 1, r.height - 1); ++v)
+                for (int u = std::max(x - 1, 0); u <= std::min(x + 1, r.width - 1); ++u, ++n)
+                    for (int c = 0; c < r.channels; ++c) o[c] += r.at(u, v)[c];
+            for (int c = 0; c < r.channels; ++c) o[c] /= static_cast<float>(n);
+        }
+    return out;
+}
+
+// Filters each feature group of `values` with weights from the same group of `guide`.
+Raster filter_features(const Raster& values, const Raster& guide, const Raster& variance, const NlMeansParams& params,
+                       int threads) {
+    Raster out(values.width, values.height, values.channels);
+    for (const FeatureGroup& group : kFeatureGroups)
+        put_channels(nl_means_filter(channels_of(values, group.first, group.count),
+                                     channels_of(guide, group.first, group.count),
+                                     channels_of(variance, group.first, group.count), params, threads),
+                     group.first, out);
+    return out;
+}
+
+// The features of half h: albedo, normal, depth scaled by `depth_scale`.
+Raster half_features(const DenoiseLayers& layers, int h, float depth_scale) {
+    Raster f(layers.width, layers.height, kRegressionFeatures);
+    for (std::size_t p = 0; p < static_cast<std::size_t>(layers.width) * static_cast<std::size_t>(layers.height); ++p) {
+        float* out = &f.values[p * kRegressionFeatures];
+        for (int c = 0; c < 3; ++c) {
+            out[c] = layers.albedo[h][3 * p + static_cast<std::size_t>(c)];
+            out[3 + c] = layers.normal[h][3 * p + static_cast<std::size_t>(c)];
+        }
+        const float depth = layers.depth[h][p];
+        out[6] = std::isfinite(depth) ? depth / depth_scale : kMissDepth;
+    }
+    return f;
+}
+
+// Everything the forward pass makes that the weights of a pixel need.
+struct NforPasses {
+    Raster color[2];               // the halves
+    Raster half_variance;          // the variance of a half's mean
+    Raster features[2];            // each half's features, cross-filtered
+    RegressionResult first[2][2];  // [bandwidth][half]
+    Raster selection;              // per channel: 0 = first bandwidth, 1 = second
+    Raster combined, combined_variance, final_features;
+    RegressionResult second;
+};
+
+NforPasses run_passes(const DenoiseLayers& layers, int threads) {
+    const int w = layers.width, h = layers.height;
+    NforPasses s;
+    for (int half = 0; half < 2; ++half) s.color[half] = raster_of(layers.color[half], w, h, 3);
+    // Halves of equal size each have twice the variance of the whole mean.
+    // A variance the render could not estimate (+∞: one sample) reads as the image's largest.
+    float largest = 0.0f;
+    for (const float v : layers.variance)
+        if (std::isfinite(v)) largest = std::max(largest, v);
+    s.half_variance = Raster(w, h, 3);
+    for (std::size_t i = 0; i < layers.variance.size(); ++i)
+        s.half_variance.values[i] = 2.0f * (std::isfinite(layers.variance[i]) ? layers.variance[i] : largest);
+    const Raster variance = pointwise(s.half_variance, s.half_variance, [](float v, float) { return 0.5f * v; });
+
+    float depth_scale = 0.0f;
+    for (int half = 0; half < 2; ++half)
+        for (const float d : layers.depth[half])
+            if (std::isfinite(d)) depth_scale = std::max(depth_scale, d);
+    if (!(depth_scale > 0.0f)) depth_scale = 1.0f;
+    const Raster raw_features[2] = {half_features(layers, 0, depth_scale), half_features(layers, 1, depth_scale)};
+    const Raster feature_variance =
+        box3(pointwise(raw_features[0], raw_features[1], [](float a, float b) { return 0.5f * (a - b) * (a - b); }));
+    // Cross-filtering: each half's features, weighted by the other half's,
+    // so that a half's noise does not choose its own weights.
+    for (int half = 0; half < 2; ++half)
+        s.features[half] =
+            filter_features(raw_features[half], raw_features[1 - half], feature_variance, kFeaturePrefilter, threads);
+
+    const Raster mean_color = pointwise(s.color[0], s.color[1], [](float a, float b) { return 0.5f * (a + b); });
+    Raster mse[2];
+    for (int k = 0; k < 2; ++k) {
+        const NlMeansParams params{kRegressionRadius, kRegressionPatch, kBandwidths[k]};
+        for (int half = 0; half < 2; ++half)
+            s.first[k][half] = collaborative_regression(s.color[half], s.color[1 - half], s.half_variance,
+                                                        s.features[1 - half], params, threads);
+        // Each half's filtered value against the other half's noisy one, less
+        // that half's variance, estimates the error (the paper's §5.3).
+        Raster noisy_mse(w, h, 3);
+        for (std::size_t i = 0; i < noisy_mse.values.size(); ++i) {
+            const float a = s.color[0].values[i], b = s.color[1].values[i];
+            const float fa = s.first[k][0].value.values[i], fb = s.first[k][1].value.values[i];
+            const float mse_a = (b - fa) * (b - fa) - s.half_variance.values[i];
+            const float mse_b = (a - fb) * (a - fb) - s.half_variance.values[i];
+            noisy_mse.values[i] = 0.5f * (mse_a + mse_b) - 0.25f * (fb - fa) * (fb - fa);
+        }
+        mse[k] = nl_means_filter(noisy_mse, mean_color, variance, kSelectionFilter, threads);
+    }
+    Raster choice(w, h, 3);
+    for (std::size_t i = 0; i < choice.values.size(); ++i)
+        choice.values[i] = mse[0].values[i] < mse[1].values[i] ? 0.0f : 1.0f;
+    s.selection = nl_means_filter(choice, mean_color, variance, kSelectionFilter, threads);
+
+    Raster result[2];
+    for (int half = 0; half < 2; ++half) {
+        result[half] = Raster(w, h, 3);
+        for (std::size_t i = 0; i < result[half].values.size(); ++i) {
+            const float t = s.selection.values[i];
+            result[half].values[i] =
+                (1.0f - t) * s.first[0][half].value.values[i] + t * s.first[1][half].value.values[i];
+        }
+    }
+    // The second pass: the halves' results together, with their difference
+    // as the noise left, regressed on features filtered once more.
+    const Raster features_mean =
+        pointwise(s.features[0], s.features[1], [](float a, float b) { return 0.5f * (a + b); });
+    const Raster features_variance =
+        pointwise(s.features[0], s.features[1], [](float a, float b) { return 0.25f * (a - b) * (a - b); });
+    s.final_features = filter_features(features_mean, features_mean, features_variance, kSecondFeatureFilter, threads);
+    s.combined = pointwise(result[0], result[1], [](float a, float b) { return 0.5f * (a + b); });
+    s.combined_variance = pointwise(result[0], result[1], [](float a, float b) { return 0.25f * (a - b) * (a - b); });
+    s.second = collaborative_regression(s.combined, s.combined, s.combined_variance, s.final_features,
+                                        kSecondRegression, threads);
+    return s;
+}
+
+PixelRect grown(PixelRect r, int by, int width, int height) {
+    return {std::max(r.x0 - by, 0), std::max(r.y0 - by, 0), std::min(r.x1 + by, width), std::min(r.y1 + by, height)};
+}
+
+}  // namespace
+
+std::vector<float> denoise_image(const DenoiseLayers& layers, int threads) {
+    NforPasses passes = run_passes(layers, threads);
+    std::vector<float> out = std::move(passes.second.value.values);
+    for (float& v : out) v = std::max(v, 0.0f);
+    return out;
+}
+
+DenoisedPixel explain_denoised_pixel(const DenoiseLayers& layers, int x, int y, int threads) {
+    const NforPasses s = run_passes(layers, threads);
+    const int w = layers.width, h = layers.height;
+    // Backwards through the passes, the weights held as they were: the
+    // second regression, the mean of the halves, the choice of bandwidth,
+    // the first regressions.
+    Raster g_out(w, h, 3);
+    for (int c = 0; c < 3; ++c) g_out.at(x, y)[c] = 1.0f;
+    const PixelRect pixel{x, y, x + 1, y + 1};
+    Raster g_combined(w, h, 3);
+    collaborative_regression_adjoint(s.combined, s.combined_variance, s.final_features, kSecondRegression,
+                                     s.second.weight_sum, g_out, pixel, g_combined);
+    const PixelRect combined_support = grown(pixel, 2 * kRegressionRadius, w, h);
+    Raster g_half[2] = {Raster(w, h, 3), Raster(w, h, 3)};
+    for (int k = 0; k < 2; ++k) {
+        const NlMeansParams params{kRegressionRadius, kRegressionPatch, kBandwidths[k]};
+        Raster g_first(w, h, 3);
+        for (std::size_t i = 0; i < g_first.values.size(); ++i) {
+            const float t = s.selection.values[i];
+            g_first.values[i] = 0.5f * g_combined.values[i] * (k == 0 ? 1.0f - t : t);
+        }
+        for (int half = 0; half < 2; ++half)
+            collaborative_regression_adjoint(s.color[1 - half], s.half_variance, s.features[1 - half], params,
+                                             s.first[k][half].weight_sum, g_first, combined_support, g_half[half]);
+    }
+
+    DenoisedPixel out;
+    const float* value = s.second.value.at(x, y);
+    const PixelRect support = grown(combined_support, 2 * kRegressionRadius, w, h);
+    for (int qy = support.y0; qy < support.y1; ++qy)
+        for (int qx = support.x0; qx < support.x1; ++qx)
+            for (int half = 0; half < 2; ++half) {
+                const float* g = g_half[half].at(qx, qy);
+                if (g[0] == 0.0f && g[1] == 0.0f && g[2] == 0.0f) continue;
+                DenoiseTerm term{qx, qy, half, {g[0], g[1], g[2]}, {}};
+                const float* raw = s.color[half].at(qx, qy);
+                for (int c = 0; c < 3; ++c) {
+                    term.raw[c] = raw[c];
+                    out.unclamped[c] += term.weight[c] * raw[c];
+                }
+                out.terms.push_back(term);
+            }
+    for (int c = 0; c < 3; ++c) {
+        out.value[c] = std::max(value[c], 0.0f);
+        out.clamped[c] = value[c] < 0.0f;
+    }
+    return out;
+}
+
+}  // namespace sombra

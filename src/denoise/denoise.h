@@ -1,0 +1,42 @@
+// The denoiser (spec §25): NFOR (Bitterli et al. 2016), non-linearly
+// weighted first-order regression over the render's features, with
+// half-buffer cross-filtering and a per-pixel choice between two
+// bandwidths, then a second regression pass. Every output pixel is
+// max(0, Σ w·c) over the half-buffer colours c of its neighbourhood, and
+// explain_denoised_pixel gives those weights.
+#pragma once
+
+#include <array>
+#include <vector>
+
+#include "denoise/denoise_layers.h"
+
+namespace sombra {
+
+// The denoised image, 3 floats a pixel, row-major, top row first: a pure
+// function of `layers`, the same bytes for any `threads` (0 = all).
+// `layers` must pass check_denoise_layers.
+std::vector<float> denoise_image(const DenoiseLayers& layers, int threads = 0);
+
+// One term of a denoised pixel: half `half` (0: A, 1: B) of pixel (x, y),
+// with the colour `raw` that its per-channel `weight` multiplies.
+struct DenoiseTerm {
+    int x = 0, y = 0;
+    int half = 0;
+    std::array<double, 3> weight{};
+    std::array<float, 3> raw{};
+};
+
+struct DenoisedPixel {
+    std::array<float, 3> value{};       // the pixel as denoise_image gives it
+    std::array<double, 3> unclamped{};  // Σ weight·raw per channel, before max(0, ·)
+    std::array<bool, 3> clamped{};      // where max(0, ·) changed it
+    std::vector<DenoiseTerm> terms;     // every term with a nonzero weight, by row, column and half
+};
+
+// Pixel (x, y) of denoise_image(layers) with the weights the denoiser used
+// to make it: per channel they add up to 1 and Σ weight·raw is the value
+// before clamping (to float rounding).
+DenoisedPixel explain_denoised_pixel(const DenoiseLayers& layers, int x, int y, int threads = 0);
+
+}  // namespace sombra

@@ -1,0 +1,39 @@
+#include "denoise/denoise_layers.h"
+
+#include <cmath>
+#include <cstddef>
+
+#include "core/error.h"
+#include "core/format.h"
+
+namespace sombra {
+
+void check_denoise_layers(const DenoiseLayers& layers, const std::string& where) {
+    if (layers.width < 1 || layers.height < 1)
+        throw Error(where, "the denoiser needs an image of at least 1 × 1 pixels");
+    const std::size_t pixels = static_cast<std::size_t>(layers.width) * static_cast<std::size_t>(layers.height);
+    for_each_denoise_channel(layers, [&](const std::string& name, const std::vector<float>& values, int component,
+                                         int stride) {
+        const auto step = static_cast<std::size_t>(stride);
+        if (values.size() != pixels * step)
+            throw Error(where, name + ": " + std::to_string(values.size() / step) + " pixels, not " +
+                                   std::to_string(pixels) + " (" + std::to_string(layers.width) + " × " +
+                                   std::to_string(layers.height) + ")");
+        const bool colour = name.starts_with("denoise.A.") || name.starts_with("denoise.B.");
+        const bool variance = name.starts_with("variance.");
+        for (std::size_t p = 0; p < pixels; ++p) {
+            const float v = values[p * step + static_cast<std::size_t>(component)];
+            const bool bad = std::isnan(v) || (colour && (!std::isfinite(v) || v < 0.0f)) || (variance && v < 0.0f);
+            if (!bad) continue;
+            const auto x = static_cast<int>(p % static_cast<std::size_t>(layers.width));
+            const auto y = static_cast<int>(p / static_cast<std::size_t>(layers.width));
+            throw Error(where, name + ": " + format_number(v) + " at pixel (" + std::to_string(x) + ", " +
+                                   std::to_string(y) + ") " +
+                                   (colour     ? "is not a finite non-negative colour"
+                                    : variance ? "is not a variance"
+                                               : "is not a number"));
+        }
+    });
+}
+
+}  // namespace sombra

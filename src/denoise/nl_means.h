@@ -1,0 +1,36 @@
+// Non-local-means weights (Buades et al. 2005) with the variance-aware patch
+// distance of Rousselle, Knaus and Zwicker (2012) that NFOR uses: how much a
+// pixel q's value may stand in for pixel p's, judged by how alike the
+// patches around them are in a guide image, in units of the guide's noise.
+#pragma once
+
+#include <vector>
+
+#include "denoise/raster.h"
+
+namespace sombra {
+
+struct NlMeansParams {
+    int window_radius = 9;  // q within ±window_radius of p in x and y
+    int patch_radius = 3;   // patches of (2·patch_radius + 1)² pixels
+    float k = 0.5f;         // larger: neighbours' differences count for less, more blur
+};
+
+inline int window_side(const NlMeansParams& params) { return 2 * params.window_radius + 1; }
+inline int window_offsets(const NlMeansParams& params) { return window_side(params) * window_side(params); }
+
+// The weights of every pixel p in `centres` against every q = p + (dx, dy)
+// of its window, in [0, 1], 0 where q is outside the image:
+// weights[o · n + c], o = (dy + R)·(2R + 1) + (dx + R), c = (y − y0)·w + (x − x0)
+// for the rectangle's width w and n = its pixel count. `guide_variance`
+// holds the variance of each guide value (same channel count). `scratch` is
+// reused between calls to spare allocations.
+void nl_means_tile_weights(const Raster& guide, const Raster& guide_variance, PixelRect centres,
+                           const NlMeansParams& params, std::vector<float>& weights, std::vector<float>& scratch);
+
+// Each pixel of `values` replaced by the weighted mean of its window's,
+// weighted as above by `guide`; the same bytes for any `threads` (0 = all).
+Raster nl_means_filter(const Raster& values, const Raster& guide, const Raster& guide_variance,
+                       const NlMeansParams& params, int threads);
+
+}  // namespace sombra

@@ -1,0 +1,105 @@
+// Non-local-means weights against their definition computed directly.
+#include "denoise/nl_means.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <random>
+
+namespace sombra {
+namespace {
+
+Raster random_raster(int w, int h, int channels, float lo, float hi, unsigned seed) {
+    Raster r(w, h, channels);
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<float> u(lo, hi);
+    for (float& v : r.values) v = u(rng);
+    return r;
+}
+
+// The weight of q = p + (dx, dy) for p, from the definition in doubles.
+double direct_weight(const Raster& g, const Raster& var, int px, int py, int dx, int dy, const NlMeansParams& params) {
+    const int qx = px + dx, qy = py + dy;
+    if (qx < 0 || qy < 0 || qx >= g.width || qy >= g.height) return 0.0;
+    double sum = 0;
+    int count = 0;
+    for (int sy = -params.patch_radius; sy <= params.patch_radius; ++sy)
+        for (int sx = -params.patch_radius; sx <= params.patch_radius; ++sx) {
+            const int ax = px + sx, ay = py + sy, bx = qx + sx, by = qy + sy;
+            if (ax < 0 || ay < 0 || ax >= g.width || ay >= g.height) continue;
+            if (bx < 0 || by < 0 || bx >= g.width || by >= g.height) continue;
+            double d = 0;
+            for (int c = 0; c < g.channels; ++c) {
+                const double diff = g.at(ax, ay)[c] - g.at(bx, by)[c];
+                const double va = var.at(ax, ay)[c], vb = var.at(bx, by)[c];
+                d += (diff * diff - (va + std::min(va, vb))) / (1e-10 + params.k * params.k * (va + vb));
+            }
+            sum += d / g.channels;
+            ++count;
+        }
+    return std::exp(-std::max(0.0, sum / count));
+}
+
+TEST(NlMeans, TileWeightsMatchTheDefinition) {
+    const NlMeansParams params{4, 2, 0.7f};
+    const Raster guide = random_raster(13, 11, 3, 0.0f, 1.0f, 1);
+    const Raster variance = random_raster(13, 11, 3, 0.01f, 0.2f, 2);
+    std::vector<float> weights, scratch;
+    const PixelRect centres{2, 1, 12, 9};
+    nl_means_tile_weights(guide, variance, centres, params, weights, scratch);
+    const int side = window_side(params);
+    const std::size_t n = static_cast<std::size_t>(centres.width() * centres.height());
+    for (int y = centres.y0; y < centres.y1; ++y)
+        for (int x = centres.x0; x < centres.x1; ++x)
+            for (int dy = -4; dy <= 4; ++dy)
+                for (int dx = -4; dx <= 4; ++dx) {
+                    const std::size_t c = static_cast<std::size_t>((y - centres.y0) * centres.width() + x - centres.x0);
+                    const float w = weights[static_cast<std::size_t>((dy + 4) * side + dx + 4) * n + c];
+                    EXPECT_NEAR(w, direct_weight(guide, variance, x, y, dx, dy, params), 2e-5)
+                        << x << "," << y << " offset " << dx << "," << dy;
+                }
+}
+
+TEST(NlMeans, APixelsWeightDoesNotDependOnItsTile) {
+    // explain recomputes a few tiles only: a pixel must get the same bytes
+    // whichever rectangle it was computed in.
+    const NlMeansParams params{5, 3, 0.5f};
+    const Raster guide = random_raster(40, 37, 3, 0.0f, 2.0f, 3);
+    const Raster variance = random_raster(40, 37, 3, 0.0f, 0.1f, 4);
+    std::vector<float> whole, single, scratch;
+    const PixelRect all{0, 0, 40, 37};
+    nl_means_tile_weights(guide, variance, all, params, whole, scratch);
+    nl_means_tile_weights(guide, variance, PixelRect{17, 30, 18, 31}, params, single, scratch);
+    const std::size_t n = 40 * 37, c = 30 * 40 + 17;
+    for (int o = 0; o < window_offsets(params); ++o)
+        EXPECT_EQ(whole[static_cast<std::size_t>(o) * n + c], single[static_cast<std::size_t>(o)]) << o;
+}
+
+TEST(NlMeans, APixelWeighsItselfOne) {
+    const NlMeansParams params{3, 2, 0.5f};
+    const Raster guide = random_raster(9, 9, 1, 0.0f, 1.0f, 5);
+    const Raster variance = random_raster(9, 9, 1, 0.0f, 0.1f, 6);
+    std::vector<float> weights, scratch;
+    nl_means_tile_weights(guide, variance, PixelRect{0, 0, 9, 9}, params, weights, scratch);
+    const std::size_t centre_offset = static_cast<std::size_t>(3 * window_side(params) + 3);
+    for (std::size_t c = 0; c < 81; ++c) EXPECT_EQ(weights[centre_offset * 81 + c], 1.0f);
+    for (const float w : weights) {
+        EXPECT_GE(w, 0.0f);
+        EXPECT_LE(w, 1.0f);
+    }
+}
+
+TEST(NlMeans, FilterKeepsAConstantAndIsTheSameOnAnyThreadCount) {
+    const NlMeansParams params{5, 3, 1.0f};
+    const Raster guide = random_raster(70, 45, 3, 0.0f, 1.0f, 7);
+    const Raster variance = random_raster(70, 45, 3, 0.0f, 0.3f, 8);
+    const Raster constant(70, 45, 3, 0.25f);
+    for (const float v : nl_means_filter(constant, guide, variance, params, 2).values) EXPECT_NEAR(v, 0.25f, 1e-6f);
+    const Raster values = random_raster(70, 45, 3, 0.0f, 5.0f, 9);
+    EXPECT_EQ(nl_means_filter(values, guide, variance, params, 1).values,
+              nl_means_filter(values, guide, variance, params, 3).values);
+}
+
+}  // namespace
+}  // namespace sombra

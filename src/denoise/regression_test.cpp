@@ -1,0 +1,172 @@
+// The collaborative regression against a brute-force solve, and its
+// adjoint against the forward run.
+#include "denoise/regression.h"
+
+#include <gtest/gtest.h>
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <cmath>
+#include <random>
+#include <vector>
+
+namespace sombra {
+namespace {
+
+Raster random_raster(int w, int h, int channels, float lo, float hi, unsigned seed) {
+    Raster r(w, h, channels);
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<float> u(lo, hi);
+    for (float& v : r.values) v = u(rng);
+    return r;
+}
+
+struct Inputs {
+    Raster target, guide, variance, features;
+};
+
+Inputs random_inputs(int w, int h, unsigned seed) {
+    return {random_raster(w, h, 3, 0.0f, 1.0f, seed), random_raster(w, h, 3, 0.0f, 1.0f, seed + 1),
+            random_raster(w, h, 3, 0.05f, 0.3f, seed + 2),
+            random_raster(w, h, kRegressionFeatures, -1.0f, 1.0f, seed + 3)};
+}
+
+// The regression as the paper states it, one window at a time: the
+// weighted ridge least-squares fit solved by a QR of the stacked system
+// [√W·X; √λ·I'] (I' without the constant column), in doubles.
+Raster brute_force(const Inputs& in, const NlMeansParams& params) {
+    const int w = in.target.width, h = in.target.height, R = params.window_radius, side = window_side(params);
+    std::vector<float> weights, scratch;
+    nl_means_tile_weights(in.guide, in.variance, PixelRect{0, 0, w, h}, params, weights, scratch);
+    const std::size_t n_all = static_cast<std::size_t>(w * h);
+    std::vector<double> sum(3 * n_all, 0.0), total(n_all, 0.0);
+    constexpr int d = 3 + kRegressionFeatures;
+    for (int py = 0; py < h; ++py)
+        for (int px = 0; px < w; ++px) {
+            std::vector<std::array<int, 2>> qs;
+            std::vector<double> ws;
+            for (int qy = std::max(py - R, 0); qy < std::min(py + R + 1, h); ++qy)
+                for (int qx = std::max(px - R, 0); qx < std::min(px + R + 1, w); ++qx) {
+                    qs.push_back({qx, qy});
+                    ws.push_back(weights[static_cast<std::size_t>((qy - py + R) * side + qx - px + R) * n_all +
+                                         static_cast<std::size_t>(py * w + px)]);
+                }
+            const auto n = static_cast<int>(qs.size());
+            double spread[kRegressionFeatures] = {};
+            for (int i = 0; i < n; ++i)
+                for (int j = 0; j < kRegressionFeatures; ++j)
+                    if (ws[i] > 0)
+                        spread[j] =
+                            std::max(spread[j], std::abs(static_cast<double>(in.features.at(qs[i][0], qs[i][1])[j]) -
+                                                         in.features.at(px, py)[j]));
+            Eigen::MatrixXd x(n, d);
+            Eigen::MatrixXd y(n, 3);
+            double wsum = 0;
+            for (int i = 0; i < n; ++i) {
+                x(i, 0) = 1;
+                x(i, 1) = (qs[i][0] - px) / double(R);
+                x(i, 2) = (qs[i][1] - py) / double(R);
+                for (int j = 0; j < kRegressionFeatures; ++j)
+                    x(i, 3 + j) =
+                        spread[j] > 1e-3
+                            ? (static_cast<double>(in.features.at(qs[i][0], qs[i][1])[j]) - in.features.at(px, py)[j]) /
+                                  spread[j]
+                            : 0.0;
+                for (int c = 0; c < 3; ++c) y(i, c) = in.target.at(qs[i][0], qs[i][1])[c];
+                wsum += ws[i];
+            }
+            Eigen::MatrixXd a = Eigen::MatrixXd::Zero(n + d - 1, d);
+            Eigen::MatrixXd b = Eigen::MatrixXd::Zero(n + d - 1, 3);
+            for (int i = 0; i < n; ++i) {
+                a.row(i) = std::sqrt(ws[i]) * x.row(i);
+                b.row(i) = std::sqrt(ws[i]) * y.row(i);
+            }
+            for (int j = 1; j < d; ++j) a(n + j - 1, j) = std::sqrt(1e-3 * wsum);
+            const Eigen::MatrixXd beta = a.colPivHouseholderQr().solve(b);
+            const Eigen::MatrixXd prediction = x * beta;
+            for (int i = 0; i < n; ++i) {
+                const std::size_t q = static_cast<std::size_t>(qs[i][1] * w + qs[i][0]);
+                for (int c = 0; c < 3; ++c) sum[3 * q + c] += ws[i] * prediction(i, c);
+                total[q] += ws[i];
+            }
+        }
+    Raster out(w, h, 3);
+    for (std::size_t q = 0; q < n_all; ++q)
+        for (int c = 0; c < 3; ++c) out.values[3 * q + c] = static_cast<float>(sum[3 * q + c] / total[q]);
+    return out;
+}
+
+TEST(CollaborativeRegression, MatchesABruteForceSolve) {
+    const NlMeansParams params{3, 1, 1.0f};
+    const Inputs in = random_inputs(11, 9, 10);
+    const Raster fast = collaborative_regression(in.target, in.guide, in.variance, in.features, params, 2).value;
+    const Raster slow = brute_force(in, params);
+    for (std::size_t i = 0; i < fast.values.size(); ++i) EXPECT_NEAR(fast.values[i], slow.values[i], 1e-5) << i;
+}
+
+TEST(CollaborativeRegression, KeepsAConstant) {
+    const NlMeansParams params{9, 3, 0.5f};
+    Inputs in = random_inputs(45, 38, 20);
+    in.target = Raster(45, 38, 3, 1.75f);
+    for (const float v :
+         collaborative_regression(in.target, in.guide, in.variance, in.features, params, 2).value.values)
+        EXPECT_NEAR(v, 1.75f, 2e-6f);
+}
+
+TEST(CollaborativeRegression, ReproducesATargetTheFeaturesExplain) {
+    // A noise-free target affine in one feature and in position: each
+    // window's fit is exact (up to the small ridge), so the output is the target.
+    const NlMeansParams params{9, 3, 1.0f};
+    Inputs in = random_inputs(40, 33, 30);
+    for (int y = 0; y < 33; ++y)
+        for (int x = 0; x < 40; ++x)
+            for (int c = 0; c < 3; ++c)
+                in.target.at(x, y)[c] = 0.5f + 0.25f * in.features.at(x, y)[0] + 0.01f * static_cast<float>(x);
+    in.guide = in.target;
+    in.variance = Raster(40, 33, 3, 0.0f);
+    const Raster out = collaborative_regression(in.target, in.guide, in.variance, in.features, params, 2).value;
+    for (std::size_t i = 0; i < out.values.size(); ++i) EXPECT_NEAR(out.values[i], in.target.values[i], 1e-5f) << i;
+}
+
+TEST(CollaborativeRegression, SameBytesOnAnyThreadCount) {
+    const NlMeansParams params{9, 3, 0.5f};
+    const Inputs in = random_inputs(101, 70, 40);
+    const RegressionResult one = collaborative_regression(in.target, in.guide, in.variance, in.features, params, 1);
+    const RegressionResult three = collaborative_regression(in.target, in.guide, in.variance, in.features, params, 3);
+    EXPECT_EQ(one.value.values, three.value.values);
+    EXPECT_EQ(one.weight_sum.values, three.weight_sum.values);
+}
+
+TEST(CollaborativeRegression, AdjointIsTheTransposeOfTheForwardMap) {
+    // For a fixed guide the output is L·target; the adjoint must give Lᵀ·g,
+    // so that ⟨g, L·y⟩ = ⟨Lᵀ·g, y⟩ for any y, and for g one pixel's indicator
+    // its row of L (weights adding up to 1).
+    const NlMeansParams params{9, 3, 0.5f};
+    const Inputs in = random_inputs(70, 50, 50);
+    const RegressionResult forward = collaborative_regression(in.target, in.guide, in.variance, in.features, params, 2);
+    Raster g(70, 50, 3);
+    const int px = 41, py = 33;
+    for (int c = 0; c < 3; ++c) g.at(px, py)[c] = 1.0f;
+    Raster row(70, 50, 3);
+    collaborative_regression_adjoint(in.guide, in.variance, in.features, params, forward.weight_sum, g,
+                                     PixelRect{px, py, px + 1, py + 1}, row);
+    for (int c = 0; c < 3; ++c) {
+        double total = 0, value = 0, magnitude = 0;
+        for (std::size_t q = 0; q < 70 * 50; ++q) {
+            total += row.values[3 * q + c];
+            value += static_cast<double>(row.values[3 * q + c]) * in.target.values[3 * q + c];
+            magnitude += std::abs(static_cast<double>(row.values[3 * q + c]) * in.target.values[3 * q + c]);
+        }
+        EXPECT_NEAR(total, 1.0, 1e-4);
+        EXPECT_NEAR(value, forward.value.at(px, py)[c], 1e-4 * magnitude + 1e-6);
+    }
+    // Outside the windows around the pixel (within 2R), nothing.
+    for (int y = 0; y < 50; ++y)
+        for (int x = 0; x < 70; ++x)
+            if (std::abs(x - px) > 18 || std::abs(y - py) > 18) {
+                EXPECT_EQ(row.at(x, y)[0], 0.0f);
+            }
+}
+
+}  // namespace
+}  // namespace sombra
