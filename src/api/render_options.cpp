@@ -27,6 +27,7 @@ void check_render_options(const RenderOptions& o) {
     if (o.overrides.max_depth && (*o.overrides.max_depth < 0 || *o.overrides.max_depth > kMaxDepth))
         throw Error("--max-depth", "must be between 0 and " + std::to_string(kMaxDepth) + ", not " +
                                        std::to_string(*o.overrides.max_depth));
+    if (o.aovs.noisy && !o.denoise) throw Error("--aov", "noisy is the image before denoising: it needs --denoise");
     check_positive("--time", o.time_budget, kMaxTimeBudget);
     check_positive("--noise-threshold", o.noise_threshold, kMaxNoiseThreshold);
     if (o.min_spp < 1 || o.min_spp > kMaxSpp)
@@ -64,6 +65,9 @@ RenderSettings resolve_settings(const RenderSettings& scene_settings, const Sett
 RenderSettings resolve_render_settings(const RenderSettings& scene_settings, const RenderOptions& o) {
     RenderSettings s = resolve_settings(scene_settings, o.overrides);
     if (o.time_budget && !o.overrides.spp) s.spp = kMaxSpp;
+    if (o.denoise && s.spp < 2)
+        throw UsageError("--denoise", "needs at least 2 samples per pixel, and the render takes " +
+                                          std::to_string(s.spp) + " (raise --spp)");
     return s;
 }
 

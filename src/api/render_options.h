@@ -38,6 +38,7 @@ struct RenderOptions {
     std::optional<double> noise_threshold;
     int min_spp = 16;
     AovSet aovs;
+    bool denoise = false;  // spec §25: the image denoised once the last pass is done
 };
 
 // Limits on the options beside those of RenderSettings (render_settings.h).
@@ -58,6 +59,8 @@ RenderSettings resolve_settings(const RenderSettings& scene_settings, const Sett
 
 // The settings a render runs at: resolve_settings, and under a time budget
 // without an spp override no spp limit, since the budget decides (spec §18).
+// Throws UsageError("--denoise", ...) when options.denoise meets fewer than
+// 2 samples per pixel: the denoiser compares each pixel's two halves.
 RenderSettings resolve_render_settings(const RenderSettings& scene_settings, const RenderOptions& options);
 
 // When pixels stop sampling, as the time budget, noise threshold and

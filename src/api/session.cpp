@@ -1,6 +1,10 @@
 #include "api/session.h"
 
+#include <chrono>
+#include <utility>
+
 #include "core/error.h"
+#include "denoise/denoise.h"
 #include "scene/animation.h"
 #include "scene/texture_mipmap.h"
 
@@ -30,7 +34,21 @@ RenderJob make_job(const Scene& scene, const Accel& accel, const RenderSettings&
     RenderJob job = make_render_job(scene, accel, settings, options.threads, options.light_selection);
     job.limits = sampling_limits(options, start);
     job.aovs = options.aovs;
+    if (options.denoise) {
+        job.aovs.denoise = true;
+        if (job.limits.deadline)
+            *job.limits.deadline -=
+                std::chrono::duration_cast<std::chrono::steady_clock::duration>(std::chrono::duration<double>(
+                    denoise_seconds_estimate(settings.width, settings.height, options.threads)));
+    }
     return job;
+}
+
+Film denoise_render(RenderOutput& rendered, int threads) {
+    Film noisy = std::move(rendered.film);
+    rendered.film = Film(noisy.width, noisy.height);
+    rendered.film.rgb = denoise_image(rendered.aovs.denoise, threads);
+    return noisy;
 }
 
 void check_explain_pixel(int x, int y, int sample, const RenderSettings& s) {

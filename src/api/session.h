@@ -35,9 +35,17 @@ void prepare_scene(Scene& scene, const RenderSettings& settings, const RenderOpt
                    const std::string& source);
 
 // The job that renders `scene` at `settings` as `options` ask (threads,
-// emitter choice, sampling limits counted from `start`, AOVs).
+// emitter choice, sampling limits counted from `start`, AOVs). Under
+// options.denoise the job also gathers the denoiser's layers, and a time
+// budget keeps back what the denoiser is expected to take (spec §25).
 RenderJob make_job(const Scene& scene, const Accel& accel, const RenderSettings& settings, const RenderOptions& options,
                    std::chrono::steady_clock::time_point start);
+
+// Spec §25: the film of `rendered` (gathered with the denoise AOV, as
+// make_job asks under options.denoise) replaced by the denoised image, on
+// `threads` (0 = all; the result is the same for any). Returns the film
+// before it: the noisy AOV.
+Film denoise_render(RenderOutput& rendered, int threads);
 
 // Pixel (x, y) (column, row) and its sample `sample` checked against the
 // image `settings` describe. Throws Error naming the pixel, or "--sample".

@@ -118,7 +118,8 @@ void add_render_options(CLI::App& command, CliOptions& o) {
 }
 
 // The render outputs of spec §18: time budget, adaptive sampling, AOVs.
-void add_output_options(CLI::App& render, CliOptions& o) {
+void add_output_options(CLI::App* render_command, CliOptions& o) {
+    CLI::App& render = *render_command;
     RenderOptions& r = o.render;
     render
         .add_option("--time", r.time_budget,
@@ -138,8 +139,10 @@ void add_output_options(CLI::App& render, CliOptions& o) {
         .add_option_function<std::string>(
             "--aov", [&r](const std::string& list) { r.aovs = aov_option(list); },
             "Float layers added to an .exr output: any of albedo, normal, depth, position, spp, variance, "
-            "comma-separated")
+            "noisy (with --denoise), denoise (the denoiser's inputs), comma-separated")
         ->check(library_name_check(aov_option));
+    render.add_flag("--denoise", r.denoise,
+                    "Denoise the image once the last pass is done (at least 2 spp; the --time budget includes it)");
     render
         .add_option("--display-server", o.display_server,
                     "Stream the image as it refines to the tev viewer listening at HOST:PORT (e.g. 127.0.0.1:14158)")
@@ -207,7 +210,7 @@ CliParse parse(int argc, const char* const* argv, std::ostream& out, std::ostrea
         ->capture_default_str();
     add_render_options(*render, o);
     render->add_option("--stats-json", o.stats_json, "Write the run's statistics as JSON to FILE");
-    add_output_options(*render, o);
+    add_output_options(render, o);
 
     CLI::App* explain = app.add_subcommand(
         "explain", "Tell the story of one pixel: every term of the rendering equation behind its value");
@@ -217,6 +220,8 @@ CliParse parse(int argc, const char* const* argv, std::ostream& out, std::ostrea
     explain->add_option("--sample", o.sample, "Which of the pixel's samples, 0 to spp - 1")->capture_default_str();
     explain->add_flag("--json", o.json, "Print the story as one JSON object");
     explain->add_option("--svg", o.svg, "Also draw the story (the path in the scene, beside the render) into FILE");
+    explain->add_flag("--denoise", o.render.denoise,
+                      "Also the pixel denoised, and the weights the denoiser gave its neighbours (renders the image)");
     add_render_options(*explain, o);
 
     CLI::App* view = app.add_subcommand(
@@ -235,7 +240,25 @@ CliParse parse(int argc, const char* const* argv, std::ostream& out, std::ostrea
     merge->add_option("--exposure", o.exposure, "Multiply radiance by 2^E before PNG encoding")
         ->check(CLI::Number)
         ->capture_default_str();
+    merge->add_flag("--denoise", o.render.denoise,
+                    "Denoise the merged image (shards rendered with --denoise carry what it needs)");
     merge->add_flag("-q,--quiet", o.quiet, "No summary line");
+
+    CLI::App* denoise = app.add_subcommand(
+        "denoise", "Denoise an .exr written with --aov denoise (or merged from such shards), as render --denoise does");
+    denoise->add_option("input", o.input, "An .exr with the denoiser's layers (sombra render --aov denoise)")
+        ->required();
+    denoise->add_option("-o,--output", o.output, "Image to write: .png (8-bit sRGB), .pfm or .exr (linear)")
+        ->capture_default_str();
+    denoise->add_option("--exposure", o.exposure, "Multiply radiance by 2^E before PNG encoding")
+        ->check(CLI::Number)
+        ->capture_default_str();
+    denoise
+        ->add_option("--threads", o.render.threads,
+                     "Worker threads, 0 to " + std::to_string(kMaxThreads) + "; 0 = all hardware threads")
+        ->check(library_check<int>([](RenderOptions& p, int v) { p.threads = v; }))
+        ->capture_default_str();
+    denoise->add_flag("-q,--quiet", o.quiet, "No summary line");
 
     try {
         app.parse(argc, argv);
@@ -251,18 +274,25 @@ CliParse parse(int argc, const char* const* argv, std::ostream& out, std::ostrea
     } catch (const CLI::ParseError& e) {
         const std::string_view sub = argc > 1 ? std::string_view(argv[1]) : std::string_view();
         err << "sombra: error: command line: " << one_line(e.what()) << " (see 'sombra "
-            << (sub == "explain" || sub == "view" || sub == "merge" ? sub : "render") << " --help')\n";
+            << (sub == "explain" || sub == "view" || sub == "merge" || sub == "denoise" ? sub : "render")
+            << " --help')\n";
         return {std::nullopt, 2};
     }
-    o.command = app.got_subcommand(explain) ? Command::Explain
-                : app.got_subcommand(view)  ? Command::View
-                : app.got_subcommand(merge) ? Command::Merge
-                                            : Command::Render;
+    o.command = app.got_subcommand(explain)   ? Command::Explain
+                : app.got_subcommand(view)    ? Command::View
+                : app.got_subcommand(merge)   ? Command::Merge
+                : app.got_subcommand(denoise) ? Command::Denoise
+                                              : Command::Render;
     const auto refuse = [&err](const std::string& problem) {
         err << "sombra: error: command line: " << problem << " (see 'sombra render --help')\n";
         return CliParse{std::nullopt, 2};
     };
     if (o.render.frame && o.first_frame) return refuse("give --frame or --frames, not both");
+    if (o.render.aovs.noisy && !o.render.denoise)
+        return refuse("--aov noisy is the image before denoising: it needs --denoise");
+    if (o.render.denoise && o.render.overrides.spp && *o.render.overrides.spp < 2)
+        return refuse("--denoise needs at least 2 samples per pixel, not --spp " +
+                      std::to_string(*o.render.overrides.spp));
     if (o.first_frame && o.output.find('#') == std::string::npos)
         return refuse("--frames needs '#' in the output name (out_####.png): each frame's number replaces them");
     if (o.first_frame && o.render.time_budget)

@@ -16,6 +16,7 @@ enum class Command {
     Explain,  // sombra explain: the story of one pixel's sample (spec §14)
     View,     // sombra view: the render in a browser, refining live (spec §20)
     Merge,    // sombra merge: the shards of one render joined into its image (spec §21)
+    Denoise,  // sombra denoise: an .exr written with --aov denoise, denoised (spec §25)
 };
 
 struct CliOptions {
@@ -32,7 +33,7 @@ struct CliOptions {
     // Spec §22: frames first … last (render.frame is one frame), written to
     // the output name with its '#'s replaced by the frame number.
     std::optional<std::int64_t> first_frame, last_frame;
-    // sombra merge PART... -o OUT [--exposure E]
+    // sombra merge PART... -o OUT [--exposure E] [--denoise]
     std::vector<std::string> parts;
     bool quiet = false;
 

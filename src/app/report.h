@@ -24,12 +24,16 @@ void print_warnings(const Diagnostics& diag, const Scene& scene, const RenderSet
                     const std::string& input);
 
 // Runs `body` (returning the exit status) and turns what it throws into the
-// one line of spec §1, "sombra: error: WHERE: WHAT", and exit status 1;
+// one line of spec §1, "sombra: error: WHERE: WHAT", and exit status 1
+// (a UsageError: "command line: WHERE: WHAT", exit status 2);
 // `input` names the scene when the error has no place of its own.
 template <class Body>
 int reporting_errors(const std::string& input, Body&& body) {
     try {
         return body();
+    } catch (const UsageError& e) {
+        std::cerr << "sombra: error: command line: " << one_line_message(e.where() + ": " + e.message()) << '\n';
+        return 2;
     } catch (const Error& e) {
         std::cerr << "sombra: error: " << one_line_message(e.where() + ": " + e.message()) << '\n';
     } catch (const std::bad_alloc&) {

@@ -20,6 +20,7 @@
 #include "app/stats.h"
 #include "core/error.h"
 #include "core/peak_rss.h"
+#include "denoise/denoise_layers.h"
 #include "distributed/mpi_render.h"
 #include "distributed/shards.h"
 #include "image/image_io.h"
@@ -34,8 +35,10 @@ using Clock = std::chrono::steady_clock;
 
 double seconds_since(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
 
-// The AOV images as the EXR channels spec §18 names.
-std::vector<ImageChannel> aov_layers(const AovImages& aovs) {
+// The AOV images as the EXR channels spec §18 and §25 name: those `asked`
+// for, the denoiser's under their names (denoise/denoise_layers.h), and
+// the image before denoising when `noisy` is given.
+std::vector<ImageChannel> aov_layers(const AovImages& aovs, const AovSet& asked, const Film* noisy) {
     std::vector<ImageChannel> layers;
     auto add3 = [&layers](const std::vector<float>& image, const char* layer, const char* axes) {
         if (image.empty()) return;
@@ -46,7 +49,14 @@ std::vector<ImageChannel> aov_layers(const AovImages& aovs) {
     if (!aovs.depth.empty()) layers.push_back({"depth.Z", aovs.depth.data(), 1});
     add3(aovs.position, "position", "XYZ");
     if (!aovs.spp.empty()) layers.push_back({"spp.Y", aovs.spp.data(), 1});
-    add3(aovs.variance, "variance", "RGB");
+    // The denoiser's layers hold the same variance.
+    if (!asked.denoise) add3(aovs.variance, "variance", "RGB");
+    if (noisy != nullptr) add3(noisy->rgb, "noisy", "RGB");
+    if (asked.denoise)
+        for_each_denoise_channel(aovs.denoise, [&layers](const std::string& name, const std::vector<float>& values,
+                                                         int component, int stride) {
+            layers.push_back({name, values.data() + component, stride});
+        });
     return layers;
 }
 
@@ -110,11 +120,26 @@ int render_frame(const CliOptions& o, const Scene& scene, const Accel& accel, co
         return interrupted_exit_status(sig);
     }
     if (distributed && mpi.rank() != 0) return 0;  // rank 0 has the image
+
+    // A shard is denoised once merged (sombra merge --denoise): it carries the denoiser's layers.
+    AovSet written = o.render.aovs;
+    if (pixel_shard && o.render.denoise) written.denoise = true;
+    Film noisy;
+    if (o.render.denoise && !pixel_shard) {
+        const auto denoise_start = Clock::now();
+        noisy = denoise_render(rendered, o.render.threads);
+        stats.denoise_seconds += seconds_since(denoise_start);
+        if (progress.cancel.load()) {
+            const int sig = interrupt.signal_received();
+            std::cerr << "sombra: error: " << signal_name(sig) << ": interrupted, nothing written\n";
+            return interrupted_exit_status(sig);
+        }
+    }
     interrupt.set_phase(InterruptWatcher::Phase::Writing);
 
     const auto write_start = Clock::now();
     write_image(output, ImageView{rendered.film.width, rendered.film.height, rendered.film.rgb.data()}, o.exposure,
-                aov_layers(rendered.aovs), shard_header);
+                aov_layers(rendered.aovs, written, o.render.aovs.noisy ? &noisy : nullptr), shard_header);
     stats.write_seconds += seconds_since(write_start);
 
     stats.spp =
@@ -263,6 +288,7 @@ int run_sombra(int argc, const char* const* argv) {
     if (parsed.options->command == Command::Explain) return run_explain(*parsed.options);
     if (parsed.options->command == Command::View) return run_view(*parsed.options);
     if (parsed.options->command == Command::Merge) return run_merge(*parsed.options);
+    if (parsed.options->command == Command::Denoise) return run_denoise(*parsed.options);
     return run_render(*parsed.options);
 }
 

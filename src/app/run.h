@@ -28,6 +28,11 @@ int run_view(const CliOptions& options);
 // 0, or 1 after one error line with nothing written.
 int run_merge(const CliOptions& options);
 
+// Runs `sombra denoise` (spec §25): o.input, an .exr with the denoiser's
+// layers, denoised into o.output. Exit status 0, or 1 after one error line
+// (a missing layer named) with nothing written.
+int run_denoise(const CliOptions& options);
+
 // Parses the command line and runs it: what main() does.
 int run_sombra(int argc, const char* const* argv);
 

@@ -33,6 +33,7 @@ void write_stats_json(const std::filesystem::path& path, const RunStats& s) {
         {"build_seconds", s.build_seconds},
         {"mipmap_seconds", s.mipmap_seconds},
         {"render_seconds", s.render_seconds},
+        {"denoise_seconds", s.denoise_seconds},
         {"write_seconds", s.write_seconds},
         {"total_seconds", s.total_seconds},
         {"camera_rays", s.camera_rays},
@@ -78,8 +79,9 @@ std::string summary_line(const RunStats& s, const std::string& output) {
            " at " + samples_text(s) + (s.passes > 1 ? " in " + std::to_string(s.passes) + " passes" : std::string()) +
            ", " + s.integrator + " | load " + seconds(s.load_seconds) + ", build " + seconds(s.build_seconds) +
            ", render " + seconds(s.render_seconds) + " (" + rate + ", " + std::to_string(s.threads) +
-           (s.threads == 1 ? " thread), write " : " threads), write ") + seconds(s.write_seconds) + " | wrote " +
-           output;
+           (s.threads == 1 ? " thread), " : " threads), ") +
+           (s.denoise_seconds > 0 ? "denoise " + seconds(s.denoise_seconds) + ", " : std::string()) + "write " +
+           seconds(s.write_seconds) + " | wrote " + output;
 }
 
 }  // namespace sombra

@@ -30,6 +30,7 @@ struct RunStats {
     double build_seconds = 0;   // building the acceleration structure
     double mipmap_seconds = 0;  // building the textures' mip pyramids (0 unless --texture-filter mipmap)
     double render_seconds = 0;
+    double denoise_seconds = 0;  // spec §25's denoiser (0 without --denoise)
     double write_seconds = 0;
     double total_seconds = 0;
     std::uint64_t camera_rays = 0;

@@ -23,6 +23,14 @@ private:
     std::string what_;
 };
 
+// A wrong option that shows only once the scene is read (--denoise on a
+// scene of 1 sample per pixel): on the command line it is a command-line
+// error, exit status 2, like one the parser catches.
+class UsageError : public Error {
+public:
+    using Error::Error;
+};
+
 // `text` kept to one line whatever the paths in it hold: control characters
 // (a newline or NUL in a file name) are shown as '?'.
 inline std::string one_line_message(std::string text) {

@@ -1,6 +1,6 @@
 #include "denoise/denoise.h"
 
-#include <tbb/task_arena.h>
+#include <tbb/info.h>
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
@@ -199,6 +199,17 @@ PixelRect grown(PixelRect r, int by, int width, int height) {
 }
 
 }  // namespace
+
+double denoise_seconds_estimate(int width, int height, int threads) {
+    // One thread's seconds a pixel, measured on this project's reference
+    // machine with margin (docs/performance.md, "The denoiser").
+    constexpr double kSecondsPerPixel = 170e-6;
+    const int available = threads > 0 ? threads : tbb::info::default_concurrency();
+    // The tiles of one phase run side by side: no more threads than those help.
+    const int tiles = std::max(1, tile_count(width) * tile_count(height) / 4);
+    return kSecondsPerPixel * static_cast<double>(width) * static_cast<double>(height) /
+           static_cast<double>(std::min(available, tiles));
+}
 
 std::vector<float> denoise_image(const DenoiseLayers& layers, int threads) {
     NforPasses passes = run_passes(layers, threads);

@@ -18,6 +18,11 @@ namespace sombra {
 // `layers` must pass check_denoise_layers.
 std::vector<float> denoise_image(const DenoiseLayers& layers, int threads = 0);
 
+// The seconds denoise_image is expected to take on a width × height image
+// with `threads` (0 = all hardware threads): what a --time budget keeps
+// back for it (spec §25). From a measured cost per pixel (docs/performance.md).
+double denoise_seconds_estimate(int width, int height, int threads);
+
 // One term of a denoised pixel: half `half` (0: A, 1: B) of pixel (x, y),
 // with the colour `raw` that its per-channel `weight` multiplies.
 struct DenoiseTerm {

@@ -1,5 +1,6 @@
 #include "denoise/denoise_layers.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstddef>
 
@@ -7,6 +8,27 @@
 #include "core/format.h"
 
 namespace sombra {
+
+DenoiseLayers denoise_layers_from(const std::vector<std::string>& names, const std::vector<std::vector<float>>& values,
+                                  int width, int height, const std::string& where) {
+    DenoiseLayers layers;
+    layers.width = width;
+    layers.height = height;
+    const std::size_t pixels = static_cast<std::size_t>(width) * static_cast<std::size_t>(height);
+    for_each_denoise_channel(layers, [&](const std::string& name, std::vector<float>& target, int component,
+                                         int stride) {
+        const auto found = std::find(names.begin(), names.end(), name);
+        if (found == names.end())
+            throw Error(where, "no layer '" + name + "': the denoiser reads what sombra render --aov denoise writes");
+        const std::vector<float>& channel = values[static_cast<std::size_t>(found - names.begin())];
+        if (channel.size() != pixels)
+            throw Error(where, name + ": " + std::to_string(channel.size()) + " values, not " + std::to_string(pixels));
+        const auto step = static_cast<std::size_t>(stride);
+        target.resize(pixels * step);
+        for (std::size_t p = 0; p < pixels; ++p) target[p * step + static_cast<std::size_t>(component)] = channel[p];
+    });
+    return layers;
+}
 
 void check_denoise_layers(const DenoiseLayers& layers, const std::string& where) {
     if (layers.width < 1 || layers.height < 1)

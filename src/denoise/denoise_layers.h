@@ -41,6 +41,12 @@ void for_each_denoise_channel(Layers& layers, Visit visit) {
     for (int h = 0; h < 2; ++h) visit(std::string("denoise.depth") + half[h] + ".Z", layers.depth[h], 0, 1);
 }
 
+// The layers from named channels of width × height floats each (an EXR
+// file's), taken from `values`. Throws Error(where, "no layer 'NAME' ...")
+// for the first channel the denoiser reads that `names` lacks.
+DenoiseLayers denoise_layers_from(const std::vector<std::string>& names, const std::vector<std::vector<float>>& values,
+                                  int width, int height, const std::string& where);
+
 // Throws Error(where, what) when a layer is not width × height pixels, a
 // colour is negative or not finite, a variance negative or NaN, or a
 // feature NaN (`where`: the file the layers came from).

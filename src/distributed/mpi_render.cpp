@@ -45,38 +45,61 @@ int block_count(int width, int height) {
     return ((width + kShardBlock - 1) / kShardBlock) * ((height + kShardBlock - 1) / kShardBlock);
 }
 
-// A block's output's images, in a fixed order both ends know: RGB, then the AOVs asked.
-std::array<std::vector<float>*, 7> images_of(RenderOutput& r) {
-    return {&r.film.rgb,      &r.aovs.albedo, &r.aovs.normal,  &r.aovs.depth,
-            &r.aovs.position, &r.aovs.spp,    &r.aovs.variance};
+// A block's images and their floats a pixel, in an order both ends know:
+// RGB, then the AOVs asked.
+struct BlockImage {
+    std::vector<float>* values;
+    std::size_t channels;
+};
+
+std::vector<BlockImage> images_of(RenderOutput& r, const AovSet& a) {
+    std::vector<BlockImage> images{{&r.film.rgb, 3}};
+    const auto add = [&images](bool asked, std::vector<float>& values, std::size_t channels) {
+        if (asked) images.push_back({&values, channels});
+    };
+    add(a.albedo, r.aovs.albedo, 3);
+    add(a.normal, r.aovs.normal, 3);
+    add(a.depth, r.aovs.depth, 1);
+    add(a.position, r.aovs.position, 3);
+    add(a.spp, r.aovs.spp, 1);
+    add(a.variance, r.aovs.variance, 3);
+    DenoiseLayers& d = r.aovs.denoise;
+    add(a.denoise, d.variance, 3);
+    for (int h = 0; h < 2; ++h) {
+        add(a.denoise, d.color[h], 3);
+        add(a.denoise, d.albedo[h], 3);
+        add(a.denoise, d.normal[h], 3);
+        add(a.denoise, d.depth[h], 1);
+    }
+    return images;
 }
 
-std::vector<float> pack(RenderOutput& block) {
+std::vector<float> pack(RenderOutput& block, const AovSet& aovs) {
     std::vector<float> floats;
-    for (const std::vector<float>* image : images_of(block)) floats.insert(floats.end(), image->begin(), image->end());
+    for (const BlockImage& image : images_of(block, aovs))
+        floats.insert(floats.end(), image.values->begin(), image.values->end());
     return floats;
 }
 
 // Copies a block's packed floats into the whole image's arrays, each
-// allocated on first use with the channels the block's own has.
+// allocated on first use.
 void place(RenderOutput& image, const RenderJob& job, const PixelWindow& w, const std::vector<float>& floats) {
-    const std::array<std::size_t, 7> channels{3, 3, 3, 1, 3, 1, 3};
-    const AovSet& a = job.aovs;
-    const std::array<bool, 7> present{true, a.albedo, a.normal, a.depth, a.position, a.spp, a.variance};
     const std::size_t width = static_cast<std::size_t>(job.settings.width);
     std::size_t at = 0;
-    const auto targets = images_of(image);
-    for (std::size_t k = 0; k < targets.size(); ++k) {
-        if (!present[k]) continue;
-        const std::size_t c = channels[k];
-        std::vector<float>& target = *targets[k];
-        if (target.empty()) target.resize(width * static_cast<std::size_t>(job.settings.height) * c);
+    for (const BlockImage& target : images_of(image, job.aovs)) {
+        const std::size_t c = target.channels;
+        std::vector<float>& values = *target.values;
+        if (values.empty()) values.resize(width * static_cast<std::size_t>(job.settings.height) * c);
         for (int row = 0; row < w.height; ++row) {
             const std::size_t to =
                 ((static_cast<std::size_t>(w.y0 + row)) * width + static_cast<std::size_t>(w.x0)) * c;
-            std::memcpy(&target[to], &floats[at], static_cast<std::size_t>(w.width) * c * sizeof(float));
+            std::memcpy(&values[to], &floats[at], static_cast<std::size_t>(w.width) * c * sizeof(float));
             at += static_cast<std::size_t>(w.width) * c;
         }
+    }
+    if (job.aovs.denoise) {
+        image.aovs.denoise.width = job.settings.width;
+        image.aovs.denoise.height = job.settings.height;
     }
 }
 
@@ -166,7 +189,7 @@ RenderOutput MpiRun::render(RenderJob job, RenderProgress& progress) const {
             }
             out.counters += block.counters;
             if (first) maybe_die_for_test(rank_);
-            const std::vector<float> floats = pack(block);
+            const std::vector<float> floats = pack(block, job.aovs);
             MPI_Send(floats.data(), static_cast<int>(floats.size()), MPI_FLOAT, 0, kResultTag, MPI_COMM_WORLD);
         }
         out.counters = sum(out.counters);
@@ -184,7 +207,7 @@ RenderOutput MpiRun::render(RenderJob job, RenderProgress& progress) const {
             RenderOutput block = render_block(job, b, progress);
             if (block.cancelled) return;
             local += block.counters;
-            const std::vector<float> floats = pack(block);
+            const std::vector<float> floats = pack(block, job.aovs);
             const std::lock_guard<std::mutex> lock(placing);
             place(out, job, *job.window, floats);
         }

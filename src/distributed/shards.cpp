@@ -10,6 +10,7 @@
 #include <utility>
 
 #include "core/error.h"
+#include "denoise/denoise.h"
 #include "render/render.h"
 
 namespace sombra {
@@ -105,7 +106,8 @@ std::vector<ImageAttribute> shard_attributes(const std::string& input, const Ren
             {kRenderAttribute, render}};
 }
 
-MergedShards merge_shards(const std::vector<std::string>& paths, const std::filesystem::path& output, float exposure) {
+MergedShards merge_shards(const std::vector<std::string>& paths, const std::filesystem::path& output, float exposure,
+                          bool denoise, int threads) {
     check_output_path(output);
     std::vector<Part> parts;
     for (const std::string& path : paths) parts.push_back(read_part(path));
@@ -154,6 +156,11 @@ MergedShards merge_shards(const std::vector<std::string>& paths, const std::file
         } else {
             layers.push_back({name, channels[c].data(), 1});
         }
+    }
+    if (denoise) {
+        const DenoiseLayers denoise_input = denoise_layers_from(first.exr.names, channels, width, height, first.path);
+        check_denoise_layers(denoise_input, first.path);
+        rgb = denoise_image(denoise_input, threads);
     }
     // The AOV layers go into an .exr output only, as `render --aov` allows only that.
     const bool exr = image_format_for(output) == ImageFormat::Exr;

@@ -35,6 +35,10 @@ struct MergedShards {
 // .exr only). Throws Error, with nothing written, for a part that is not a
 // readable shard, shards of different renders or counts, a share missing
 // or given twice.
-MergedShards merge_shards(const std::vector<std::string>& parts, const std::filesystem::path& output, float exposure);
+// With `denoise`, the merged image is denoised (spec §25) on `threads`
+// (0 = all) from the denoiser's layers the shards carry; Error naming
+// the first missing one.
+MergedShards merge_shards(const std::vector<std::string>& parts, const std::filesystem::path& output, float exposure,
+                          bool denoise = false, int threads = 0);
 
 }  // namespace sombra

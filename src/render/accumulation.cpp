@@ -52,15 +52,34 @@ Accumulation::Accumulation(int width, int height, bool moments, AovSet aovs)
         depth_sum_.assign(n, 0.0f);
         hits_.assign(n, 0);
     }
-    if (aovs.variance) {
+    if (aovs.variance || aovs.denoise) {
         channel_sum_.assign(3 * n, 0.0);
         channel_squares_.assign(3 * n, 0.0);
+    }
+    if (aovs.denoise) {
+        for (int h = 0; h < 2; ++h) {
+            half_rgb_[h].assign(3 * n, 0.0f);
+            half_albedo_[h].assign(3 * n, 0.0f);
+            half_normal_[h].assign(3 * n, 0.0f);
+            half_depth_[h].assign(n, 0.0f);
+            half_hits_[h].assign(n, 0);
+        }
     }
 }
 
 void Accumulation::add(std::size_t pixel, Vec3 radiance, const FirstHit* first) {
     add3(rgb_sum_, pixel, radiance);
-    ++count_[pixel];
+    const std::uint32_t index = count_[pixel]++;
+    if (!half_rgb_[0].empty()) {
+        const std::uint32_t h = index & 1u;
+        add3(half_rgb_[h], pixel, radiance);
+        if (first != nullptr && first->hit) {
+            add3(half_albedo_[h], pixel, first->albedo);
+            add3(half_normal_[h], pixel, first->normal);
+            half_depth_[h][pixel] += first->depth;
+            ++half_hits_[h][pixel];
+        }
+    }
     if (!luminance_sum_.empty()) {
         // Rec. 709 relative luminance (core/vec3.h), what §18's rule measures noise in.
         const double y = luminance(radiance);
@@ -136,23 +155,58 @@ AovImages Accumulation::aov_images() const {
                 hits_[p] > 0 ? depth_sum_[p] / static_cast<float>(hits_[p]) : std::numeric_limits<float>::infinity();
     }
     if (aovs_.spp) out.spp.assign(count_.begin(), count_.end());
-    if (aovs_.variance) {
-        out.variance.resize(3 * count_.size());
-        for (std::size_t p = 0; p < count_.size(); ++p) {
-            const auto n = static_cast<double>(count_[p]);
-            for (std::size_t k = 3 * p; k < 3 * p + 3; ++k) {
-                if (n < 2) {
-                    out.variance[k] = std::numeric_limits<float>::infinity();
-                    continue;
-                }
-                const double mean = channel_sum_[k] / n;
-                // max(): rounding can take a constant pixel's sum of squares just below n·m².
-                const double sample_variance = std::max(0.0, channel_squares_[k] - n * mean * mean) / (n - 1.0);
-                out.variance[k] = static_cast<float>(sample_variance / n);
+    if (aovs_.variance) out.variance = variance_image();
+    if (aovs_.denoise) out.denoise = denoise_layers();
+    return out;
+}
+
+std::vector<float> Accumulation::variance_image() const {
+    std::vector<float> variance(3 * count_.size());
+    for (std::size_t p = 0; p < count_.size(); ++p) {
+        const auto n = static_cast<double>(count_[p]);
+        for (std::size_t k = 3 * p; k < 3 * p + 3; ++k) {
+            if (n < 2) {
+                variance[k] = std::numeric_limits<float>::infinity();
+                continue;
             }
+            const double mean = channel_sum_[k] / n;
+            // max(): rounding can take a constant pixel's sum of squares just below n·m².
+            const double sample_variance = std::max(0.0, channel_squares_[k] - n * mean * mean) / (n - 1.0);
+            variance[k] = static_cast<float>(sample_variance / n);
         }
     }
-    return out;
+    return variance;
+}
+
+DenoiseLayers Accumulation::denoise_layers() const {
+    DenoiseLayers layers;
+    layers.width = width_;
+    layers.height = height_;
+    layers.variance = variance_image();
+    const std::size_t n = count_.size();
+    for (int h = 0; h < 2; ++h) {
+        std::vector<std::uint32_t> half_count(n);
+        // Sample k goes to half k mod 2: A holds ⌈n/2⌉ of n samples, B ⌊n/2⌋.
+        for (std::size_t p = 0; p < n; ++p) half_count[p] = (count_[p] + (h == 0 ? 1u : 0u)) / 2;
+        layers.color[h] = mean3(half_rgb_[h], half_count);
+        layers.albedo[h] = mean3(half_albedo_[h], half_count);
+        layers.normal[h] = mean3(half_normal_[h], half_count);
+        layers.depth[h].resize(n);
+        for (std::size_t p = 0; p < n; ++p)
+            layers.depth[h][p] = half_hits_[h][p] > 0 ? half_depth_[h][p] / static_cast<float>(half_hits_[h][p])
+                                                      : std::numeric_limits<float>::infinity();
+    }
+    // A pixel of one sample has nothing in half B: it takes A's values.
+    for (std::size_t p = 0; p < n; ++p) {
+        if (count_[p] != 1) continue;
+        for (std::size_t k = 3 * p; k < 3 * p + 3; ++k) {
+            layers.color[1][k] = layers.color[0][k];
+            layers.albedo[1][k] = layers.albedo[0][k];
+            layers.normal[1][k] = layers.normal[0][k];
+        }
+        layers.depth[1][p] = layers.depth[0][p];
+    }
+    return layers;
 }
 
 }  // namespace sombra

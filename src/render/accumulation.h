@@ -6,11 +6,13 @@
 // so every sum is the same whatever the thread count.
 #pragma once
 
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <vector>
 
 #include "core/vec3.h"
+#include "denoise/denoise_layers.h"
 #include "render/aov_set.h"
 #include "render/film.h"
 #include "render/first_hit.h"
@@ -23,8 +25,12 @@ namespace sombra {
 // none does; spp: the samples taken), variance 3 (per channel, the
 // unbiased estimate s²/n of the variance of the pixel's mean from its own n
 // samples; +∞ where n < 2, since one sample says nothing of its spread).
+// With the denoise AOV, `denoise` holds the denoiser's layers: the means
+// of each pixel's even- and odd-indexed samples (a half with no sample
+// takes the other's), the variance, and the features per half.
 struct AovImages {
     std::vector<float> albedo, normal, position, depth, spp, variance;
+    DenoiseLayers denoise;
 };
 
 class Accumulation {
@@ -85,6 +91,12 @@ private:
     // With the variance AOV: each channel's sum and sum of squares, in
     // double so that s² = (Σx² − n·m²)/(n − 1) keeps its digits.
     std::vector<double> channel_sum_, channel_squares_;  // 3 a pixel
+    // With the denoise AOV: the same sums split by the sample's index, even (0) and odd (1).
+    std::array<std::vector<float>, 2> half_rgb_, half_albedo_, half_normal_, half_depth_;
+    std::array<std::vector<std::uint32_t>, 2> half_hits_;
+
+    std::vector<float> variance_image() const;
+    DenoiseLayers denoise_layers() const;
 };
 
 }  // namespace sombra

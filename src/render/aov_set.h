@@ -1,5 +1,6 @@
 // Which AOVs (arbitrary output variables, spec §18, §25) a render gathers
-// beside the image, as `--aov albedo,normal,depth,position,spp,variance` names them.
+// beside the image, as `--aov albedo,normal,depth,position,spp,variance,noisy,denoise`
+// names them.
 #pragma once
 
 #include <algorithm>
@@ -17,10 +18,12 @@ struct AovSet {
     bool position = false;
     bool spp = false;
     bool variance = false;  // the estimated variance of each pixel's mean, per channel (spec §25)
+    bool noisy = false;     // the image before denoising (with --denoise only; the film, not gathered)
+    bool denoise = false;   // every layer the denoiser reads (denoise/denoise_layers.h)
 
-    bool any() const { return albedo || normal || depth || position || spp || variance; }
+    bool any() const { return albedo || normal || depth || position || spp || variance || denoise; }
     // Whether the samples must report their first hit.
-    bool needs_first_hit() const { return albedo || normal || depth || position; }
+    bool needs_first_hit() const { return albedo || normal || depth || position || denoise; }
 };
 
 // Each AOV's name as `--aov` and the EXR layers spell it, in the order
@@ -31,7 +34,8 @@ struct AovName {
 };
 inline constexpr AovName kAovNames[] = {{&AovSet::albedo, "albedo"}, {&AovSet::normal, "normal"},
                                         {&AovSet::depth, "depth"},   {&AovSet::position, "position"},
-                                        {&AovSet::spp, "spp"},       {&AovSet::variance, "variance"}};
+                                        {&AovSet::spp, "spp"},       {&AovSet::variance, "variance"},
+                                        {&AovSet::noisy, "noisy"},   {&AovSet::denoise, "denoise"}};
 
 // The set a comma-separated list names ("albedo,depth"); a name given twice
 // counts once. On an unknown or empty name: nullopt, with that name in `bad`.
