@@ -21,8 +21,9 @@ inline int window_offsets(const NlMeansParams& params) { return window_side(para
 
 // The weights of every pixel p in `centres` against every q = p + (dx, dy)
 // of its window, in [0, 1], 0 where q is outside the image:
-// weights[o · n + c], o = (dy + R)·(2R + 1) + (dx + R), c = (y − y0)·w + (x − x0)
-// for the rectangle's width w and n = its pixel count. `guide_variance`
+// weights[c · (2R + 1)² + o], c = (y − y0)·w + (x − x0) for the
+// rectangle's width w, o = (dy + R)·(2R + 1) + (dx + R): one pixel's
+// window is contiguous, as the regression reads it. `guide_variance`
 // holds the variance of each guide value (same channel count). `scratch` is
 // reused between calls to spare allocations.
 void nl_means_tile_weights(const Raster& guide, const Raster& guide_variance, PixelRect centres,

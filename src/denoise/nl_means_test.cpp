@@ -49,13 +49,13 @@ TEST(NlMeans, TileWeightsMatchTheDefinition) {
     const PixelRect centres{2, 1, 12, 9};
     nl_means_tile_weights(guide, variance, centres, params, weights, scratch);
     const int side = window_side(params);
-    const std::size_t n = static_cast<std::size_t>(centres.width() * centres.height());
     for (int y = centres.y0; y < centres.y1; ++y)
         for (int x = centres.x0; x < centres.x1; ++x)
             for (int dy = -4; dy <= 4; ++dy)
                 for (int dx = -4; dx <= 4; ++dx) {
                     const std::size_t c = static_cast<std::size_t>((y - centres.y0) * centres.width() + x - centres.x0);
-                    const float w = weights[static_cast<std::size_t>((dy + 4) * side + dx + 4) * n + c];
+                    const float w = weights[c * static_cast<std::size_t>(window_offsets(params)) +
+                                            static_cast<std::size_t>((dy + 4) * side + dx + 4)];
                     EXPECT_NEAR(w, direct_weight(guide, variance, x, y, dx, dy, params), 2e-5)
                         << x << "," << y << " offset " << dx << "," << dy;
                 }
@@ -71,9 +71,11 @@ TEST(NlMeans, APixelsWeightDoesNotDependOnItsTile) {
     const PixelRect all{0, 0, 40, 37};
     nl_means_tile_weights(guide, variance, all, params, whole, scratch);
     nl_means_tile_weights(guide, variance, PixelRect{17, 30, 18, 31}, params, single, scratch);
-    const std::size_t n = 40 * 37, c = 30 * 40 + 17;
+    const std::size_t c = 30 * 40 + 17;
     for (int o = 0; o < window_offsets(params); ++o)
-        EXPECT_EQ(whole[static_cast<std::size_t>(o) * n + c], single[static_cast<std::size_t>(o)]) << o;
+        EXPECT_EQ(whole[c * static_cast<std::size_t>(window_offsets(params)) + static_cast<std::size_t>(o)],
+                  single[static_cast<std::size_t>(o)])
+            << o;
 }
 
 TEST(NlMeans, APixelWeighsItselfOne) {
@@ -83,7 +85,8 @@ TEST(NlMeans, APixelWeighsItselfOne) {
     std::vector<float> weights, scratch;
     nl_means_tile_weights(guide, variance, PixelRect{0, 0, 9, 9}, params, weights, scratch);
     const std::size_t centre_offset = static_cast<std::size_t>(3 * window_side(params) + 3);
-    for (std::size_t c = 0; c < 81; ++c) EXPECT_EQ(weights[centre_offset * 81 + c], 1.0f);
+    for (std::size_t c = 0; c < 81; ++c)
+        EXPECT_EQ(weights[c * static_cast<std::size_t>(window_offsets(params)) + centre_offset], 1.0f);
     for (const float w : weights) {
         EXPECT_GE(w, 0.0f);
         EXPECT_LE(w, 1.0f);

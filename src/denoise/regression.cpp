@@ -25,17 +25,45 @@ using Coefficients = Eigen::Matrix<double, kDesign, 3>;
 constexpr double kRidge = 1e-3;
 // A feature that varies less than this over a window is left out of its
 // fit (its column is zero): what varies less is rounding, not geometry.
-constexpr float kFlatFeature = 1e-3f;
+constexpr double kFlatFeature = 1e-3;
 
-// One pixel's window, ready to fit: the rows of its design matrix (each
-// feature centred on the pixel's own and scaled to [-1, 1] over the
+// A thread's buffer for one column of weighted values.
+std::vector<double>& window_scratch() {
+    thread_local std::vector<double> scratch;
+    return scratch;
+}
+
+// One pixel's window, ready to fit: the columns of its design matrix
+// (each feature centred on the pixel's own and scaled to [-1, 1] over the
 // window), the weights, and the Cholesky factor of XᵀWX plus the ridge.
+// Columns are padded with zeros to a multiple of kLanes pixels, so that
+// the sums over a window run kLanes at a time in a fixed order.
+constexpr int kLanes = 16;  // four AVX registers of doubles: sums that do not wait on each other
+
 struct Window {
     PixelRect rect;
-    std::vector<std::array<double, kDesign>> rows;
-    std::vector<float> weight;
+    std::size_t padded = 0;  // pixels, padded to a multiple of kLanes
+    std::array<std::vector<double>, kDesign> column;
+    std::vector<double> weight;
     Eigen::LLT<NormalMatrix> llt;
 };
+
+// Σ x[i]·y[i] over `n` (a multiple of kLanes) values in four running
+// sums of four lanes each, then those added in a fixed order.
+double dot(const double* x, const double* y, std::size_t n) {
+    double s0[4] = {}, s1[4] = {}, s2[4] = {}, s3[4] = {};
+    for (std::size_t i = 0; i < n; i += kLanes) {
+        for (std::size_t l = 0; l < 4; ++l) {
+            s0[l] += x[i + l] * y[i + l];
+            s1[l] += x[i + 4 + l] * y[i + 4 + l];
+            s2[l] += x[i + 8 + l] * y[i + 8 + l];
+            s3[l] += x[i + 12 + l] * y[i + 12 + l];
+        }
+    }
+    double lane[4];
+    for (std::size_t l = 0; l < 4; ++l) lane[l] = (s0[l] + s1[l]) + (s2[l] + s3[l]);
+    return (lane[0] + lane[1]) + (lane[2] + lane[3]);
+}
 
 void build_window(int px, int py, PixelRect tile, const std::vector<float>& tile_weights, const Raster& features,
                   const NlMeansParams& params, Window& window) {
@@ -44,51 +72,51 @@ void build_window(int px, int py, PixelRect tile, const std::vector<float>& tile
                    std::min(py + radius + 1, features.height)};
     const PixelRect& rect = window.rect;
     const std::size_t n = static_cast<std::size_t>(rect.width()) * static_cast<std::size_t>(rect.height());
-    const std::size_t tile_n = static_cast<std::size_t>(tile.width()) * static_cast<std::size_t>(tile.height());
+    window.padded = (n + kLanes - 1) / kLanes * kLanes;
     const std::size_t centre = static_cast<std::size_t>(py - tile.y0) * static_cast<std::size_t>(tile.width()) +
                                static_cast<std::size_t>(px - tile.x0);
-    window.rows.resize(n);
-    window.weight.resize(n);
+    for (std::vector<double>& column : window.column) column.assign(window.padded, 0.0);
+    window.weight.assign(window.padded, 0.0);
+    const float* own_weights = tile_weights.data() + centre * static_cast<std::size_t>(window_offsets(params));
     const float* fp = features.at(px, py);
-    std::array<float, kRegressionFeatures> spread{};
+    const double inverse_radius = 1.0 / std::max(radius, 1);
     std::size_t i = 0;
     for (int qy = rect.y0; qy < rect.y1; ++qy) {
         for (int qx = rect.x0; qx < rect.x1; ++qx, ++i) {
             const int offset = (qy - py + radius) * side + (qx - px + radius);
-            const float w = tile_weights[static_cast<std::size_t>(offset) * tile_n + centre];
-            window.weight[i] = w;
-            if (w <= 0.0f) continue;
+            window.weight[i] = own_weights[offset];
+            window.column[0][i] = 1.0;
+            window.column[1][i] = (qx - px) * inverse_radius;
+            window.column[2][i] = (qy - py) * inverse_radius;
             const float* fq = features.at(qx, qy);
-            for (int j = 0; j < kRegressionFeatures; ++j) spread[j] = std::max(spread[j], std::abs(fq[j] - fp[j]));
+            for (int j = 0; j < kRegressionFeatures; ++j) window.column[3 + j][i] = static_cast<double>(fq[j] - fp[j]);
         }
     }
-    std::array<double, kRegressionFeatures> inverse_spread{};
-    for (int j = 0; j < kRegressionFeatures; ++j) inverse_spread[j] = spread[j] > kFlatFeature ? 1.0 / spread[j] : 0.0;
-    const double inverse_radius = 1.0 / std::max(radius, 1);
-
-    std::array<std::array<double, kDesign>, kDesign> m{};
-    double weight_total = 0;
-    i = 0;
-    for (int qy = rect.y0; qy < rect.y1; ++qy) {
-        for (int qx = rect.x0; qx < rect.x1; ++qx, ++i) {
-            std::array<double, kDesign>& x = window.rows[i];
-            const float* fq = features.at(qx, qy);
-            x[0] = 1.0;
-            x[1] = (qx - px) * inverse_radius;
-            x[2] = (qy - py) * inverse_radius;
-            for (int j = 0; j < kRegressionFeatures; ++j)
-                x[3 + j] = static_cast<double>(fq[j] - fp[j]) * inverse_spread[j];
-            const double w = window.weight[i];
-            weight_total += w;
-            for (int a = 0; a < kDesign; ++a) {
-                const double wx = w * x[a];
-                for (int b = 0; b < kDesign; ++b) m[a][b] += wx * x[b];
+    for (int j = 3; j < kDesign; ++j) {
+        // The largest |difference| among pixels of nonzero weight, lane by lane.
+        double lane[kLanes] = {};
+        const double* x = window.column[j].data();
+        const double* w = window.weight.data();
+        for (std::size_t k = 0; k < window.padded; k += kLanes)
+            for (int l = 0; l < kLanes; ++l) {
+                const std::size_t at = k + static_cast<std::size_t>(l);
+                lane[l] = std::max(lane[l], w[at] > 0.0 ? std::abs(x[at]) : 0.0);
             }
-        }
+        double spread = 0;
+        for (const double v : lane) spread = std::max(spread, v);
+        const double scale = spread > kFlatFeature ? 1.0 / spread : 0.0;
+        for (std::size_t k = 0; k < n; ++k) window.column[j][k] *= scale;
     }
+
     NormalMatrix normal;
-    for (int a = 0; a < kDesign; ++a)
-        for (int b = 0; b < kDesign; ++b) normal(a, b) = m[a][b];
+    std::vector<double>& weighted = window_scratch();
+    weighted.resize(window.padded);
+    for (int a = 0; a < kDesign; ++a) {
+        for (std::size_t k = 0; k < window.padded; ++k) weighted[k] = window.weight[k] * window.column[a][k];
+        for (int b = a; b < kDesign; ++b)
+            normal(a, b) = normal(b, a) = dot(weighted.data(), window.column[b].data(), window.padded);
+    }
+    const double weight_total = normal(0, 0);
     for (int a = 1; a < kDesign; ++a) normal(a, a) += kRidge * weight_total;
     window.llt.compute(normal);
 }
@@ -121,6 +149,43 @@ void for_each_window(const Raster& guide, const Raster& guide_variance, const Ra
     }
 }
 
+// Each channel of `image` over the window, as padded columns.
+void gather(const Raster& image, const Window& window, std::array<std::vector<double>, 3>& columns) {
+    for (std::vector<double>& column : columns) column.assign(window.padded, 0.0);
+    std::size_t i = 0;
+    for (int qy = window.rect.y0; qy < window.rect.y1; ++qy)
+        for (int qx = window.rect.x0; qx < window.rect.x1; ++qx, ++i) {
+            const float* v = image.at(qx, qy);
+            for (int ch = 0; ch < 3; ++ch) columns[ch][i] = v[ch];
+        }
+}
+
+// X·coefficients over the window: per channel, the fit's value at each pixel.
+void predict(const Window& window, const Coefficients& coefficients, std::array<std::vector<double>, 3>& out) {
+    for (int ch = 0; ch < 3; ++ch) {
+        out[ch].assign(window.padded, 0.0);
+        for (int a = 0; a < kDesign; ++a) {
+            const double b = coefficients(a, ch);
+            const double* x = window.column[a].data();
+            double* o = out[ch].data();
+            for (std::size_t k = 0; k < window.padded; ++k) o[k] += x[k] * b;
+        }
+    }
+}
+
+// Xᵀ·diag(scale)·columns: the right-hand side of a fit.
+Coefficients weighted_sums(const Window& window, const std::vector<double>& scale,
+                           const std::array<std::vector<double>, 3>& columns) {
+    std::vector<double>& weighted = window_scratch();
+    weighted.resize(window.padded);
+    Coefficients sums;
+    for (int a = 0; a < kDesign; ++a) {
+        for (std::size_t k = 0; k < window.padded; ++k) weighted[k] = scale[k] * window.column[a][k];
+        for (int ch = 0; ch < 3; ++ch) sums(a, ch) = dot(weighted.data(), columns[ch].data(), window.padded);
+    }
+    return sums;
+}
+
 }  // namespace
 
 RegressionResult collaborative_regression(const Raster& target, const Raster& guide, const Raster& guide_variance,
@@ -131,37 +196,24 @@ RegressionResult collaborative_regression(const Raster& target, const Raster& gu
     arena.execute([&] {
         for_each_window(guide, guide_variance, features, params, {0, 0, tile_count(width), tile_count(height)},
                         [&](const Window& window) {
-                            const PixelRect& rect = window.rect;
-                            Coefficients rhs = Coefficients::Zero();
+                            thread_local std::array<std::vector<double>, 3> values, fit;
+                            gather(target, window, values);
+                            const Coefficients beta = window.llt.solve(weighted_sums(window, window.weight, values));
+                            predict(window, beta, fit);
                             std::size_t i = 0;
-                            for (int qy = rect.y0; qy < rect.y1; ++qy)
-                                for (int qx = rect.x0; qx < rect.x1; ++qx, ++i) {
-                                    const float* y = target.at(qx, qy);
-                                    const double w = window.weight[i];
-                                    for (int a = 0; a < kDesign; ++a) {
-                                        const double wx = w * window.rows[i][a];
-                                        for (int c = 0; c < 3; ++c) rhs(a, c) += wx * y[c];
-                                    }
-                                }
-                            const Coefficients beta = window.llt.solve(rhs);
-                            i = 0;
-                            for (int qy = rect.y0; qy < rect.y1; ++qy)
-                                for (int qx = rect.x0; qx < rect.x1; ++qx, ++i) {
+                            for (int qy = window.rect.y0; qy < window.rect.y1; ++qy)
+                                for (int qx = window.rect.x0; qx < window.rect.x1; ++qx, ++i) {
                                     const double w = window.weight[i];
                                     if (w <= 0.0) continue;
                                     float* out = result.value.at(qx, qy);
-                                    for (int c = 0; c < 3; ++c) {
-                                        double prediction = 0;
-                                        for (int a = 0; a < kDesign; ++a) prediction += window.rows[i][a] * beta(a, c);
-                                        out[c] += static_cast<float>(w * prediction);
-                                    }
+                                    for (int ch = 0; ch < 3; ++ch) out[ch] += static_cast<float>(w * fit[ch][i]);
                                     *result.weight_sum.at(qx, qy) += static_cast<float>(w);
                                 }
                         });
     });
     // Every pixel has weight 1 in its own window, so the sums are ≥ 1.
     for (std::size_t p = 0; p < result.weight_sum.values.size(); ++p)
-        for (int c = 0; c < 3; ++c) result.value.values[3 * p + c] /= result.weight_sum.values[p];
+        for (int ch = 0; ch < 3; ++ch) result.value.values[3 * p + ch] /= result.weight_sum.values[p];
     return result;
 }
 
@@ -181,29 +233,28 @@ void collaborative_regression_adjoint(const Raster& guide, const Raster& guide_v
             const PixelRect& rect = window.rect;
             if (rect.x1 <= support.x0 || rect.x0 >= support.x1 || rect.y1 <= support.y0 || rect.y0 >= support.y1)
                 return;
-            Coefficients v = Coefficients::Zero();
+            // ∂value[q]/∂fit[q] = w_q / S_q: the collaborative mean's share of this window.
+            std::vector<double> share(window.padded, 0.0);
+            std::array<std::vector<double>, 3> g_values;
+            gather(g, window, g_values);
             std::size_t i = 0;
+            bool any = false;
             for (int qy = rect.y0; qy < rect.y1; ++qy)
                 for (int qx = rect.x0; qx < rect.x1; ++qx, ++i) {
-                    const float* gq = g.at(qx, qy);
-                    if (gq[0] == 0.0f && gq[1] == 0.0f && gq[2] == 0.0f) continue;
-                    const double scale = window.weight[i] / *weight_sum.at(qx, qy);
-                    for (int a = 0; a < kDesign; ++a)
-                        for (int c = 0; c < 3; ++c) v(a, c) += scale * window.rows[i][a] * gq[c];
+                    share[i] = window.weight[i] / *weight_sum.at(qx, qy);
+                    any = any || g_values[0][i] != 0.0 || g_values[1][i] != 0.0 || g_values[2][i] != 0.0;
                 }
-            if (v.isZero(0.0)) return;
-            const Coefficients u = window.llt.solve(v);
+            if (!any) return;
+            const Coefficients u = window.llt.solve(weighted_sums(window, share, g_values));
+            std::array<std::vector<double>, 3> back;
+            predict(window, u, back);
             i = 0;
             for (int qy = rect.y0; qy < rect.y1; ++qy)
                 for (int qx = rect.x0; qx < rect.x1; ++qx, ++i) {
                     const double w = window.weight[i];
                     if (w <= 0.0) continue;
                     float* out = g_target.at(qx, qy);
-                    for (int c = 0; c < 3; ++c) {
-                        double sum = 0;
-                        for (int a = 0; a < kDesign; ++a) sum += window.rows[i][a] * u(a, c);
-                        out[c] += static_cast<float>(w * sum);
-                    }
+                    for (int ch = 0; ch < 3; ++ch) out[ch] += static_cast<float>(w * back[ch][i]);
                 }
         });
     });

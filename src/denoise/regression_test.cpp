@@ -48,8 +48,8 @@ Raster brute_force(const Inputs& in, const NlMeansParams& params) {
             for (int qy = std::max(py - R, 0); qy < std::min(py + R + 1, h); ++qy)
                 for (int qx = std::max(px - R, 0); qx < std::min(px + R + 1, w); ++qx) {
                     qs.push_back({qx, qy});
-                    ws.push_back(weights[static_cast<std::size_t>((qy - py + R) * side + qx - px + R) * n_all +
-                                         static_cast<std::size_t>(py * w + px)]);
+                    ws.push_back(weights[static_cast<std::size_t>(py * w + px) * static_cast<std::size_t>(side * side) +
+                                         static_cast<std::size_t>((qy - py + R) * side + qx - px + R)]);
                 }
             const auto n = static_cast<int>(qs.size());
             double spread[kRegressionFeatures] = {};
