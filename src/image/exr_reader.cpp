@@ -55,7 +55,8 @@ ExrChannels read_exr_channels(const std::filesystem::path& path, const std::vect
         // decoded: a few hundred bytes can claim the largest image, and a
         // chunk that is not what it claims stops the read before its memory.
         const auto total = static_cast<std::size_t>(width * height);
-        for (std::int64_t first = window.min.y; first <= window.max.y; first += rows_per_chunk) {
+        // With none of the channels asked for, there is nothing to read.
+        for (std::int64_t first = window.min.y; !out.names.empty() && first <= window.max.y; first += rows_per_chunk) {
             const std::int64_t last = std::min<std::int64_t>(first + rows_per_chunk - 1, window.max.y);
             const auto needed = static_cast<std::size_t>((last - window.min.y + 1) * width);
             Imf::FrameBuffer frame;
