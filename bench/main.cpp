@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "core/error.h"
+#include "denoise_bench.h"
 #include "growth_bench.h"
 #include "load_bench.h"
 #include "path_bench.h"
@@ -116,6 +117,21 @@ int main(int argc, char** argv) {
         ->check(CLI::Range(1, 1000))
         ->capture_default_str();
 
+    int denoise_reps = 3;
+    std::vector<int> denoise_threads{1, 2};
+    std::string denoise_file;
+    CLI::App* denoise = app.add_subcommand("denoise", "The denoiser's time per megapixel, stage by stage");
+    denoise->add_option("layers", denoise_file, "An .exr written with sombra render --aov denoise")
+        ->required()
+        ->check(CLI::ExistingFile);
+    denoise->add_option("--threads", denoise_threads, "Thread counts to measure")
+        ->delimiter(',')
+        ->check(CLI::Range(1, 4096))
+        ->capture_default_str();
+    denoise->add_option("--reps", denoise_reps, "Timed runs (median reported)")
+        ->check(CLI::Range(1, 1000))
+        ->capture_default_str();
+
     PathErrorOptions error_options;
     std::string error_file;
     std::string cache_dir = error_options.cache_dir.string();
@@ -163,6 +179,7 @@ int main(int argc, char** argv) {
         if (*rays) run_rays_bench(rays_files, rays_options, std::cout);
         if (*tree) run_tree_bench(tree_files, tree_reps, std::cout);
         if (*path_error) run_path_error_bench(error_file, error_options, std::cout);
+        if (*denoise) run_denoise_bench(denoise_file, denoise_threads, denoise_reps, std::cout);
     } catch (const sombra::Error& e) {
         std::cerr << "sombra-bench: error: " << e.what() << '\n';
         return 1;

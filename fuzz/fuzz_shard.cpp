@@ -1,6 +1,8 @@
-// libFuzzer target for the shard files `sombra merge` reads (spec §21): they
-// come from other machines. The input is written as an .exr and read back
-// with read_exr_channels (image/image_io.h), as merge reads each part:
+// libFuzzer target for the shard files `sombra merge` reads (spec §21) and
+// the layers `sombra denoise` reads (§25): they come from other machines.
+// The input is written as an .exr and read back with read_exr_channels
+// (image/image_io.h), as merge reads each part, then taken as the
+// denoiser's layers and, when they pass its check and are small, denoised:
 // anything may be refused with an Error, nothing may crash, hang or
 // allocate past the image limits, and what is read must be consistent.
 #include <unistd.h>
@@ -10,10 +12,12 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <string>
 
 #include "core/error.h"
 #include "core/image_limits.h"
+#include "denoise/denoise.h"
 #include "image/image_io.h"
 
 namespace {
@@ -41,6 +45,15 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
         for (const auto& channel : exr.values)
             if (channel.size() != static_cast<std::size_t>(exr.width) * static_cast<std::size_t>(exr.height))
                 broken("a channel of the wrong length");
+        const sombra::DenoiseLayers layers =
+            sombra::denoise_layers_from(exr.names, exr.values, exr.width, exr.height, file.string());
+        sombra::check_denoise_layers(layers, file.string());
+        // Small images only: the denoiser's time grows with the pixels, not with the file's tricks.
+        if (exr.width * exr.height <= 48 * 48) {
+            for (const float v : sombra::denoise_image(layers, 1))
+                if (!(v >= 0.0f) || v == std::numeric_limits<float>::infinity())
+                    broken("the denoiser made a NaN, infinite or negative value");
+        }
     } catch (const sombra::Error&) {
         // Refused with a message: what merge prints.
     }

@@ -2,6 +2,7 @@
 
 #include <tbb/info.h>
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstddef>
 #include <limits>
@@ -119,7 +120,18 @@ struct NforPasses {
     RegressionResult second;
 };
 
-NforPasses run_passes(const DenoiseLayers& layers, int threads) {
+using Clock = std::chrono::steady_clock;
+
+// Seconds since `start`, which moves to now.
+double lap(Clock::time_point& start) {
+    const Clock::time_point now = Clock::now();
+    const double seconds = std::chrono::duration<double>(now - start).count();
+    start = now;
+    return seconds;
+}
+
+NforPasses run_passes(const DenoiseLayers& layers, int threads, DenoiseTimes& times) {
+    Clock::time_point start = Clock::now();
     const int w = layers.width, h = layers.height;
     NforPasses s;
     for (int half = 0; half < 2; ++half) s.color[half] = raster_of(layers.color[half], w, h, 3);
@@ -146,6 +158,7 @@ NforPasses run_passes(const DenoiseLayers& layers, int threads) {
     for (int half = 0; half < 2; ++half)
         s.features[half] =
             filter_features(raw_features[half], raw_features[1 - half], feature_variance, kFeaturePrefilter, threads);
+    times.features += lap(start);
 
     const Raster mean_color = pointwise(s.color[0], s.color[1], [](float a, float b) { return 0.5f * (a + b); });
     Raster mse[2];
@@ -154,6 +167,7 @@ NforPasses run_passes(const DenoiseLayers& layers, int threads) {
         for (int half = 0; half < 2; ++half)
             s.first[k][half] = collaborative_regression(s.color[half], s.color[1 - half], s.half_variance,
                                                         s.features[1 - half], params, threads);
+        times.regression += lap(start);
         // Each half's filtered value against the other half's noisy one, less
         // that half's variance, estimates the error (the paper's §5.3).
         Raster noisy_mse(w, h, 3);
@@ -165,11 +179,14 @@ NforPasses run_passes(const DenoiseLayers& layers, int threads) {
             noisy_mse.values[i] = 0.5f * (mse_a + mse_b) - 0.25f * (fb - fa) * (fb - fa);
         }
         mse[k] = nl_means_filter(noisy_mse, mean_color, variance, kSelectionFilter, threads);
+        times.selection += lap(start);
     }
     Raster choice(w, h, 3);
     for (std::size_t i = 0; i < choice.values.size(); ++i)
         choice.values[i] = mse[0].values[i] < mse[1].values[i] ? 0.0f : 1.0f;
     s.selection = nl_means_filter(choice, mean_color, variance, kSelectionFilter, threads);
+
+    times.selection += lap(start);
 
     Raster result[2];
     for (int half = 0; half < 2; ++half) {
@@ -191,6 +208,7 @@ NforPasses run_passes(const DenoiseLayers& layers, int threads) {
     s.combined_variance = pointwise(result[0], result[1], [](float a, float b) { return 0.25f * (a - b) * (a - b); });
     s.second = collaborative_regression(s.combined, s.combined, s.combined_variance, s.final_features,
                                         kSecondRegression, threads);
+    times.second_pass += lap(start);
     return s;
 }
 
@@ -211,15 +229,17 @@ double denoise_seconds_estimate(int width, int height, int threads) {
            static_cast<double>(std::min(available, tiles));
 }
 
-std::vector<float> denoise_image(const DenoiseLayers& layers, int threads) {
-    NforPasses passes = run_passes(layers, threads);
+std::vector<float> denoise_image(const DenoiseLayers& layers, int threads, DenoiseTimes* times) {
+    DenoiseTimes ignored;
+    NforPasses passes = run_passes(layers, threads, times != nullptr ? *times : ignored);
     std::vector<float> out = std::move(passes.second.value.values);
     for (float& v : out) v = std::max(v, 0.0f);
     return out;
 }
 
 DenoisedPixel explain_denoised_pixel(const DenoiseLayers& layers, int x, int y, int threads) {
-    const NforPasses s = run_passes(layers, threads);
+    DenoiseTimes times;
+    const NforPasses s = run_passes(layers, threads, times);
     const int w = layers.width, h = layers.height;
     // Backwards through the passes, the weights held as they were: the
     // second regression, the mean of the halves, the choice of bandwidth,

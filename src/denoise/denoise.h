@@ -13,10 +13,19 @@
 
 namespace sombra {
 
+// Where a denoise_image call spent its time, in seconds (a benchmark's view).
+struct DenoiseTimes {
+    double features = 0;     // the features' cross-filtering
+    double regression = 0;   // the first pass: two bandwidths × two halves
+    double selection = 0;    // the error estimates and the choice between bandwidths
+    double second_pass = 0;  // the features filtered again and the second regression
+};
+
 // The denoised image, 3 floats a pixel, row-major, top row first: a pure
 // function of `layers`, the same bytes for any `threads` (0 = all).
-// `layers` must pass check_denoise_layers.
-std::vector<float> denoise_image(const DenoiseLayers& layers, int threads = 0);
+// `layers` must pass check_denoise_layers. `times`, when given, gets the
+// seconds each stage took.
+std::vector<float> denoise_image(const DenoiseLayers& layers, int threads = 0, DenoiseTimes* times = nullptr);
 
 // The seconds denoise_image is expected to take on a width × height image
 // with `threads` (0 = all hardware threads): what a --time budget keeps
