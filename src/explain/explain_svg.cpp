@@ -9,6 +9,7 @@
 #include "core/base64.h"
 #include "explain/describe.h"
 #include "explain/explain.h"
+#include "explain/explain_denoise.h"
 #include "explain/outline.h"
 #include "explain/side_view.h"
 #include "explain/svg_markup.h"
@@ -43,7 +44,8 @@ public:
             std::min(kPanel / static_cast<float>(image.width), kPanel / static_cast<float>(image.height));
         const float image_w = image_scale * static_cast<float>(image.width),
                     image_h = image_scale * static_cast<float>(image.height);
-        const float width = kViewWidth + kGap + std::max(image_w, 200.0f);
+        const float image_panel = std::max(image_w, 200.0f);
+        const float width = kViewWidth + kGap + image_panel + (c_.denoised ? kGap + kDenoiseMapWidth : 0.0f);
         const std::vector<CaptionLine> lines = story_lines();
         const float height = kPanel + 80.0f + 16.0f * static_cast<float>(std::min(lines.size(), kMaxStoryLines));
         svg_ << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << num(width) << "\" height=\"" << num(height)
@@ -61,6 +63,8 @@ public:
         path();
         svg_ << "</g>\n";
         rendered_image(image, exposure, kViewWidth + kGap, image_w, image_h);
+        if (c_.denoised)
+            svg_ << denoise_weight_map(*c_.denoised, r_.pixel_x, r_.pixel_y, kViewWidth + kGap + image_panel + kGap, 0);
         caption(lines, height);
         svg_ << "</svg>\n";
         return svg_.str();
@@ -279,8 +283,10 @@ private:
         svg_ << "<circle cx=\"" << num(px + size * 0.5f) << "\" cy=\"" << num(py + size * 0.5f)
              << "\" r=\"12\" fill=\"none\" stroke=\"#ff2020\" stroke-width=\"2\"/>\n";
         svg_ << "<text x=\"" << num(left) << "\" y=\"" << num(h + 16) << "\">the render (" << image.width << "x"
-             << image.height << ", " << picture_spp(c_.job.settings) << " spp), pixel (" << r_.pixel_x << ", "
-             << r_.pixel_y << ") circled</text>\n";
+             << image.height << ", "
+             << (c_.denoised ? std::to_string(c_.job.settings.spp) + " spp, before denoising"
+                             : std::to_string(picture_spp(c_.job.settings)) + " spp")
+             << "), pixel (" << r_.pixel_x << ", " << r_.pixel_y << ") circled</text>\n";
     }
 
     void text_line(float y, const std::string& text, const char* colour = "#222") {
