@@ -60,6 +60,7 @@ public:
         j["vertices"] = vertices;
         j["end"] = r_.end;
         j["nonfinite"] = r_.nonfinite;
+        if (c_.denoised) j["denoise"] = denoise(*c_.denoised);
         return j;
     }
 
@@ -233,6 +234,24 @@ private:
             j["bounce"] = bounce;
         }
         return j;
+    }
+
+    static Json rgb(const std::array<float, 3>& v) { return Json::array({number(v[0]), number(v[1]), number(v[2])}); }
+
+    // Spec §25: the pixel denoised, as rendered, and every term with a
+    // nonzero weight; the weights are doubles, written to read back exactly.
+    static Json denoise(const DenoiseStory& d) {
+        Json weights = Json::array();
+        for (const DenoiseTerm& t : d.pixel.terms)
+            weights.push_back({{"pixel", Json::array({t.x, t.y})},
+                               {"half", t.half == 0 ? "a" : "b"},
+                               {"w", Json::array({t.weight[0], t.weight[1], t.weight[2]})},
+                               {"raw", rgb(t.raw)}});
+        const std::array<bool, 3>& clamped = d.pixel.clamped;
+        return {{"value", rgb(d.pixel.value)},
+                {"raw", rgb(d.raw)},
+                {"clamped", Json::array({clamped[0], clamped[1], clamped[2]})},
+                {"weights", weights}};
     }
 
     const ExplainContext& c_;

@@ -4,13 +4,15 @@
 // rendered image with the pixel marked.
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <sstream>
 
 #include "core/base64.h"
 #include "explain/describe.h"
 #include "explain/explain.h"
+#include "explain/explain_denoise.h"
 #include "explain/outline.h"
+#include "explain/side_view.h"
+#include "explain/svg_markup.h"
 
 namespace sombra {
 
@@ -28,60 +30,8 @@ const char* const kBlockedColour = "#d0202a";
 const char* const kBehindColour = "#909090";
 const char* const kNormalColour = "#1a9850";
 
-std::string num(float v) {
-    char buf[32];
-    std::snprintf(buf, sizeof buf, "%.1f", static_cast<double>(v));
-    return buf;
-}
-
-std::string escape_xml(const std::string& text) {
-    std::string out;
-    for (const char c : text) {
-        switch (c) {
-            case '<': out += "&lt;"; break;
-            case '>': out += "&gt;"; break;
-            case '&': out += "&amp;"; break;
-            case '"': out += "&quot;"; break;
-            default: out += c;
-        }
-    }
-    return out;
-}
-
-struct Point2 {
-    float x, y;
-};
-
-// Orthographic view from above, to the right of and behind the camera.
-class View {
-public:
-    explicit View(const Camera& camera) {
-        const Vec3 f = normalize(camera.forward), u = normalize(camera.up), l = normalize(camera.left);
-        dir_ = normalize(0.9f * l - 0.6f * u + 0.5f * f);  // looking from the right (−l), above and behind
-        up_ = normalize(u - dot(u, dir_) * dir_);
-        right_ = cross(dir_, up_);
-    }
-    Vec3 direction() const { return dir_; }
-    Point2 flat(Vec3 p) const { return {dot(p, right_), dot(p, up_)}; }
-
-    // Chooses scale and offset so that [lo, hi] (in flat coordinates) fills the panel.
-    void fit(Point2 lo, Point2 hi) {
-        const float w = std::max(hi.x - lo.x, 1e-6f), h = std::max(hi.y - lo.y, 1e-6f);
-        scale_ = std::min((kViewWidth - 2 * kMargin) / w, (kPanel - 2 * kMargin) / h);
-        ox_ = kViewWidth * 0.5f - scale_ * (lo.x + hi.x) * 0.5f;
-        oy_ = kPanel * 0.5f + scale_ * (lo.y + hi.y) * 0.5f;
-        extent_ = std::max(w, h);
-    }
-    Point2 screen(Vec3 p) const {
-        const Point2 q = flat(p);
-        return {ox_ + scale_ * q.x, oy_ - scale_ * q.y};
-    }
-    float extent() const { return extent_; }  // the fitted region's size in world units
-
-private:
-    Vec3 dir_, up_, right_;
-    float scale_ = 1, ox_ = 0, oy_ = 0, extent_ = 1;
-};
+// Short, for the many coordinates below.
+std::string num(float v) { return svg_number(v); }
 
 class Picture {
 public:
@@ -94,7 +44,8 @@ public:
             std::min(kPanel / static_cast<float>(image.width), kPanel / static_cast<float>(image.height));
         const float image_w = image_scale * static_cast<float>(image.width),
                     image_h = image_scale * static_cast<float>(image.height);
-        const float width = kViewWidth + kGap + std::max(image_w, 200.0f);
+        const float image_panel = std::max(image_w, 200.0f);
+        const float width = kViewWidth + kGap + image_panel + (c_.denoised ? kGap + kDenoiseMapWidth : 0.0f);
         const std::vector<CaptionLine> lines = story_lines();
         const float height = kPanel + 80.0f + 16.0f * static_cast<float>(std::min(lines.size(), kMaxStoryLines));
         svg_ << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << num(width) << "\" height=\"" << num(height)
@@ -112,6 +63,8 @@ public:
         path();
         svg_ << "</g>\n";
         rendered_image(image, exposure, kViewWidth + kGap, image_w, image_h);
+        if (c_.denoised)
+            svg_ << denoise_weight_map(*c_.denoised, r_.pixel_x, r_.pixel_y, kViewWidth + kGap + image_panel + kGap, 0);
         caption(lines, height);
         svg_ << "</svg>\n";
         return svg_.str();
@@ -152,7 +105,7 @@ private:
             hi = {hi.x + pad, hi.y + pad};
         }
         if (!(lo.x <= hi.x)) lo = hi = {0, 0};
-        view_.fit(lo, hi);
+        view_.fit(lo, hi, kViewWidth, kPanel, kMargin);
     }
 
     void line(Vec3 a, Vec3 b, const char* colour, float width, const char* dash = nullptr) {
@@ -330,8 +283,10 @@ private:
         svg_ << "<circle cx=\"" << num(px + size * 0.5f) << "\" cy=\"" << num(py + size * 0.5f)
              << "\" r=\"12\" fill=\"none\" stroke=\"#ff2020\" stroke-width=\"2\"/>\n";
         svg_ << "<text x=\"" << num(left) << "\" y=\"" << num(h + 16) << "\">the render (" << image.width << "x"
-             << image.height << ", " << picture_spp(c_.job.settings) << " spp), pixel (" << r_.pixel_x << ", "
-             << r_.pixel_y << ") circled</text>\n";
+             << image.height << ", "
+             << (c_.denoised ? std::to_string(c_.job.settings.spp) + " spp, before denoising"
+                             : std::to_string(picture_spp(c_.job.settings)) + " spp")
+             << "), pixel (" << r_.pixel_x << ", " << r_.pixel_y << ") circled</text>\n";
     }
 
     void text_line(float y, const std::string& text, const char* colour = "#222") {
@@ -413,7 +368,7 @@ private:
 
     const ExplainContext& c_;
     const SampleRecord& r_;
-    View view_;
+    SideView view_;
     std::ostringstream svg_;
 };
 

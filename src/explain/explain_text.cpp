@@ -5,6 +5,7 @@
 
 #include "explain/describe.h"
 #include "explain/explain.h"
+#include "explain/explain_denoise.h"
 #include "render/lights/delta_light_types.h"
 
 namespace sombra {
@@ -40,6 +41,7 @@ public:
         camera_ray();
         for (const VertexRecord& v : r_.vertices) vertex(v);
         total();
+        if (c_.denoised) out_ << denoise_text(*c_.denoised, r_.pixel_x, r_.pixel_y);
         return out_.str();
     }
 
