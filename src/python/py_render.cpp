@@ -1,13 +1,11 @@
 // sombra.render and sombra.explain: the keyword options as the library's
 // typed options (python/py_options.h), the render run through the library
-// (api/session.h) on a thread of its own while the caller's thread, holding
-// the GIL only briefly, watches for Ctrl-C and reports progress.
+// (api/session.h) on a thread of its own (python/py_watched.h).
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
 #include <chrono>
-#include <future>
 #include <mutex>
 #include <string>
 #include <vector>
@@ -20,6 +18,7 @@
 #include "python/py_bindings.h"
 #include "python/py_options.h"
 #include "python/py_scene.h"
+#include "python/py_watched.h"
 #include "render/render.h"
 
 namespace py = pybind11;
@@ -27,10 +26,6 @@ namespace py = pybind11;
 namespace sombra::python {
 
 namespace {
-
-// How often the waiting thread looks for Ctrl-C: well within the second
-// spec §19 allows, and rare enough to cost nothing.
-constexpr std::chrono::milliseconds kPollInterval{50};
 
 // A scene's render lock: shared, so renders of one scene run together;
 // but an animated scene is moved to the asked frame first (spec §22), and
@@ -63,42 +58,6 @@ RenderLock lock_at_frame(PyScene& scene, const RenderSettings& settings, const R
     }
     move_to_frame(scene.loaded.scene, options.frame, scene.source);
     return {{}, std::move(alone)};
-}
-
-// Runs `work` on its own thread with the GIL released; every kPollInterval
-// takes the GIL to check for signals and call `progress`. A KeyboardInterrupt
-// (or an exception from `progress`) sets `cancel`, waits for the work to
-// stop, and propagates.
-template <class Work>
-void run_watched(Work&& work, RenderProgress& watched, std::uint64_t total, const py::object& progress) {
-    bool python_error = false;
-    std::future<void> done;
-    {
-        py::gil_scoped_release release;
-        done = std::async(std::launch::async, std::forward<Work>(work));
-        while (done.wait_for(kPollInterval) != std::future_status::ready) {
-            const py::gil_scoped_acquire gil;
-            if (PyErr_CheckSignals() != 0) {
-                python_error = true;  // the error stays set in this thread until raised below
-            } else if (!progress.is_none()) {
-                try {
-                    progress(watched.samples_done.load(), total);
-                } catch (py::error_already_set& e) {
-                    e.restore();
-                    python_error = true;
-                }
-            }
-            if (python_error) {
-                watched.cancel = true;
-                break;
-            }
-        }
-        done.wait();
-    }
-    if (python_error) throw py::error_already_set();
-    done.get();  // the work's own exception, if any
-    // The last word: a bar ends where the render did, not at its last poll.
-    if (!progress.is_none()) progress(watched.samples_done.load(), total);
 }
 
 py::object render(const std::shared_ptr<PyScene>& scene, const py::dict& options, const py::object& progress) {
