@@ -16,6 +16,7 @@
 #include "explain/explain.h"
 #include "python/py_arrays.h"
 #include "python/py_bindings.h"
+#include "python/py_denoise.h"
 #include "python/py_options.h"
 #include "python/py_scene.h"
 #include "python/py_watched.h"
@@ -66,6 +67,7 @@ py::object render(const std::shared_ptr<PyScene>& scene, const py::dict& options
     const RenderSettings settings = resolve_render_settings(scene->loaded.settings, o);
     RenderProgress watched;
     RenderOutput rendered;
+    Film noisy;
     const std::uint64_t total = static_cast<std::uint64_t>(settings.width) *
                                 static_cast<std::uint64_t>(settings.height) * static_cast<std::uint64_t>(settings.spp);
     run_watched(
@@ -74,6 +76,7 @@ py::object render(const std::shared_ptr<PyScene>& scene, const py::dict& options
             const Scene& s = scene->loaded.scene;
             const Accel accel = make_accel(s, o.accel);
             rendered = render_image(make_job(s, accel, settings, o, start), watched);
+            if (o.denoise && !rendered.cancelled) noisy = denoise_render(rendered, o.threads, &watched.cancel);
         },
         watched, total, progress);
     const py::ssize_t w = settings.width, h = settings.height;
@@ -92,6 +95,8 @@ py::object render(const std::shared_ptr<PyScene>& scene, const py::dict& options
     add("position", rendered.aovs.position, 3);
     add("spp", rendered.aovs.spp, 1);
     add("variance", rendered.aovs.variance, 3);
+    if (o.aovs.noisy) add("noisy", noisy.rgb, 3);
+    if (o.aovs.denoise) add_denoise_layers(out, std::move(rendered.aovs.denoise));
     out["spp_reached"] = static_cast<double>(rendered.samples) / static_cast<double>(w * h);
     out["passes"] = rendered.passes;
     return out;
