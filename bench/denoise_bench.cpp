@@ -28,7 +28,7 @@ void run_denoise_bench(const std::string& layers_file, const std::vector<int>& t
         for (int r = 0; r < reps; ++r) {
             DenoiseTimes times;
             const auto start = std::chrono::steady_clock::now();
-            const std::vector<float> image = denoise_image(layers, t, &times);
+            const std::vector<float> image = denoise_image(layers, t, nullptr, &times);
             runs.emplace_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), times);
         }
         std::sort(runs.begin(), runs.end(), [](const auto& a, const auto& b) { return a.first < b.first; });

@@ -2,6 +2,7 @@
 
 #include <chrono>
 #include <utility>
+#include <vector>
 
 #include "core/error.h"
 #include "denoise/denoise.h"
@@ -44,10 +45,12 @@ RenderJob make_job(const Scene& scene, const Accel& accel, const RenderSettings&
     return job;
 }
 
-Film denoise_render(RenderOutput& rendered, int threads) {
+Film denoise_render(RenderOutput& rendered, int threads, const std::atomic<bool>* cancel) {
+    std::vector<float> denoised = denoise_image(rendered.aovs.denoise, threads, cancel);
+    if (denoised.empty()) return {};  // cancelled
     Film noisy = std::move(rendered.film);
     rendered.film = Film(noisy.width, noisy.height);
-    rendered.film.rgb = denoise_image(rendered.aovs.denoise, threads);
+    rendered.film.rgb = std::move(denoised);
     return noisy;
 }
 

@@ -4,6 +4,7 @@
 // options, and one pixel's sample traced for explain (spec §14).
 #pragma once
 
+#include <atomic>
 #include <chrono>
 #include <cstdint>
 #include <optional>
@@ -44,8 +45,9 @@ RenderJob make_job(const Scene& scene, const Accel& accel, const RenderSettings&
 // Spec §25: the film of `rendered` (gathered with the denoise AOV, as
 // make_job asks under options.denoise) replaced by the denoised image, on
 // `threads` (0 = all; the result is the same for any). Returns the film
-// before it: the noisy AOV.
-Film denoise_render(RenderOutput& rendered, int threads);
+// before it: the noisy AOV. Once `*cancel` is true the denoiser gives up:
+// `rendered` keeps its film, and the Film returned is empty.
+Film denoise_render(RenderOutput& rendered, int threads, const std::atomic<bool>* cancel = nullptr);
 
 // Pixel (x, y) (column, row) and its sample `sample` checked against the
 // image `settings` describe. Throws Error naming the pixel, or "--sample".

@@ -2,6 +2,7 @@
 
 #include <tbb/info.h>
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <cstddef>
@@ -84,12 +85,12 @@ Raster box3(const Raster& r) {
 
 // Filters each feature group of `values` with weights from the same group of `guide`.
 Raster filter_features(const Raster& values, const Raster& guide, const Raster& variance, const NlMeansParams& params,
-                       int threads) {
+                       int threads, const std::atomic<bool>* cancel) {
     Raster out(values.width, values.height, values.channels);
     for (const FeatureGroup& group : kFeatureGroups)
         put_channels(nl_means_filter(channels_of(values, group.first, group.count),
                                      channels_of(guide, group.first, group.count),
-                                     channels_of(variance, group.first, group.count), params, threads),
+                                     channels_of(variance, group.first, group.count), params, threads, cancel),
                      group.first, out);
     return out;
 }
@@ -130,7 +131,9 @@ double lap(Clock::time_point& start) {
     return seconds;
 }
 
-NforPasses run_passes(const DenoiseLayers& layers, int threads, DenoiseTimes& times) {
+// Under `cancel`, once it is true the passes go on to their end without
+// filtering: their values are then unfinished.
+NforPasses run_passes(const DenoiseLayers& layers, int threads, const std::atomic<bool>* cancel, DenoiseTimes& times) {
     Clock::time_point start = Clock::now();
     const int w = layers.width, h = layers.height;
     NforPasses s;
@@ -156,8 +159,8 @@ NforPasses run_passes(const DenoiseLayers& layers, int threads, DenoiseTimes& ti
     // Cross-filtering: each half's features, weighted by the other half's,
     // so that a half's noise does not choose its own weights.
     for (int half = 0; half < 2; ++half)
-        s.features[half] =
-            filter_features(raw_features[half], raw_features[1 - half], feature_variance, kFeaturePrefilter, threads);
+        s.features[half] = filter_features(raw_features[half], raw_features[1 - half], feature_variance,
+                                           kFeaturePrefilter, threads, cancel);
     times.features += lap(start);
 
     const Raster mean_color = pointwise(s.color[0], s.color[1], [](float a, float b) { return 0.5f * (a + b); });
@@ -166,7 +169,7 @@ NforPasses run_passes(const DenoiseLayers& layers, int threads, DenoiseTimes& ti
         const NlMeansParams params{kRegressionRadius, kRegressionPatch, kBandwidths[k]};
         for (int half = 0; half < 2; ++half)
             s.first[k][half] = collaborative_regression(s.color[half], s.color[1 - half], s.half_variance,
-                                                        s.features[1 - half], params, threads);
+                                                        s.features[1 - half], params, threads, cancel);
         times.regression += lap(start);
         // Each half's filtered value against the other half's noisy one, less
         // that half's variance, estimates the error (the paper's §5.3).
@@ -178,13 +181,13 @@ NforPasses run_passes(const DenoiseLayers& layers, int threads, DenoiseTimes& ti
             const float mse_b = (a - fb) * (a - fb) - s.half_variance.values[i];
             noisy_mse.values[i] = 0.5f * (mse_a + mse_b) - 0.25f * (fb - fa) * (fb - fa);
         }
-        mse[k] = nl_means_filter(noisy_mse, mean_color, variance, kSelectionFilter, threads);
+        mse[k] = nl_means_filter(noisy_mse, mean_color, variance, kSelectionFilter, threads, cancel);
         times.selection += lap(start);
     }
     Raster choice(w, h, 3);
     for (std::size_t i = 0; i < choice.values.size(); ++i)
         choice.values[i] = mse[0].values[i] < mse[1].values[i] ? 0.0f : 1.0f;
-    s.selection = nl_means_filter(choice, mean_color, variance, kSelectionFilter, threads);
+    s.selection = nl_means_filter(choice, mean_color, variance, kSelectionFilter, threads, cancel);
 
     times.selection += lap(start);
 
@@ -203,11 +206,12 @@ NforPasses run_passes(const DenoiseLayers& layers, int threads, DenoiseTimes& ti
         pointwise(s.features[0], s.features[1], [](float a, float b) { return 0.5f * (a + b); });
     const Raster features_variance =
         pointwise(s.features[0], s.features[1], [](float a, float b) { return 0.25f * (a - b) * (a - b); });
-    s.final_features = filter_features(features_mean, features_mean, features_variance, kSecondFeatureFilter, threads);
+    s.final_features =
+        filter_features(features_mean, features_mean, features_variance, kSecondFeatureFilter, threads, cancel);
     s.combined = pointwise(result[0], result[1], [](float a, float b) { return 0.5f * (a + b); });
     s.combined_variance = pointwise(result[0], result[1], [](float a, float b) { return 0.25f * (a - b) * (a - b); });
     s.second = collaborative_regression(s.combined, s.combined, s.combined_variance, s.final_features,
-                                        kSecondRegression, threads);
+                                        kSecondRegression, threads, cancel);
     times.second_pass += lap(start);
     return s;
 }
@@ -229,9 +233,11 @@ double denoise_seconds_estimate(int width, int height, int threads) {
            static_cast<double>(std::min(available, tiles));
 }
 
-std::vector<float> denoise_image(const DenoiseLayers& layers, int threads, DenoiseTimes* times) {
+std::vector<float> denoise_image(const DenoiseLayers& layers, int threads, const std::atomic<bool>* cancel,
+                                 DenoiseTimes* times) {
     DenoiseTimes ignored;
-    NforPasses passes = run_passes(layers, threads, times != nullptr ? *times : ignored);
+    NforPasses passes = run_passes(layers, threads, cancel, times != nullptr ? *times : ignored);
+    if (cancel != nullptr && cancel->load()) return {};
     std::vector<float> out = std::move(passes.second.value.values);
     for (float& v : out) v = std::max(v, 0.0f);
     return out;
@@ -239,7 +245,7 @@ std::vector<float> denoise_image(const DenoiseLayers& layers, int threads, Denoi
 
 DenoisedPixel explain_denoised_pixel(const DenoiseLayers& layers, int x, int y, int threads) {
     DenoiseTimes times;
-    const NforPasses s = run_passes(layers, threads, times);
+    const NforPasses s = run_passes(layers, threads, nullptr, times);
     const int w = layers.width, h = layers.height;
     // Backwards through the passes, the weights held as they were: the
     // second regression, the mean of the halves, the choice of bandwidth,

@@ -7,6 +7,7 @@
 #pragma once
 
 #include <array>
+#include <atomic>
 #include <vector>
 
 #include "denoise/denoise_layers.h"
@@ -23,9 +24,12 @@ struct DenoiseTimes {
 
 // The denoised image, 3 floats a pixel, row-major, top row first: a pure
 // function of `layers`, the same bytes for any `threads` (0 = all).
-// `layers` must pass check_denoise_layers. `times`, when given, gets the
-// seconds each stage took.
-std::vector<float> denoise_image(const DenoiseLayers& layers, int threads = 0, DenoiseTimes* times = nullptr);
+// `layers` must pass check_denoise_layers. Once `*cancel` is true (looked
+// at before each tile of kDenoiseTile² pixels) it stops and returns an
+// empty vector: a viewer or Python's Ctrl-C need not wait for the end.
+// `times`, when given, gets the seconds each stage took.
+std::vector<float> denoise_image(const DenoiseLayers& layers, int threads = 0,
+                                 const std::atomic<bool>* cancel = nullptr, DenoiseTimes* times = nullptr);
 
 // The seconds denoise_image is expected to take on a width × height image
 // with `threads` (0 = all hardware threads): what a --time budget keeps

@@ -4,8 +4,11 @@
 
 #include <gtest/gtest.h>
 
+#include <atomic>
+#include <chrono>
 #include <cmath>
 #include <limits>
+#include <thread>
 
 #include "core/error.h"
 #include "denoise/denoise_test_util.h"
@@ -75,6 +78,25 @@ TEST(Denoise, RemovesNoiseAndKeepsTheLight) {
 TEST(Denoise, SameBytesOnAnyThreadCount) {
     const DenoiseLayers layers = synthetic_layers(75, 66, 4, true, 3);
     EXPECT_EQ(denoise_image(layers, 1), denoise_image(layers, 3));
+}
+
+TEST(Denoise, StopsOnCancelAndIsUnchangedWithout) {
+    const DenoiseLayers layers = synthetic_layers(75, 66, 4, true, 3);
+    std::atomic<bool> cancel{false};
+    EXPECT_EQ(denoise_image(layers, 2, &cancel), denoise_image(layers, 2));
+    cancel = true;
+    EXPECT_TRUE(denoise_image(layers, 2, &cancel).empty());
+    // Cancelled while it runs (a viewer's restart): it gives up between tiles.
+    const DenoiseLayers large = synthetic_layers(320, 240, 4, true, 5);
+    cancel = false;
+    std::thread canceller([&cancel] {
+        std::this_thread::sleep_for(std::chrono::milliseconds(50));
+        cancel = true;
+    });
+    const auto start = std::chrono::steady_clock::now();
+    EXPECT_TRUE(denoise_image(large, 2, &cancel).empty());
+    canceller.join();
+    EXPECT_LT(std::chrono::steady_clock::now() - start, std::chrono::seconds(3));
 }
 
 TEST(Denoise, ExplainedWeightsAddUpToOneAndToThePixel) {

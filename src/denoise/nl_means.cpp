@@ -146,7 +146,7 @@ void nl_means_tile_weights(const Raster& guide, const Raster& guide_variance, Pi
 }
 
 Raster nl_means_filter(const Raster& values, const Raster& guide, const Raster& guide_variance,
-                       const NlMeansParams& params, int threads) {
+                       const NlMeansParams& params, int threads, const std::atomic<bool>* cancel) {
     Raster out(values.width, values.height, values.channels);
     const int tiles_x = tile_count(values.width), tiles_y = tile_count(values.height);
     const int radius = params.window_radius, side = window_side(params);
@@ -156,6 +156,7 @@ Raster nl_means_filter(const Raster& values, const Raster& guide, const Raster& 
         tbb::parallel_for(tbb::blocked_range<int>(0, tiles_x * tiles_y), [&](const tbb::blocked_range<int>& range) {
             std::vector<float> weights, scratch;
             for (int t = range.begin(); t < range.end(); ++t) {
+                if (cancel != nullptr && cancel->load(std::memory_order_relaxed)) return;
                 const PixelRect tile = tile_rect(t % tiles_x, t / tiles_x, values.width, values.height);
                 nl_means_tile_weights(guide, guide_variance, tile, params, weights, scratch);
                 const auto offsets = static_cast<std::size_t>(window_offsets(params));

@@ -4,6 +4,7 @@
 // patches around them are in a guide image, in units of the guide's noise.
 #pragma once
 
+#include <atomic>
 #include <vector>
 
 #include "denoise/raster.h"
@@ -31,7 +32,8 @@ void nl_means_tile_weights(const Raster& guide, const Raster& guide_variance, Pi
 
 // Each pixel of `values` replaced by the weighted mean of its window's,
 // weighted as above by `guide`; the same bytes for any `threads` (0 = all).
+// Tiles not yet begun once `*cancel` is true are left 0.
 Raster nl_means_filter(const Raster& values, const Raster& guide, const Raster& guide_variance,
-                       const NlMeansParams& params, int threads);
+                       const NlMeansParams& params, int threads, const std::atomic<bool>* cancel = nullptr);
 
 }  // namespace sombra

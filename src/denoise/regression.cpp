@@ -126,10 +126,11 @@ void build_window(int px, int py, PixelRect tile, const std::vector<float>& tile
 // (phase_x, phase_y), tiles of one phase in parallel. Windows of two
 // tiles of one phase never overlap (2R + 32 < 64), so a visit may add to
 // the pixels of its window without a lock, and every pixel receives its
-// sums in the same order whatever the thread count.
+// sums in the same order whatever the thread count. Tiles not yet begun
+// once `*cancel` is true are skipped.
 template <typename Visit>
 void for_each_window(const Raster& guide, const Raster& guide_variance, const Raster& features,
-                     const NlMeansParams& params, PixelRect tiles, Visit visit) {
+                     const NlMeansParams& params, PixelRect tiles, const std::atomic<bool>* cancel, Visit visit) {
     for (int phase = 0; phase < 4; ++phase) {
         std::vector<std::array<int, 2>> list;
         for (int ty = tiles.y0; ty < tiles.y1; ++ty)
@@ -138,6 +139,7 @@ void for_each_window(const Raster& guide, const Raster& guide_variance, const Ra
         tbb::parallel_for(std::size_t{0}, list.size(), [&](std::size_t t) {
             thread_local std::vector<float> weights, scratch;
             thread_local Window window;
+            if (cancel != nullptr && cancel->load(std::memory_order_relaxed)) return;
             const PixelRect tile = tile_rect(list[t][0], list[t][1], guide.width, guide.height);
             nl_means_tile_weights(guide, guide_variance, tile, params, weights, scratch);
             for (int py = tile.y0; py < tile.y1; ++py)
@@ -189,12 +191,13 @@ Coefficients weighted_sums(const Window& window, const std::vector<double>& scal
 }  // namespace
 
 RegressionResult collaborative_regression(const Raster& target, const Raster& guide, const Raster& guide_variance,
-                                          const Raster& features, const NlMeansParams& params, int threads) {
+                                          const Raster& features, const NlMeansParams& params, int threads,
+                                          const std::atomic<bool>* cancel) {
     const int width = target.width, height = target.height;
     RegressionResult result{Raster(width, height, 3), Raster(width, height, 1)};
     tbb::task_arena arena(threads > 0 ? threads : tbb::task_arena::automatic);
     arena.execute([&] {
-        for_each_window(guide, guide_variance, features, params, {0, 0, tile_count(width), tile_count(height)},
+        for_each_window(guide, guide_variance, features, params, {0, 0, tile_count(width), tile_count(height)}, cancel,
                         [&](const Window& window) {
                             thread_local std::array<std::vector<double>, 3> values, fit;
                             gather(target, window, values);
@@ -211,6 +214,7 @@ RegressionResult collaborative_regression(const Raster& target, const Raster& gu
                                 }
                         });
     });
+    if (cancel != nullptr && cancel->load()) return result;  // unfinished: sums of 0 stay
     // Every pixel has weight 1 in its own window, so the sums are ≥ 1.
     for (std::size_t p = 0; p < result.weight_sum.values.size(); ++p)
         for (int ch = 0; ch < 3; ++ch) result.value.values[3 * p + ch] /= result.weight_sum.values[p];
@@ -229,7 +233,7 @@ void collaborative_regression_adjoint(const Raster& guide, const Raster& guide_v
                           (centres.y1 - 1) / kDenoiseTile + 1};
     tbb::task_arena arena(1);  // one pixel's weights: small, and in a fixed order
     arena.execute([&] {
-        for_each_window(guide, guide_variance, features, params, tiles, [&](const Window& window) {
+        for_each_window(guide, guide_variance, features, params, tiles, nullptr, [&](const Window& window) {
             const PixelRect& rect = window.rect;
             if (rect.x1 <= support.x0 || rect.x0 >= support.x1 || rect.y1 <= support.y0 || rect.y0 >= support.y1)
                 return;

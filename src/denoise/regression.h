@@ -8,6 +8,8 @@
 // (the adjoint) to give one pixel's weights over the target.
 #pragma once
 
+#include <atomic>
+
 #include "denoise/nl_means.h"
 #include "denoise/raster.h"
 
@@ -24,9 +26,11 @@ struct RegressionResult {
 
 // `target` and `guide` have 3 channels, `guide_variance` the variance of
 // each guide value, `features` kRegressionFeatures channels. The same bytes
-// for any `threads` (0 = all).
+// for any `threads` (0 = all). Windows of tiles not yet begun once
+// `*cancel` is true are left out: the result is then unfinished.
 RegressionResult collaborative_regression(const Raster& target, const Raster& guide, const Raster& guide_variance,
-                                          const Raster& features, const NlMeansParams& params, int threads);
+                                          const Raster& features, const NlMeansParams& params, int threads,
+                                          const std::atomic<bool>* cancel = nullptr);
 
 // The adjoint of collaborative_regression with its weights held fixed:
 // adds ∂(Σ_p g[p]·value[p]) / ∂target[q], per channel, to g_target[q] for

@@ -26,4 +26,5 @@ PYBIND11_MODULE(_sombra, m) {
     sombra::python::bind_scene(m);
     sombra::python::bind_render(m);
     sombra::python::bind_arrays(m);
+    sombra::python::bind_denoise(m);
 }

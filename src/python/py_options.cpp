@@ -93,6 +93,8 @@ RenderOptions render_options_from(const py::dict& options) {
             r.noise_threshold = py::cast<double>(value);
         } else if (key == "min_spp") {
             r.min_spp = int_option(key, value);
+        } else if (key == "denoise") {
+            r.denoise = py::cast<bool>(value);
         } else if (key == "aov") {
             std::string list;
             for (const std::string& name : py::cast<std::vector<std::string>>(value))

@@ -1,13 +1,11 @@
 // sombra.render and sombra.explain: the keyword options as the library's
 // typed options (python/py_options.h), the render run through the library
-// (api/session.h) on a thread of its own while the caller's thread, holding
-// the GIL only briefly, watches for Ctrl-C and reports progress.
+// (api/session.h) on a thread of its own (python/py_watched.h).
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
 #include <chrono>
-#include <future>
 #include <mutex>
 #include <string>
 #include <vector>
@@ -18,8 +16,10 @@
 #include "explain/explain.h"
 #include "python/py_arrays.h"
 #include "python/py_bindings.h"
+#include "python/py_denoise.h"
 #include "python/py_options.h"
 #include "python/py_scene.h"
+#include "python/py_watched.h"
 #include "render/render.h"
 
 namespace py = pybind11;
@@ -27,10 +27,6 @@ namespace py = pybind11;
 namespace sombra::python {
 
 namespace {
-
-// How often the waiting thread looks for Ctrl-C: well within the second
-// spec §19 allows, and rare enough to cost nothing.
-constexpr std::chrono::milliseconds kPollInterval{50};
 
 // A scene's render lock: shared, so renders of one scene run together;
 // but an animated scene is moved to the asked frame first (spec §22), and
@@ -65,48 +61,13 @@ RenderLock lock_at_frame(PyScene& scene, const RenderSettings& settings, const R
     return {{}, std::move(alone)};
 }
 
-// Runs `work` on its own thread with the GIL released; every kPollInterval
-// takes the GIL to check for signals and call `progress`. A KeyboardInterrupt
-// (or an exception from `progress`) sets `cancel`, waits for the work to
-// stop, and propagates.
-template <class Work>
-void run_watched(Work&& work, RenderProgress& watched, std::uint64_t total, const py::object& progress) {
-    bool python_error = false;
-    std::future<void> done;
-    {
-        py::gil_scoped_release release;
-        done = std::async(std::launch::async, std::forward<Work>(work));
-        while (done.wait_for(kPollInterval) != std::future_status::ready) {
-            const py::gil_scoped_acquire gil;
-            if (PyErr_CheckSignals() != 0) {
-                python_error = true;  // the error stays set in this thread until raised below
-            } else if (!progress.is_none()) {
-                try {
-                    progress(watched.samples_done.load(), total);
-                } catch (py::error_already_set& e) {
-                    e.restore();
-                    python_error = true;
-                }
-            }
-            if (python_error) {
-                watched.cancel = true;
-                break;
-            }
-        }
-        done.wait();
-    }
-    if (python_error) throw py::error_already_set();
-    done.get();  // the work's own exception, if any
-    // The last word: a bar ends where the render did, not at its last poll.
-    if (!progress.is_none()) progress(watched.samples_done.load(), total);
-}
-
 py::object render(const std::shared_ptr<PyScene>& scene, const py::dict& options, const py::object& progress) {
     const auto start = std::chrono::steady_clock::now();
     const RenderOptions o = render_options_from(options);
     const RenderSettings settings = resolve_render_settings(scene->loaded.settings, o);
     RenderProgress watched;
     RenderOutput rendered;
+    Film noisy;
     const std::uint64_t total = static_cast<std::uint64_t>(settings.width) *
                                 static_cast<std::uint64_t>(settings.height) * static_cast<std::uint64_t>(settings.spp);
     run_watched(
@@ -115,6 +76,7 @@ py::object render(const std::shared_ptr<PyScene>& scene, const py::dict& options
             const Scene& s = scene->loaded.scene;
             const Accel accel = make_accel(s, o.accel);
             rendered = render_image(make_job(s, accel, settings, o, start), watched);
+            if (o.denoise && !rendered.cancelled) noisy = denoise_render(rendered, o.threads, &watched.cancel);
         },
         watched, total, progress);
     const py::ssize_t w = settings.width, h = settings.height;
@@ -133,6 +95,8 @@ py::object render(const std::shared_ptr<PyScene>& scene, const py::dict& options
     add("position", rendered.aovs.position, 3);
     add("spp", rendered.aovs.spp, 1);
     add("variance", rendered.aovs.variance, 3);
+    if (o.aovs.noisy) add("noisy", noisy.rgb, 3);
+    if (o.aovs.denoise) add_denoise_layers(out, std::move(rendered.aovs.denoise));
     out["spp_reached"] = static_cast<double>(rendered.samples) / static_cast<double>(w * h);
     out["passes"] = rendered.passes;
     return out;

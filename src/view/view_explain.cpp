@@ -36,7 +36,7 @@ void explain_pixel(ViewContext& c, const httplib::Request& req, httplib::Respons
     const SampleRecord record = record_pixel_sample(job, *x, *y, *sample);
     const ExplainContext context{c.scene, job, c.scene_file};
 
-    std::shared_ptr<const Film> image = c.live.latest().image;
+    std::shared_ptr<const Film> image = c.live.latest().shown();
     if (!image || image->width != s.settings.width || image->height != s.settings.height)
         image = std::make_shared<const Film>(s.settings.width, s.settings.height);
     const nlohmann::json answer = {

@@ -34,7 +34,10 @@ json frame_json(const ViewFrame& f) {
             {"target_spp", f.target_spp},
             {"seconds", f.seconds},
             {"passes_per_second", f.seconds > 0 ? f.passes / f.seconds : 0.0},
-            {"done", f.done}};
+            {"done", f.done},
+            {"denoise", f.denoise},
+            {"denoised", f.denoised},
+            {"denoised_spp", f.denoised_spp}};
 }
 
 json state_json(const ViewContext& c) {
@@ -50,15 +53,17 @@ json state_json(const ViewContext& c) {
         camera_state["projection"] = "perspective";
         camera_state["fov"] = camera.fov_degrees;
     }
+    const ViewFrame frame = c.live.latest();
     return {{"scene", c.scene_file},
             {"width", s.settings.width},
             {"height", s.settings.height},
             {"spp", s.settings.spp},
             {"max_depth", s.settings.max_depth},
             {"integrator", integrator_name(s.settings.integrator)},
+            {"denoise", frame.denoise},
             {"exposure", c.exposure},
             {"camera", camera_state},
-            {"frame", frame_json(c.live.latest())}};
+            {"frame", frame_json(frame)}};
 }
 
 void bad_request(httplib::Response& res, const std::string& problem) {
@@ -112,10 +117,17 @@ void set_camera(ViewContext& c, const httplib::Request& req, httplib::Response& 
     res.set_content(state_json(c).dump(), "application/json");
 }
 
-// POST /settings?integrator=direct|path&spp=N&max_depth=D: each optional.
+// POST /settings?integrator=direct|path&spp=N&max_depth=D&denoise=on|off:
+// each optional. The denoise switch alone does not restart the passes
+// (LiveRender::set_denoise decides); anything else does.
 void set_settings(ViewContext& c, const httplib::Request& req, httplib::Response& res) {
     std::string problem;
     ViewSettings s = c.live.settings();
+    std::optional<bool> denoise;
+    if (const std::optional<std::string> text = param(req, "denoise")) {
+        if (*text != "on" && *text != "off") return bad_request(res, "denoise must be on or off");
+        denoise = *text == "on";
+    }
     if (const std::optional<std::string> integrator = param(req, "integrator")) {
         if (*integrator != "direct" && *integrator != "path")
             return bad_request(res, "integrator must be direct or path");
@@ -132,13 +144,16 @@ void set_settings(ViewContext& c, const httplib::Request& req, httplib::Response
         s.settings.max_depth = *depth;
     }
     if (const std::string p = render_settings_problem(s.settings); !p.empty()) return bad_request(res, p);
-    c.live.restart(s);
+    const bool others = req.has_param("integrator") || req.has_param("spp") || req.has_param("max_depth");
+    if (others || !denoise) c.live.restart(s);
+    if (denoise) c.live.set_denoise(*denoise);
     res.set_content(state_json(c).dump(), "application/json");
 }
 
-// The latest image, or a black one of the right size before the first pass.
+// The image the page shows (the newest denoised pass under the denoise
+// switch), or a black one of the right size before the first pass.
 std::shared_ptr<const Film> current_image(const ViewContext& c) {
-    if (std::shared_ptr<const Film> image = c.live.latest().image) return image;
+    if (std::shared_ptr<const Film> image = c.live.latest().shown()) return image;
     const RenderSettings s = c.live.settings().settings;
     return std::make_shared<const Film>(s.width, s.height);
 }
@@ -165,9 +180,9 @@ void send_exr(ViewContext& c, httplib::Response& res) {
     res.set_content(std::string(exr.begin(), exr.end()), "image/x-exr");
 }
 
-// GET /events: one "pass" event at once, then one for each new pass; a
-// comment line when nothing happened for a while, which also finds a closed
-// page. A client that stops reading blocks only its own request thread, and
+// GET /events: one "pass" event at once, then one for each new pass,
+// denoised image or turn of the denoise switch; a comment line when nothing
+// happened for a while, which also finds a closed page. A client that stops reading blocks only its own request thread, and
 // only until the write times out; the render never waits for it.
 void stream_events(ViewContext& c, httplib::Response& res) {
     if (c.streams.fetch_add(1) >= kMaxViewStreams) {
@@ -190,9 +205,9 @@ void stream_events(ViewContext& c, httplib::Response& res) {
                 return true;
             }
             std::string message = ": waiting\n\n";
-            if (!*sent || frame.version != **sent) {
+            if (!*sent || frame.updates != **sent) {
                 message = "event: pass\ndata: " + frame_json(frame).dump() + "\n\n";
-                *sent = frame.version;
+                *sent = frame.updates;
             }
             return sink.write(message.data(), message.size());
         },

@@ -233,6 +233,82 @@ TEST(ViewServer, AnOrthographicCameraZoomsByItsHalfHeight) {
     EXPECT_EQ(refused->status, 400);
 }
 
+// Bytes of `a` and `b` that differ by more than 8-bit rounding (1), or -1
+// for images of different sizes.
+int bytes_apart(const Rgb8& a, const Rgb8& b) {
+    if (a.width != b.width || a.height != b.height || a.pixels.size() != b.pixels.size()) return -1;
+    int differ = 0;
+    for (std::size_t k = 0; k < a.pixels.size(); ++k) differ += std::abs(int(a.pixels[k]) - int(b.pixels[k])) > 1;
+    return differ;
+}
+
+// Spec §25's switch: the newest finished pass denoised (after the last
+// pass, `sombra render --denoise`'s image); off, the raw image at once,
+// without a restart; below 2 samples a pixel, the raw image.
+TEST(ViewServer, TheDenoiseSwitchShowsTheNewestPassDenoised) {
+    ServedScene s(8);
+    const nlohmann::json raw_done = s.wait_done();
+    EXPECT_FALSE(raw_done["denoise"].get<bool>());
+    EXPECT_EQ(raw_done["denoised"], 0);
+    httplib::Client client("127.0.0.1", s.port());
+    const std::string t = "token=" + std::string(kToken);
+    const auto image = [&] {
+        const auto r = client.Get("/image.png?" + t);
+        return r ? decode_png(r->body) : Rgb8{};
+    };
+    const auto post = [&](const std::string& query) {
+        const auto r = client.Post("/settings?" + t + "&" + query, "", "text/plain");
+        EXPECT_TRUE(r && r->status == 200) << query << ": " << (r ? r->body : "no answer");
+        return r && r->status == 200 ? nlohmann::json::parse(r->body) : nlohmann::json{};
+    };
+    const auto denoised_to_the_end = [](const std::vector<nlohmann::json>& e) {
+        return !e.empty() && e.back()["done"].get<bool>() && e.back()["denoised"] == e.back()["version"];
+    };
+    for (const std::string bad : {"denoise=1", "denoise=", "denoise=ON", "denoise=on&spp=0"}) {
+        const auto r = client.Post("/settings?" + t + "&" + bad, "", "text/plain");
+        ASSERT_TRUE(r) << bad;
+        EXPECT_EQ(r->status, 400) << bad;
+    }
+    const Rgb8 raw = image();
+    EXPECT_EQ(bytes_apart(raw, s.sombra_render_png("--spp 8")), 0);
+
+    // On: the passes began without the denoiser's layers, so they start again with them.
+    const nlohmann::json on = post("denoise=on");
+    EXPECT_TRUE(on["denoise"].get<bool>());
+    EXPECT_GT(on["frame"]["generation"].get<int>(), raw_done["generation"].get<int>());
+    const std::vector<nlohmann::json> events = s.read_events_until(denoised_to_the_end);
+    ASSERT_TRUE(denoised_to_the_end(events));
+    EXPECT_EQ(events.back()["denoised_spp"], 8);
+    for (const nlohmann::json& e : events) {
+        if (e["denoised"].get<int>() > 0) {
+            EXPECT_GE(e["denoised_spp"].get<int>(), 2);
+        }
+    }
+    const Rgb8 denoised = image();
+    EXPECT_EQ(bytes_apart(denoised, s.sombra_render_png("--spp 8 --denoise")), 0);
+    EXPECT_GT(bytes_apart(denoised, raw), 0);  // the denoised image is what is served
+
+    // Off: the raw image again, the passes where they were.
+    const nlohmann::json off = post("denoise=off");
+    EXPECT_FALSE(off["denoise"].get<bool>());
+    EXPECT_EQ(off["frame"]["generation"], events.back()["generation"]);
+    EXPECT_EQ(off["frame"]["denoised"], 0);
+    EXPECT_EQ(bytes_apart(image(), raw), 0);
+
+    // On again: the passes gathered the layers, so the last is denoised without a restart.
+    const nlohmann::json again = post("denoise=on");
+    EXPECT_EQ(again["frame"]["generation"], events.back()["generation"]);
+    ASSERT_TRUE(denoised_to_the_end(s.read_events_until(denoised_to_the_end)));
+    EXPECT_EQ(bytes_apart(image(), denoised), 0);
+
+    // One sample a pixel: nothing to denoise, the raw image shows.
+    post("spp=1");
+    const nlohmann::json one = s.wait_done();
+    EXPECT_TRUE(one["denoise"].get<bool>());
+    EXPECT_EQ(one["denoised"], 0);
+    EXPECT_EQ(bytes_apart(image(), s.sombra_render_png("--spp 1")), 0);
+}
+
 TEST(ViewServer, ExplainsAPixelWithTheRendersValue) {
     ServedScene s(1);  // one sample a pixel: the pixel's value is sample 0's
     s.wait_done();

@@ -8,9 +8,12 @@
 //   4. a click on a pixel shows explain's story in the side panel, with the
 //      pixel's value equal to what `sombra explain --json` gives for it at
 //      that camera;
-//   5. a glTF file's orthographic camera stays orthographic: `+` zooms by
+//   5. the denoise switch (spec §25): on, the page ends on the last pass
+//      denoised, `sombra render --denoise` up to 8-bit rounding; off, the
+//      raw image again;
+//   6. a glTF file's orthographic camera stays orthographic: `+` zooms by
 //      its half-height, the origin stays, and the image grows;
-//   6. a signal ends the server at once and frees the port (SIGTERM: a
+//   7. a signal ends the server at once and frees the port (SIGTERM: a
 //      process that a non-interactive shell starts in the background inherits
 //      SIGINT ignored, as CI's may; Ctrl-C itself is tested by interrupt_test).
 // Screenshots go to $SOMBRA_ARTIFACTS (CI keeps them).
@@ -201,7 +204,29 @@ try {
   check(close, `the panel's value [${shownValue}] is explain's [${cli.value.map((v) => v.toPrecision(6))}]`);
   await page.screenshot({ path: path.join(artifacts, "3-explained.png") });
 
-  // 5. An orthographic camera (a glTF file's: a 2 × 2 square seen square on
+  // 5. The denoise switch: the passes start again, gathering the denoiser's
+  // layers, and the newest finished pass is shown denoised, to the last.
+  await page.locator("#denoise").check();
+  await page.waitForFunction((spp) => document.getElementById("status").textContent.endsWith(
+    `done · denoised at ${spp} spp`), SPP, { timeout: 60000 });
+  await page.waitForTimeout(300);
+  const denoised = await pixelsOf(page);
+  const denoisedReference = path.join(work, "denoised.png");
+  runSombra(["render", moved, ...common, "--denoise", "-o", denoisedReference, "--quiet"]);
+  const denoisedRef = await pixelsOf(page, "data:image/png;base64," + readFileSync(denoisedReference).toString("base64"));
+  worst = 0;
+  for (let i = 0; i < denoised.data.length; ++i) worst = Math.max(worst, Math.abs(denoised.data[i] - denoisedRef.data[i]));
+  check(worst <= 1, `with the switch on the page shows sombra render --denoise's image (largest difference ${worst})`);
+  check(denoised.data.some((v, i) => Math.abs(v - orbited.data[i]) > 1), "the denoised image is not the raw one");
+  await page.screenshot({ path: path.join(artifacts, "4-denoised.png") });
+  await page.locator("#denoise").uncheck();
+  await page.waitForFunction(() => !document.getElementById("status").textContent.includes("denois") &&
+                                   shownImage.startsWith("p"), null, { timeout: 20000 });
+  await page.waitForTimeout(300);
+  const raw = await pixelsOf(page);
+  check(raw.data.every((v, i) => v === orbited.data[i]), "with the switch off the page shows the raw image again");
+
+  // 6. An orthographic camera (a glTF file's: a 2 × 2 square seen square on
   // from z = 4, ymag 1.5) zooms by its half-height.
   const square = new Float32Array([-1, -1, 0, 1, -1, 0, 1, 1, 0, -1, 1, 0]);
   const corners = new Uint16Array([0, 1, 2, 0, 2, 3]);
@@ -249,14 +274,14 @@ try {
       return n;
     };
     check(lit(after) > 1.1 * lit(before), `the square grew on screen (${lit(before)} → ${lit(after)} pixels)`);
-    await view.screenshot({ path: path.join(artifacts, "4-orthographic.png") });
+    await view.screenshot({ path: path.join(artifacts, "5-orthographic.png") });
   } finally {
     ortho.child.kill("SIGTERM");
   }
   passed = true;
 } finally {
   await browser.close();
-  // 6. A signal ends the server at once and frees the port.
+  // 7. A signal ends the server at once and frees the port.
   const started = Date.now();
   server.kill("SIGTERM");
   const code = await new Promise((r) => (server.exitCode !== null ? r(server.exitCode) : server.on("exit", r)));

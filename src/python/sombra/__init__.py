@@ -16,7 +16,7 @@ from __future__ import annotations
 
 import json
 import math
-from typing import Any, Sequence, Union
+from typing import Any, Mapping, Optional, Sequence, Union
 
 import numpy as np
 
@@ -25,7 +25,7 @@ from ._options import _RENDER_OPTIONS, _RUN_OPTIONS, _SCENE_OPTIONS, PathLike, P
 from ._progress import Bar as _Bar
 from ._scene import Scene
 
-__all__ = ["Error", "Scene", "load", "render", "explain", "write_image", "to_png"]
+__all__ = ["Error", "Scene", "load", "render", "denoise", "explain", "write_image", "to_png"]
 
 #: A wrong input (scene, option value, array): a ValueError whose text is the
 #: command line's one line, "WHERE: WHAT" (WHERE a file:line:col, a JSON path
@@ -69,10 +69,19 @@ def render(scene: Scene, *, aov: Union[Sequence[str], str, None] = None, progres
       time                       seconds: render sample passes until the next would
                                  end past the budget (counted from this call)
       noise_threshold, min_spp   adaptive sampling
-    aov: any of "albedo", "normal", "depth", "position", "spp", "variance": then the result
-      is a dict of arrays, "color" the image, "albedo"/"normal"/"position"
-      (height, width, 3), "depth"/"spp" (height, width), "variance" (height,
-      width, 3): the estimated variance of each pixel's mean, per channel.
+      denoise                    True: the image denoised once the last pass is done
+                                 (spec §25; at least 2 spp), as ``sombra render --denoise``
+    aov: any of "albedo", "normal", "depth", "position", "spp", "variance",
+      "noisy", "denoise": then the result is a dict of arrays, "color" the
+      image, "albedo"/"normal"/"position" (height, width, 3), "depth"/"spp"
+      (height, width), "variance" (height, width, 3): the estimated variance
+      of each pixel's mean, per channel; "noisy" (with denoise=True only) the
+      image before denoising; "denoise" adds every layer the denoiser reads,
+      each under its own key: "variance", "denoise.A" and "denoise.B" (the
+      means of each pixel's even- and odd-indexed samples), "denoise.albedoA",
+      "denoise.albedoB", "denoise.normalA", "denoise.normalB" (height, width,
+      3) and "denoise.depthA", "denoise.depthB" (height, width), what
+      :func:`denoise` takes.
     progress: True for a text bar (on stderr, redrawn in place; in Jupyter
       one text output that updates), or a callable receiving
       (samples done, samples in all) about every 50 ms.
@@ -85,7 +94,8 @@ def render(scene: Scene, *, aov: Union[Sequence[str], str, None] = None, progres
     if aov is not None:
         names = [aov] if isinstance(aov, str) else aov
         if not isinstance(names, (list, tuple)) or not all(isinstance(n, str) for n in names):
-            raise TypeError("render(): aov must be a list of str (albedo, normal, depth, position, spp, variance)")
+            raise TypeError("render(): aov must be a list of str (albedo, normal, depth, position, spp, variance, "
+                            "noisy, denoise)")
         if names:
             checked["aov"] = list(names)
     bar = None
@@ -103,6 +113,26 @@ def render(scene: Scene, *, aov: Union[Sequence[str], str, None] = None, progres
     if aov is None or not names:
         return out["color"]
     return {key: value for key, value in out.items() if isinstance(value, np.ndarray)}
+
+
+def denoise(layers: Mapping[str, np.ndarray], *, threads: Optional[int] = None) -> np.ndarray:
+    """Denoises the layers ``render(scene, aov=["denoise"], ...)`` returns
+    (spec §25): a float32 array (height, width, 3), equal float for float to
+    ``render(scene, denoise=True, ...)`` with the same options. Keys beside
+    the denoiser's are ignored.
+
+    threads: worker threads, 0 (or None) = all; the result is the same for any.
+    Raises Error naming the layer for one missing, of the wrong shape, or
+    holding a NaN (or a negative colour); TypeError for a value that is not a
+    numpy array of a float dtype. The GIL is released while denoising;
+    Ctrl-C raises KeyboardInterrupt within a second.
+    """
+    if not isinstance(layers, Mapping):
+        raise TypeError(f"denoise(): expected the dict render(..., aov=[\"denoise\"]) returns, "
+                        f"not {type(layers).__name__}")
+    checked = _options("denoise", {"threads": threads}, {"threads": _RENDER_OPTIONS["threads"]})
+    given = {key: value for key, value in layers.items() if isinstance(key, str)}
+    return _sombra.denoise(given, checked)
 
 
 def explain(scene: Scene, x: int, y: int, sample: int = 0, **options: Any) -> dict:

@@ -22,6 +22,7 @@ Progress = Union[bool, Callable[[int, int], Any], None]
 _INT = (int,)
 _NUMBER = (int, float)
 _STR = (str,)
+_BOOL = (bool,)
 _SCENE_OPTIONS = {
     "width": ("--width", _INT),
     "height": ("--height", _INT),
@@ -43,6 +44,7 @@ _RENDER_OPTIONS = {
     "time": ("--time", _NUMBER),
     "noise_threshold": ("--noise-threshold", _NUMBER),
     "min_spp": ("--min-spp", _INT),
+    "denoise": ("--denoise", _BOOL),
 }
 
 
@@ -55,7 +57,7 @@ def _options(function: str, options: Mapping[str, Any], table: Mapping[str, tupl
         if value is None:
             continue  # None means "as the scene says", like leaving the option out
         _, types = table[key]
-        if isinstance(value, bool) or not isinstance(value, types):
+        if (isinstance(value, bool) and types is not _BOOL) or not isinstance(value, types):
             names = " or ".join(t.__name__ for t in types)
             raise TypeError(f"{function}(): {key} must be {names}, not {type(value).__name__}")
         checked[key] = value
