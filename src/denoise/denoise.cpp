@@ -110,14 +110,39 @@ Raster half_features(const DenoiseLayers& layers, int h, float depth_scale) {
     return f;
 }
 
+// The albedo below which a surface counts as black (or as no surface):
+// demodulated leaves such a pixel's colour as it is.
+constexpr float kAlbedoFloor = 0.01f;
+
+// The guide non-local means compares patches in: the colour divided by the
+// first surface's albedo (its variance by the albedo squared), so that a
+// texture the regression's features explain anyway does not make alike
+// patches look different and leave a pixel, a firefly above all, alone.
+struct Guide {
+    Raster color, variance;
+};
+Guide demodulated(const Raster& color, const Raster& variance, const Raster& features) {
+    Guide g{Raster(color.width, color.height, 3), Raster(color.width, color.height, 3)};
+    for (std::size_t p = 0; p < static_cast<std::size_t>(color.width) * static_cast<std::size_t>(color.height); ++p)
+        for (std::size_t c = 0; c < 3; ++c) {
+            const float albedo = features.values[p * kRegressionFeatures + c];
+            const float scale = albedo > kAlbedoFloor ? 1.0f / albedo : 1.0f;
+            g.color.values[3 * p + c] = color.values[3 * p + c] * scale;
+            g.variance.values[3 * p + c] = variance.values[3 * p + c] * scale * scale;
+        }
+    return g;
+}
+
 // Everything the forward pass makes that the weights of a pixel need.
 struct NforPasses {
     Raster color[2];               // the halves
     Raster half_variance;          // the variance of a half's mean
     Raster features[2];            // each half's features, cross-filtered
+    Guide guide[2];                // each half demodulated: the guide of the other half's regression
     RegressionResult first[2][2];  // [bandwidth][half]
     Raster selection;              // per channel: 0 = first bandwidth, 1 = second
     Raster combined, combined_variance, final_features;
+    Guide second_guide;
     RegressionResult second;
 };
 
@@ -163,13 +188,18 @@ NforPasses run_passes(const DenoiseLayers& layers, int threads, const std::atomi
                                            kFeaturePrefilter, threads, cancel);
     times.features += lap(start);
 
+    for (int half = 0; half < 2; ++half) s.guide[half] = demodulated(s.color[half], s.half_variance, s.features[half]);
     const Raster mean_color = pointwise(s.color[0], s.color[1], [](float a, float b) { return 0.5f * (a + b); });
+    const Raster mean_features =
+        pointwise(s.features[0], s.features[1], [](float a, float b) { return 0.5f * (a + b); });
+    const Guide mean_guide = demodulated(mean_color, variance, mean_features);
     Raster mse[2];
     for (int k = 0; k < 2; ++k) {
         const NlMeansParams params{kRegressionRadius, kRegressionPatch, kBandwidths[k]};
         for (int half = 0; half < 2; ++half)
-            s.first[k][half] = collaborative_regression(s.color[half], s.color[1 - half], s.half_variance,
-                                                        s.features[1 - half], params, threads, cancel);
+            s.first[k][half] =
+                collaborative_regression(s.color[half], s.guide[1 - half].color, s.guide[1 - half].variance,
+                                         s.features[1 - half], params, threads, cancel);
         times.regression += lap(start);
         // Each half's filtered value against the other half's noisy one, less
         // that half's variance, estimates the error (the paper's §5.3).
@@ -181,13 +211,13 @@ NforPasses run_passes(const DenoiseLayers& layers, int threads, const std::atomi
             const float mse_b = (a - fb) * (a - fb) - s.half_variance.values[i];
             noisy_mse.values[i] = 0.5f * (mse_a + mse_b) - 0.25f * (fb - fa) * (fb - fa);
         }
-        mse[k] = nl_means_filter(noisy_mse, mean_color, variance, kSelectionFilter, threads, cancel);
+        mse[k] = nl_means_filter(noisy_mse, mean_guide.color, mean_guide.variance, kSelectionFilter, threads, cancel);
         times.selection += lap(start);
     }
     Raster choice(w, h, 3);
     for (std::size_t i = 0; i < choice.values.size(); ++i)
         choice.values[i] = mse[0].values[i] < mse[1].values[i] ? 0.0f : 1.0f;
-    s.selection = nl_means_filter(choice, mean_color, variance, kSelectionFilter, threads, cancel);
+    s.selection = nl_means_filter(choice, mean_guide.color, mean_guide.variance, kSelectionFilter, threads, cancel);
 
     times.selection += lap(start);
 
@@ -202,15 +232,14 @@ NforPasses run_passes(const DenoiseLayers& layers, int threads, const std::atomi
     }
     // The second pass: the halves' results together, with their difference
     // as the noise left, regressed on features filtered once more.
-    const Raster features_mean =
-        pointwise(s.features[0], s.features[1], [](float a, float b) { return 0.5f * (a + b); });
     const Raster features_variance =
         pointwise(s.features[0], s.features[1], [](float a, float b) { return 0.25f * (a - b) * (a - b); });
     s.final_features =
-        filter_features(features_mean, features_mean, features_variance, kSecondFeatureFilter, threads, cancel);
+        filter_features(mean_features, mean_features, features_variance, kSecondFeatureFilter, threads, cancel);
     s.combined = pointwise(result[0], result[1], [](float a, float b) { return 0.5f * (a + b); });
     s.combined_variance = pointwise(result[0], result[1], [](float a, float b) { return 0.25f * (a - b) * (a - b); });
-    s.second = collaborative_regression(s.combined, s.combined, s.combined_variance, s.final_features,
+    s.second_guide = demodulated(s.combined, s.combined_variance, s.final_features);
+    s.second = collaborative_regression(s.combined, s.second_guide.color, s.second_guide.variance, s.final_features,
                                         kSecondRegression, threads, cancel);
     times.second_pass += lap(start);
     return s;
@@ -254,7 +283,7 @@ DenoisedPixel explain_denoised_pixel(const DenoiseLayers& layers, int x, int y, 
     for (int c = 0; c < 3; ++c) g_out.at(x, y)[c] = 1.0f;
     const PixelRect pixel{x, y, x + 1, y + 1};
     Raster g_combined(w, h, 3);
-    collaborative_regression_adjoint(s.combined, s.combined_variance, s.final_features, kSecondRegression,
+    collaborative_regression_adjoint(s.second_guide.color, s.second_guide.variance, s.final_features, kSecondRegression,
                                      s.second.weight_sum, g_out, pixel, g_combined);
     const PixelRect combined_support = grown(pixel, 2 * kRegressionRadius, w, h);
     Raster g_half[2] = {Raster(w, h, 3), Raster(w, h, 3)};
@@ -266,8 +295,9 @@ DenoisedPixel explain_denoised_pixel(const DenoiseLayers& layers, int x, int y, 
             g_first.values[i] = 0.5f * g_combined.values[i] * (k == 0 ? 1.0f - t : t);
         }
         for (int half = 0; half < 2; ++half)
-            collaborative_regression_adjoint(s.color[1 - half], s.half_variance, s.features[1 - half], params,
-                                             s.first[k][half].weight_sum, g_first, combined_support, g_half[half]);
+            collaborative_regression_adjoint(s.guide[1 - half].color, s.guide[1 - half].variance, s.features[1 - half],
+                                             params, s.first[k][half].weight_sum, g_first, combined_support,
+                                             g_half[half]);
     }
 
     DenoisedPixel out;

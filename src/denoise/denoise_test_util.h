@@ -53,7 +53,8 @@ inline DenoiseLayers synthetic_layers(int width, int height, int spp, bool noise
                     total += v;
                     squares += v * v;
                 }
-                for (int h = 0; h < 2; ++h) layers.color[h][3 * p + c] = static_cast<float>(sum[h] / (spp / 2));
+                const int half_count = spp / 2;  // spp is even here: both halves hold spp / 2 samples
+                for (int h = 0; h < 2; ++h) layers.color[h][3 * p + c] = static_cast<float>(sum[h] / half_count);
                 const double mean = total / spp;
                 layers.variance[3 * p + c] =
                     static_cast<float>(std::max(0.0, squares - spp * mean * mean) / (spp - 1.0) / spp);

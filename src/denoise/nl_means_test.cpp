@@ -84,7 +84,7 @@ TEST(NlMeans, APixelWeighsItselfOne) {
     const Raster variance = random_raster(9, 9, 1, 0.0f, 0.1f, 6);
     std::vector<float> weights, scratch;
     nl_means_tile_weights(guide, variance, PixelRect{0, 0, 9, 9}, params, weights, scratch);
-    const std::size_t centre_offset = static_cast<std::size_t>(3 * window_side(params) + 3);
+    const std::size_t centre_offset = 3 * static_cast<std::size_t>(window_side(params)) + 3;
     for (std::size_t c = 0; c < 81; ++c)
         EXPECT_EQ(weights[c * static_cast<std::size_t>(window_offsets(params)) + centre_offset], 1.0f);
     for (const float w : weights) {

@@ -19,10 +19,6 @@ constexpr int kDesign = 3 + kRegressionFeatures;
 using NormalMatrix = Eigen::Matrix<double, kDesign, kDesign>;
 using Coefficients = Eigen::Matrix<double, kDesign, 3>;
 
-// A ridge of kRidge · Σw on every column but the constant one keeps the
-// fit well posed where features are collinear, while the constant column,
-// left free, makes every pixel's weights add up to 1.
-constexpr double kRidge = 1e-3;
 // A feature that varies less than this over a window is left out of its
 // fit (its column is zero): what varies less is rounding, not geometry.
 constexpr double kFlatFeature = 1e-3;
@@ -117,7 +113,7 @@ void build_window(int px, int py, PixelRect tile, const std::vector<float>& tile
             normal(a, b) = normal(b, a) = dot(weighted.data(), window.column[b].data(), window.padded);
     }
     const double weight_total = normal(0, 0);
-    for (int a = 1; a < kDesign; ++a) normal(a, a) += kRidge * weight_total;
+    for (int a = 1; a < kDesign; ++a) normal(a, a) += kRegressionRidge * weight_total;
     window.llt.compute(normal);
 }
 

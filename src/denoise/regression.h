@@ -19,6 +19,13 @@ namespace sombra {
 // albedo (3), normal (3), depth (1).
 inline constexpr int kRegressionFeatures = 7;
 
+// A ridge of kRegressionRidge · Σw on every column but the constant one
+// keeps a fit well posed where features are collinear; the constant column,
+// left free, makes every pixel's weights add up to 1. Small enough that a
+// colour the features explain exactly passes through to float rounding (a
+// ridge of 10⁻³ blurred such colours by about 10⁻⁴, and measured no better).
+inline constexpr double kRegressionRidge = 1e-6;
+
 struct RegressionResult {
     Raster value;       // 3 channels
     Raster weight_sum;  // 1 channel: Σ over the windows holding the pixel of its weight in them (≥ 1)

@@ -38,7 +38,7 @@ Raster brute_force(const Inputs& in, const NlMeansParams& params) {
     const int w = in.target.width, h = in.target.height, R = params.window_radius, side = window_side(params);
     std::vector<float> weights, scratch;
     nl_means_tile_weights(in.guide, in.variance, PixelRect{0, 0, w, h}, params, weights, scratch);
-    const std::size_t n_all = static_cast<std::size_t>(w * h);
+    const std::size_t n_all = static_cast<std::size_t>(w) * static_cast<std::size_t>(h);
     std::vector<double> sum(3 * n_all, 0.0), total(n_all, 0.0);
     constexpr int d = 3 + kRegressionFeatures;
     for (int py = 0; py < h; ++py)
@@ -81,11 +81,12 @@ Raster brute_force(const Inputs& in, const NlMeansParams& params) {
                 a.row(i) = std::sqrt(ws[i]) * x.row(i);
                 b.row(i) = std::sqrt(ws[i]) * y.row(i);
             }
-            for (int j = 1; j < d; ++j) a(n + j - 1, j) = std::sqrt(1e-3 * wsum);
+            for (int j = 1; j < d; ++j) a(n + j - 1, j) = std::sqrt(kRegressionRidge * wsum);
             const Eigen::MatrixXd beta = a.colPivHouseholderQr().solve(b);
             const Eigen::MatrixXd prediction = x * beta;
             for (int i = 0; i < n; ++i) {
-                const std::size_t q = static_cast<std::size_t>(qs[i][1] * w + qs[i][0]);
+                const std::size_t q = static_cast<std::size_t>(qs[i][1]) * static_cast<std::size_t>(w) +
+                                      static_cast<std::size_t>(qs[i][0]);
                 for (int c = 0; c < 3; ++c) sum[3 * q + c] += ws[i] * prediction(i, c);
                 total[q] += ws[i];
             }
