@@ -17,12 +17,14 @@ namespace sombra {
 namespace {
 
 // NFOR's parameters (the paper's §5): patches of 7 × 7 pixels; features
-// cross-filtered over 11 × 11 windows; colour regressed over 19 × 19 with
-// two bandwidths; the error estimates and the choice between bandwidths
-// smoothed with 3 × 3 patches; the second pass's features over 5 × 5.
+// cross-filtered over 11 × 11 windows; colour regressed with two
+// bandwidths over 15 × 15 (the paper's 19 × 19 took 1.5× as long for no
+// better images: docs/performance.md); the error estimates and the choice
+// between bandwidths smoothed with 3 × 3 patches; the second pass's
+// features over 5 × 5.
 constexpr NlMeansParams kFeaturePrefilter{5, 3, 0.5f};
 constexpr float kBandwidths[2] = {0.5f, 1.0f};
-constexpr int kRegressionRadius = 9;
+constexpr int kRegressionRadius = 7;
 constexpr int kRegressionPatch = 3;
 constexpr NlMeansParams kSelectionFilter{9, 1, 1.0f};
 constexpr NlMeansParams kSecondFeatureFilter{2, 3, 0.5f};
@@ -252,9 +254,9 @@ PixelRect grown(PixelRect r, int by, int width, int height) {
 }  // namespace
 
 double denoise_seconds_estimate(int width, int height, int threads) {
-    // One thread's seconds a pixel: 68 µs measured on a quiet 2-core
+    // One thread's seconds a pixel: 48.5 µs measured on a quiet 2-core
     // machine, and a margin (docs/performance.md, "The denoiser").
-    constexpr double kSecondsPerPixel = 80e-6;
+    constexpr double kSecondsPerPixel = 56e-6;
     const int available = threads > 0 ? threads : tbb::info::default_concurrency();
     // The tiles of one phase run side by side: no more threads than those help.
     const int tiles = std::max(1, tile_count(width) * tile_count(height) / 4);

@@ -71,8 +71,13 @@ void build_window(int px, int py, PixelRect tile, const std::vector<float>& tile
     window.padded = (n + kLanes - 1) / kLanes * kLanes;
     const std::size_t centre = static_cast<std::size_t>(py - tile.y0) * static_cast<std::size_t>(tile.width()) +
                                static_cast<std::size_t>(px - tile.x0);
-    for (std::vector<double>& column : window.column) column.assign(window.padded, 0.0);
-    window.weight.assign(window.padded, 0.0);
+    // Every entry below n is written next; the padding is zero.
+    for (std::vector<double>& column : window.column) {
+        column.resize(window.padded);
+        std::fill(column.begin() + static_cast<std::ptrdiff_t>(n), column.end(), 0.0);
+    }
+    window.weight.resize(window.padded);
+    std::fill(window.weight.begin() + static_cast<std::ptrdiff_t>(n), window.weight.end(), 0.0);
     const float* own_weights = tile_weights.data() + centre * static_cast<std::size_t>(window_offsets(params));
     const float* fp = features.at(px, py);
     const double inverse_radius = 1.0 / std::max(radius, 1);
@@ -149,7 +154,12 @@ void for_each_window(const Raster& guide, const Raster& guide_variance, const Ra
 
 // Each channel of `image` over the window, as padded columns.
 void gather(const Raster& image, const Window& window, std::array<std::vector<double>, 3>& columns) {
-    for (std::vector<double>& column : columns) column.assign(window.padded, 0.0);
+    const std::size_t n =
+        static_cast<std::size_t>(window.rect.width()) * static_cast<std::size_t>(window.rect.height());
+    for (std::vector<double>& column : columns) {
+        column.resize(window.padded);
+        std::fill(column.begin() + static_cast<std::ptrdiff_t>(n), column.end(), 0.0);
+    }
     std::size_t i = 0;
     for (int qy = window.rect.y0; qy < window.rect.y1; ++qy)
         for (int qx = window.rect.x0; qx < window.rect.x1; ++qx, ++i) {
