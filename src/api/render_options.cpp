@@ -119,10 +119,11 @@ AccelKind accel_option(std::string_view name) {
 AovSet aov_option(std::string_view list) {
     std::string bad;
     const std::optional<AovSet> set = parse_aov_list(list, bad);
-    if (!set)
-        throw Error("--aov",
-                    "unknown AOV '" + bad +
-                        "' (expected a comma-separated list of albedo, normal, depth, position, spp, variance)");
+    if (!set) {
+        std::string names;
+        for (const AovName& aov : kAovNames) names += std::string(names.empty() ? "" : ", ") + aov.name;
+        throw Error("--aov", "unknown AOV '" + bad + "' (expected a comma-separated list of " + names + ")");
+    }
     return *set;
 }
 

@@ -118,7 +118,7 @@ TEST(RenderOptions, AovListsReadBackInSpecOrder) {
     EXPECT_EQ(aov_list(AovSet{}), "");
     EXPECT_EQ(error_of([] { aov_option("albedo,,depth"); }),
               "--aov: unknown AOV '' (expected a comma-separated list of albedo, normal, depth, position, spp, "
-              "variance)");
+              "variance, noisy, denoise)");
 }
 
 TEST(Session, TheJobCarriesTheOptions) {
