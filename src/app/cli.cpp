@@ -283,8 +283,13 @@ CliParse parse(int argc, const char* const* argv, std::ostream& out, std::ostrea
                 : app.got_subcommand(merge)   ? Command::Merge
                 : app.got_subcommand(denoise) ? Command::Denoise
                                               : Command::Render;
-    const auto refuse = [&err](const std::string& problem) {
-        err << "sombra: error: command line: " << problem << " (see 'sombra render --help')\n";
+    const char* const subcommand = o.command == Command::Explain   ? "explain"
+                                   : o.command == Command::View    ? "view"
+                                   : o.command == Command::Merge   ? "merge"
+                                   : o.command == Command::Denoise ? "denoise"
+                                                                   : "render";
+    const auto refuse = [&err, subcommand](const std::string& problem) {
+        err << "sombra: error: command line: " << problem << " (see 'sombra " << subcommand << " --help')\n";
         return CliParse{std::nullopt, 2};
     };
     if (o.render.frame && o.first_frame) return refuse("give --frame or --frames, not both");
