@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <stdexcept>
 
 #include "denoise/fast_exp.h"
 
@@ -151,6 +152,7 @@ Raster nl_means_filter(const Raster& values, const Raster& guide, const Raster& 
     const int tiles_x = tile_count(values.width), tiles_y = tile_count(values.height);
     const int radius = params.window_radius, side = window_side(params);
     const int channels = values.channels;
+    if (channels > kMaxFilterChannels) throw std::invalid_argument("nl_means_filter: more than 4 channels");
     tbb::task_arena arena(threads > 0 ? threads : tbb::task_arena::automatic);
     arena.execute([&] {
         tbb::parallel_for(tbb::blocked_range<int>(0, tiles_x * tiles_y), [&](const tbb::blocked_range<int>& range) {
@@ -165,7 +167,7 @@ Raster nl_means_filter(const Raster& values, const Raster& guide, const Raster& 
                         const std::size_t c =
                             static_cast<std::size_t>(y - tile.y0) * static_cast<std::size_t>(tile.width()) +
                             static_cast<std::size_t>(x - tile.x0);
-                        float sum[4] = {0, 0, 0, 0};
+                        float sum[kMaxFilterChannels] = {};
                         float total = 0.0f;
                         for (int dy = -radius; dy <= radius; ++dy) {
                             if (y + dy < 0 || y + dy >= values.height) continue;

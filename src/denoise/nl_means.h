@@ -30,7 +30,11 @@ inline int window_offsets(const NlMeansParams& params) { return window_side(para
 void nl_means_tile_weights(const Raster& guide, const Raster& guide_variance, PixelRect centres,
                            const NlMeansParams& params, std::vector<float>& weights, std::vector<float>& scratch);
 
-// Each pixel of `values` replaced by the weighted mean of its window's,
+// The most channels nl_means_filter takes (colours, the feature groups).
+inline constexpr int kMaxFilterChannels = 4;
+
+// Each pixel of `values` (at most kMaxFilterChannels channels; more throws
+// std::invalid_argument) replaced by the weighted mean of its window's,
 // weighted as above by `guide`; the same bytes for any `threads` (0 = all).
 // Tiles not yet begun once `*cancel` is true are left 0.
 Raster nl_means_filter(const Raster& values, const Raster& guide, const Raster& guide_variance,
