@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <limits>
 
 #include "core/error.h"
 #include "core/format.h"
@@ -43,17 +44,23 @@ void check_denoise_layers(const DenoiseLayers& layers, const std::string& where)
                                    std::to_string(layers.height) + ")");
         const bool colour = name.starts_with("denoise.A.") || name.starts_with("denoise.B.");
         const bool variance = name.starts_with("variance.");
+        const bool depth = name.starts_with("denoise.depth");
         for (std::size_t p = 0; p < pixels; ++p) {
             const float v = values[p * step + static_cast<std::size_t>(component)];
-            const bool bad = std::isnan(v) || (colour && (!std::isfinite(v) || v < 0.0f)) || (variance && v < 0.0f);
+            // Beyond these bounds the passes' squares and sums would overflow a float.
+            const bool bad = std::isnan(v) || (colour && !(v >= 0.0f && v <= kMaxDenoiseColour)) ||
+                             (variance && !(v >= 0.0f && (v <= kMaxDenoiseVariance || std::isinf(v)))) ||
+                             (depth && v == -std::numeric_limits<float>::infinity()) ||
+                             (!colour && !variance && !depth && !(std::abs(v) <= kMaxDenoiseFeature));
             if (!bad) continue;
             const auto x = static_cast<int>(p % static_cast<std::size_t>(layers.width));
             const auto y = static_cast<int>(p / static_cast<std::size_t>(layers.width));
             throw Error(where, name + ": " + format_number(v) + " at pixel (" + std::to_string(x) + ", " +
                                    std::to_string(y) + ") " +
-                                   (colour     ? "is not a finite non-negative colour"
-                                    : variance ? "is not a variance"
-                                               : "is not a number"));
+                                   (colour     ? "is not a colour from 0 to 1e12"
+                                    : variance ? "is not a variance from 0 to 1e24 (or +inf)"
+                                    : depth    ? "is not a depth"
+                                               : "is not a feature from -1e6 to 1e6"));
         }
     });
 }

@@ -47,9 +47,17 @@ void for_each_denoise_channel(Layers& layers, Visit visit) {
 DenoiseLayers denoise_layers_from(const std::vector<std::string>& names, const std::vector<std::vector<float>>& values,
                                   int width, int height, const std::string& where);
 
+// The largest values the denoiser takes: beyond them its squares and sums
+// would overflow a float (no render comes near them).
+inline constexpr float kMaxDenoiseColour = 1e12f;
+inline constexpr float kMaxDenoiseVariance = 1e24f;
+inline constexpr float kMaxDenoiseFeature = 1e6f;
+
 // Throws Error(where, what) when a layer is not width × height pixels, a
-// colour is negative or not finite, a variance negative or NaN, or a
-// feature NaN (`where`: the file the layers came from).
+// colour is not in [0, kMaxDenoiseColour], a variance not in
+// [0, kMaxDenoiseVariance] or +inf (one sample), an albedo or normal not
+// within ±kMaxDenoiseFeature, or a depth NaN or -inf (+inf: no hit)
+// (`where`: the file the layers came from).
 void check_denoise_layers(const DenoiseLayers& layers, const std::string& where);
 
 }  // namespace sombra
