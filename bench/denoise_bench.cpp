@@ -12,10 +12,7 @@
 namespace sombra::bench {
 
 void run_denoise_bench(const std::string& layers_file, const std::vector<int>& threads, int reps, std::ostream& out) {
-    std::vector<std::string> names;
-    DenoiseLayers wanted;
-    for_each_denoise_channel(wanted, [&names](const std::string& name, auto&&...) { names.push_back(name); });
-    const ExrChannels exr = read_exr_channels(layers_file, names);
+    const ExrChannels exr = read_exr_channels(layers_file, denoise_channel_names());
     const DenoiseLayers layers = denoise_layers_from(exr.names, exr.values, exr.width, exr.height, layers_file);
     check_denoise_layers(layers, layers_file);
     const double megapixels = static_cast<double>(layers.width) * layers.height * 1e-6;

@@ -15,10 +15,7 @@ namespace sombra {
 int run_denoise(const CliOptions& o) {
     return reporting_errors(o.input, [&] {
         check_output_path(o.output);
-        std::vector<std::string> names;
-        DenoiseLayers wanted;
-        for_each_denoise_channel(wanted, [&names](const std::string& name, auto&&...) { names.push_back(name); });
-        const ExrChannels exr = read_exr_channels(o.input, names);
+        const ExrChannels exr = read_exr_channels(o.input, denoise_channel_names());
         const DenoiseLayers layers = denoise_layers_from(exr.names, exr.values, exr.width, exr.height, o.input);
         check_denoise_layers(layers, o.input);
         const auto start = std::chrono::steady_clock::now();

@@ -10,6 +10,13 @@
 
 namespace sombra {
 
+std::vector<std::string> denoise_channel_names() {
+    std::vector<std::string> names;
+    const DenoiseLayers none;
+    for_each_denoise_channel(none, [&names](const std::string& name, auto&&...) { names.push_back(name); });
+    return names;
+}
+
 DenoiseLayers denoise_layers_from(const std::vector<std::string>& names, const std::vector<std::vector<float>>& values,
                                   int width, int height, const std::string& where) {
     DenoiseLayers layers;

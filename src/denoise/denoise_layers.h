@@ -41,6 +41,10 @@ void for_each_denoise_channel(Layers& layers, Visit visit) {
     for (int h = 0; h < 2; ++h) visit(std::string("denoise.depth") + half[h] + ".Z", layers.depth[h], 0, 1);
 }
 
+// The names for_each_denoise_channel gives, in its order: what a reader
+// of the layers asks an EXR file for.
+std::vector<std::string> denoise_channel_names();
+
 // The layers from named channels of width × height floats each (an EXR
 // file's), taken from `values`. Throws Error(where, "no layer 'NAME' ...")
 // for the first channel the denoiser reads that `names` lacks.

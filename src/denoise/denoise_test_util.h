@@ -1,5 +1,5 @@
-// Synthetic denoiser inputs for the tests: a picture of two materials
-// under a light gradient, its pixels the means of noisy samples.
+// Synthetic denoiser inputs for the tests: random rasters, and a picture of
+// two materials under a light gradient, its pixels the means of noisy samples.
 #pragma once
 
 #include <cmath>
@@ -8,8 +8,18 @@
 #include <vector>
 
 #include "denoise/denoise_layers.h"
+#include "denoise/raster.h"
 
 namespace sombra::test {
+
+// A raster of uniform random values in [lo, hi), the same for a seed.
+inline Raster random_raster(int w, int h, int channels, float lo, float hi, unsigned seed) {
+    Raster r(w, h, channels);
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<float> u(lo, hi);
+    for (float& v : r.values) v = u(rng);
+    return r;
+}
 
 // The noise-free radiance of pixel (x, y), channel c: an albedo that
 // changes at x = width/2 times a smooth light.

@@ -7,16 +7,12 @@
 #include <cmath>
 #include <random>
 
+#include "denoise/denoise_test_util.h"
+
 namespace sombra {
 namespace {
 
-Raster random_raster(int w, int h, int channels, float lo, float hi, unsigned seed) {
-    Raster r(w, h, channels);
-    std::mt19937 rng(seed);
-    std::uniform_real_distribution<float> u(lo, hi);
-    for (float& v : r.values) v = u(rng);
-    return r;
-}
+using test::random_raster;
 
 // The weight of q = p + (dx, dy) for p, from the definition in doubles.
 double direct_weight(const Raster& g, const Raster& var, int px, int py, int dx, int dy, const NlMeansParams& params) {

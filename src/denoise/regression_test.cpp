@@ -10,16 +10,12 @@
 #include <random>
 #include <vector>
 
+#include "denoise/denoise_test_util.h"
+
 namespace sombra {
 namespace {
 
-Raster random_raster(int w, int h, int channels, float lo, float hi, unsigned seed) {
-    Raster r(w, h, channels);
-    std::mt19937 rng(seed);
-    std::uniform_real_distribution<float> u(lo, hi);
-    for (float& v : r.values) v = u(rng);
-    return r;
-}
+using test::random_raster;
 
 struct Inputs {
     Raster target, guide, variance, features;
