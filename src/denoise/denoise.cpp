@@ -26,7 +26,7 @@ constexpr NlMeansParams kFeaturePrefilter{5, 3, 0.5f};
 constexpr float kBandwidths[2] = {0.5f, 1.0f};
 constexpr int kRegressionRadius = 7;
 constexpr int kRegressionPatch = 3;
-constexpr NlMeansParams kSelectionFilter{9, 1, 1.0f};
+constexpr NlMeansParams kSelectionFilter{7, 1, 1.0f};
 constexpr NlMeansParams kSecondFeatureFilter{2, 3, 0.5f};
 constexpr NlMeansParams kSecondRegression{kRegressionRadius, kRegressionPatch, 1.0f};
 
@@ -195,30 +195,34 @@ NforPasses run_passes(const DenoiseLayers& layers, int threads, const std::atomi
     const Raster mean_features =
         pointwise(s.features[0], s.features[1], [](float a, float b) { return 0.5f * (a + b); });
     const Guide mean_guide = demodulated(mean_color, variance, mean_features);
-    Raster mse[2];
     for (int k = 0; k < 2; ++k) {
         const NlMeansParams params{kRegressionRadius, kRegressionPatch, kBandwidths[k]};
         for (int half = 0; half < 2; ++half)
             s.first[k][half] =
                 collaborative_regression(s.color[half], s.guide[1 - half].color, s.guide[1 - half].variance,
                                          s.features[1 - half], params, threads, cancel);
-        times.regression += lap(start);
-        // Each half's filtered value against the other half's noisy one, less
-        // that half's variance, estimates the error (the paper's §5.3).
-        Raster noisy_mse(w, h, 3);
-        for (std::size_t i = 0; i < noisy_mse.values.size(); ++i) {
-            const float a = s.color[0].values[i], b = s.color[1].values[i];
+    }
+    times.regression += lap(start);
+    // Each half's filtered value against the other half's noisy one, less
+    // that half's variance, estimates the error (the paper's §5.3); both
+    // bandwidths' estimates side by side, filtered with one set of weights.
+    Raster noisy_mse(w, h, 6);
+    for (std::size_t i = 0; i < s.color[0].values.size(); ++i) {
+        const float a = s.color[0].values[i], b = s.color[1].values[i];
+        for (std::size_t k = 0; k < 2; ++k) {
             const float fa = s.first[k][0].value.values[i], fb = s.first[k][1].value.values[i];
             const float mse_a = (b - fa) * (b - fa) - s.half_variance.values[i];
             const float mse_b = (a - fb) * (a - fb) - s.half_variance.values[i];
-            noisy_mse.values[i] = 0.5f * (mse_a + mse_b) - 0.25f * (fb - fa) * (fb - fa);
+            noisy_mse.values[2 * i - i % 3 + 3 * k] = 0.5f * (mse_a + mse_b) - 0.25f * (fb - fa) * (fb - fa);
         }
-        mse[k] = nl_means_filter(noisy_mse, mean_guide.color, mean_guide.variance, kSelectionFilter, threads, cancel);
-        times.selection += lap(start);
     }
+    const Raster mse =
+        nl_means_filter(noisy_mse, mean_guide.color, mean_guide.variance, kSelectionFilter, threads, cancel);
     Raster choice(w, h, 3);
-    for (std::size_t i = 0; i < choice.values.size(); ++i)
-        choice.values[i] = mse[0].values[i] < mse[1].values[i] ? 0.0f : 1.0f;
+    for (std::size_t i = 0; i < choice.values.size(); ++i) {
+        const std::size_t at = 2 * i - i % 3;  // pixel i / 3's channel i % 3, first bandwidth
+        choice.values[i] = mse.values[at] < mse.values[at + 3] ? 0.0f : 1.0f;
+    }
     s.selection = nl_means_filter(choice, mean_guide.color, mean_guide.variance, kSelectionFilter, threads, cancel);
 
     times.selection += lap(start);
@@ -286,7 +290,7 @@ DenoisedPixel explain_denoised_pixel(const DenoiseLayers& layers, int x, int y, 
     const PixelRect pixel{x, y, x + 1, y + 1};
     Raster g_combined(w, h, 3);
     collaborative_regression_adjoint(s.second_guide.color, s.second_guide.variance, s.final_features, kSecondRegression,
-                                     s.second.weight_sum, g_out, pixel, g_combined);
+                                     s.second, g_out, pixel, g_combined);
     const PixelRect combined_support = grown(pixel, 2 * kRegressionRadius, w, h);
     Raster g_half[2] = {Raster(w, h, 3), Raster(w, h, 3)};
     for (int k = 0; k < 2; ++k) {
@@ -298,8 +302,7 @@ DenoisedPixel explain_denoised_pixel(const DenoiseLayers& layers, int x, int y, 
         }
         for (int half = 0; half < 2; ++half)
             collaborative_regression_adjoint(s.guide[1 - half].color, s.guide[1 - half].variance, s.features[1 - half],
-                                             params, s.first[k][half].weight_sum, g_first, combined_support,
-                                             g_half[half]);
+                                             params, s.first[k][half], g_first, combined_support, g_half[half]);
     }
 
     DenoisedPixel out;

@@ -28,13 +28,14 @@ int patch_span(int p, int d, int patch, int size) {
 
 }  // namespace
 
-void nl_means_tile_weights(const Raster& guide, const Raster& guide_variance, PixelRect centres,
+void nl_means_tile_weights(const Raster& guide, const Raster& guide_variance, PixelRect centres, int stride,
                            const NlMeansParams& params, std::vector<float>& weights, std::vector<float>& scratch) {
     const int radius = params.window_radius, patch = params.patch_radius;
     const int side = window_side(params);
     const int width = guide.width, height = guide.height, channels = guide.channels;
     const int tw = centres.width(), th = centres.height();
-    const std::size_t n = static_cast<std::size_t>(tw) * static_cast<std::size_t>(th);
+    const int nx = strided_count(tw, stride), ny = strided_count(th, stride);
+    const std::size_t n = static_cast<std::size_t>(nx) * static_cast<std::size_t>(ny);
     const auto offsets = static_cast<std::size_t>(window_offsets(params));
     weights.resize(offsets * n);
     // The pixels the patches of p and of q = p + d may cover, in planes of
@@ -49,14 +50,15 @@ void nl_means_tile_weights(const Raster& guide, const Raster& guide_variance, Pi
     const std::size_t distance_n = static_cast<std::size_t>(dw) * static_cast<std::size_t>(dh);
     const std::size_t rows_n = static_cast<std::size_t>(dh) * static_cast<std::size_t>(tw);
     // The weights are made offset by offset (offset-major), then transposed.
-    scratch.assign(2 * plane * static_cast<std::size_t>(channels) + distance_n + rows_n + static_cast<std::size_t>(tw) +
-                       offsets * n,
+    scratch.assign(2 * plane * static_cast<std::size_t>(channels) + distance_n + rows_n +
+                       2 * static_cast<std::size_t>(tw) + offsets * n,
                    0.0f);
     float* planes = scratch.data();
     float* distance = planes + 2 * plane * static_cast<std::size_t>(channels);
     float* row_sums = distance + distance_n;
     float* inverse_span_x = row_sums + rows_n;
-    float* by_offset = inverse_span_x + tw;
+    float* column_sum = inverse_span_x + tw;
+    float* by_offset = column_sum + tw;
     const auto at = [rw](int x, int y) {
         return static_cast<std::size_t>(y) * static_cast<std::size_t>(rw) + static_cast<std::size_t>(x);
     };
@@ -118,21 +120,24 @@ void nl_means_tile_weights(const Raster& guide, const Raster& guide_variance, Pi
                 inverse_span_x[static_cast<std::size_t>(c)] =
                     x + dx >= 0 && x + dx < width ? 1.0f / static_cast<float>(std::max(span, 1)) : 0.0f;
             }
-            for (int r = 0; r < th; ++r) {
-                const int y = centres.y0 + r;
+            for (int j = 0; j < ny; ++j) {
+                const int r = j * stride, y = centres.y0 + r;
                 if (y + dy < 0 || y + dy >= height) continue;
                 const float inverse_span_y = 1.0f / static_cast<float>(std::max(patch_span(y, dy, patch, height), 1));
-                float* __restrict row = out + static_cast<std::size_t>(r) * static_cast<std::size_t>(tw);
+                float* __restrict sum = column_sum;
+                for (int c = 0; c < tw; ++c) sum[c] = 0.0f;
                 for (int s = -patch; s <= patch; ++s) {
                     const float* __restrict in =
                         row_sums + static_cast<std::size_t>(r + patch + s + patch) * static_cast<std::size_t>(tw);
-                    for (int c = 0; c < tw; ++c) row[c] += in[c];
+                    for (int c = 0; c < tw; ++c) sum[c] += in[c];
                 }
-                for (int c = 0; c < tw; ++c) {
-                    const float scale = inverse_span_x[static_cast<std::size_t>(c)] * inverse_span_y;
-                    const float distance_mean = row[c] * scale;
+                float* __restrict row = out + static_cast<std::size_t>(j) * static_cast<std::size_t>(nx);
+                for (int i = 0; i < nx; ++i) {
+                    const auto c = static_cast<std::size_t>(i * stride);
+                    const float scale = inverse_span_x[c] * inverse_span_y;
+                    const float distance_mean = sum[c] * scale;
                     const float w = exp_negative(distance_mean > 0.0f ? distance_mean : 0.0f);
-                    row[c] = scale > 0.0f ? w : 0.0f;
+                    row[i] = scale > 0.0f ? w : 0.0f;
                 }
             }
         }
@@ -152,7 +157,7 @@ Raster nl_means_filter(const Raster& values, const Raster& guide, const Raster& 
     const int tiles_x = tile_count(values.width), tiles_y = tile_count(values.height);
     const int radius = params.window_radius, side = window_side(params);
     const int channels = values.channels;
-    if (channels > kMaxFilterChannels) throw std::invalid_argument("nl_means_filter: more than 4 channels");
+    if (channels > kMaxFilterChannels) throw std::invalid_argument("nl_means_filter: more than 6 channels");
     tbb::task_arena arena(threads > 0 ? threads : tbb::task_arena::automatic);
     arena.execute([&] {
         tbb::parallel_for(tbb::blocked_range<int>(0, tiles_x * tiles_y), [&](const tbb::blocked_range<int>& range) {
@@ -160,7 +165,7 @@ Raster nl_means_filter(const Raster& values, const Raster& guide, const Raster& 
             for (int t = range.begin(); t < range.end(); ++t) {
                 if (cancel != nullptr && cancel->load(std::memory_order_relaxed)) return;
                 const PixelRect tile = tile_rect(t % tiles_x, t / tiles_x, values.width, values.height);
-                nl_means_tile_weights(guide, guide_variance, tile, params, weights, scratch);
+                nl_means_tile_weights(guide, guide_variance, tile, 1, params, weights, scratch);
                 const auto offsets = static_cast<std::size_t>(window_offsets(params));
                 for (int y = tile.y0; y < tile.y1; ++y) {
                     for (int x = tile.x0; x < tile.x1; ++x) {

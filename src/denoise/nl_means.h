@@ -20,18 +20,23 @@ struct NlMeansParams {
 inline int window_side(const NlMeansParams& params) { return 2 * params.window_radius + 1; }
 inline int window_offsets(const NlMeansParams& params) { return window_side(params) * window_side(params); }
 
-// The weights of every pixel p in `centres` against every q = p + (dx, dy)
-// of its window, in [0, 1], 0 where q is outside the image:
-// weights[c · (2R + 1)² + o], c = (y − y0)·w + (x − x0) for the
-// rectangle's width w, o = (dy + R)·(2R + 1) + (dx + R): one pixel's
-// window is contiguous, as the regression reads it. `guide_variance`
-// holds the variance of each guide value (same channel count). `scratch` is
-// reused between calls to spare allocations.
-void nl_means_tile_weights(const Raster& guide, const Raster& guide_variance, PixelRect centres,
+// The centres x0 + stride·i < x1 and y0 + stride·j < y1 of `rect`: how
+// many there are along x and in all.
+inline int strided_count(int size, int stride) { return (size + stride - 1) / stride; }
+
+// The weights of every pixel p among the strided centres of `centres`
+// against every q = p + (dx, dy) of its window, in [0, 1], 0 where q is
+// outside the image: weights[c · (2R + 1)² + o], c = j·n + i for the n
+// centres along x, o = (dy + R)·(2R + 1) + (dx + R): one pixel's window
+// is contiguous, as the regression reads it. `guide_variance` holds the
+// variance of each guide value (same channel count). `scratch` is reused
+// between calls to spare allocations.
+void nl_means_tile_weights(const Raster& guide, const Raster& guide_variance, PixelRect centres, int stride,
                            const NlMeansParams& params, std::vector<float>& weights, std::vector<float>& scratch);
 
-// The most channels nl_means_filter takes (colours, the feature groups).
-inline constexpr int kMaxFilterChannels = 4;
+// The most channels nl_means_filter takes (colours, the feature groups,
+// two colours' error estimates).
+inline constexpr int kMaxFilterChannels = 6;
 
 // Each pixel of `values` (at most kMaxFilterChannels channels; more throws
 // std::invalid_argument) replaced by the weighted mean of its window's,

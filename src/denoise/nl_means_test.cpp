@@ -43,18 +43,23 @@ TEST(NlMeans, TileWeightsMatchTheDefinition) {
     const Raster variance = random_raster(13, 11, 3, 0.01f, 0.2f, 2);
     std::vector<float> weights, scratch;
     const PixelRect centres{2, 1, 12, 9};
-    nl_means_tile_weights(guide, variance, centres, params, weights, scratch);
     const int side = window_side(params);
-    for (int y = centres.y0; y < centres.y1; ++y)
-        for (int x = centres.x0; x < centres.x1; ++x)
-            for (int dy = -4; dy <= 4; ++dy)
-                for (int dx = -4; dx <= 4; ++dx) {
-                    const std::size_t c = static_cast<std::size_t>((y - centres.y0) * centres.width() + x - centres.x0);
-                    const float w = weights[c * static_cast<std::size_t>(window_offsets(params)) +
-                                            static_cast<std::size_t>((dy + 4) * side + dx + 4)];
-                    EXPECT_NEAR(w, direct_weight(guide, variance, x, y, dx, dy, params), 2e-5)
-                        << x << "," << y << " offset " << dx << "," << dy;
-                }
+    for (const int stride : {1, 2, 3}) {
+        nl_means_tile_weights(guide, variance, centres, stride, params, weights, scratch);
+        const int nx = strided_count(centres.width(), stride);
+        ASSERT_EQ(weights.size(), static_cast<std::size_t>(nx * strided_count(centres.height(), stride) * side * side));
+        for (int y = centres.y0; y < centres.y1; y += stride)
+            for (int x = centres.x0; x < centres.x1; x += stride)
+                for (int dy = -4; dy <= 4; ++dy)
+                    for (int dx = -4; dx <= 4; ++dx) {
+                        const auto c =
+                            static_cast<std::size_t>((y - centres.y0) / stride * nx + (x - centres.x0) / stride);
+                        const float w = weights[c * static_cast<std::size_t>(window_offsets(params)) +
+                                                static_cast<std::size_t>((dy + 4) * side + dx + 4)];
+                        EXPECT_NEAR(w, direct_weight(guide, variance, x, y, dx, dy, params), 2e-5)
+                            << x << "," << y << " offset " << dx << "," << dy << " stride " << stride;
+                    }
+    }
 }
 
 TEST(NlMeans, APixelsWeightDoesNotDependOnItsTile) {
@@ -63,15 +68,18 @@ TEST(NlMeans, APixelsWeightDoesNotDependOnItsTile) {
     const NlMeansParams params{5, 3, 0.5f};
     const Raster guide = random_raster(40, 37, 3, 0.0f, 2.0f, 3);
     const Raster variance = random_raster(40, 37, 3, 0.0f, 0.1f, 4);
-    std::vector<float> whole, single, scratch;
+    std::vector<float> whole, single, strided, scratch;
     const PixelRect all{0, 0, 40, 37};
-    nl_means_tile_weights(guide, variance, all, params, whole, scratch);
-    nl_means_tile_weights(guide, variance, PixelRect{17, 30, 18, 31}, params, single, scratch);
-    const std::size_t c = 30 * 40 + 17;
-    for (int o = 0; o < window_offsets(params); ++o)
-        EXPECT_EQ(whole[c * static_cast<std::size_t>(window_offsets(params)) + static_cast<std::size_t>(o)],
-                  single[static_cast<std::size_t>(o)])
-            << o;
+    nl_means_tile_weights(guide, variance, all, 1, params, whole, scratch);
+    nl_means_tile_weights(guide, variance, PixelRect{17, 30, 18, 31}, 1, params, single, scratch);
+    // (17, 30) is the 8th of 15 centres across in row 15 with a stride of 2 from (1, 0).
+    nl_means_tile_weights(guide, variance, PixelRect{1, 0, 31, 37}, 2, params, strided, scratch);
+    const auto offsets = static_cast<std::size_t>(window_offsets(params));
+    const std::size_t c = 30 * 40 + 17, c_strided = 15 * 15 + 8;
+    for (std::size_t o = 0; o < offsets; ++o) {
+        EXPECT_EQ(whole[c * offsets + o], single[o]) << o;
+        EXPECT_EQ(whole[c * offsets + o], strided[c_strided * offsets + o]) << o;
+    }
 }
 
 TEST(NlMeans, APixelWeighsItselfOne) {
@@ -79,7 +87,7 @@ TEST(NlMeans, APixelWeighsItselfOne) {
     const Raster guide = random_raster(9, 9, 1, 0.0f, 1.0f, 5);
     const Raster variance = random_raster(9, 9, 1, 0.0f, 0.1f, 6);
     std::vector<float> weights, scratch;
-    nl_means_tile_weights(guide, variance, PixelRect{0, 0, 9, 9}, params, weights, scratch);
+    nl_means_tile_weights(guide, variance, PixelRect{0, 0, 9, 9}, 1, params, weights, scratch);
     const std::size_t centre_offset = 3 * static_cast<std::size_t>(window_side(params)) + 3;
     for (std::size_t c = 0; c < 81; ++c)
         EXPECT_EQ(weights[c * static_cast<std::size_t>(window_offsets(params)) + centre_offset], 1.0f);

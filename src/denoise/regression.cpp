@@ -19,6 +19,17 @@ constexpr int kDesign = 3 + kRegressionFeatures;
 using NormalMatrix = Eigen::Matrix<double, kDesign, kDesign>;
 using Coefficients = Eigen::Matrix<double, kDesign, 3>;
 
+// Windows are fitted on every second pixel along x and y: neighbouring
+// windows' fits are nearly alike, and a pixel still lies in 64 windows of
+// 15 × 15 (a quarter of the work; docs/performance.md, "The denoiser").
+// A pixel the grid's windows give less than this total weight gets a
+// window of its own as well, so that no pixel rests on a few weak fits.
+constexpr int kCentreStride = 2;
+constexpr float kOwnWindowBelow = 1.0f;
+// One centre's non-local-means weights alone cost about 1/kOneCentreCost
+// of a whole tile's: a tile with more own windows computes them all.
+constexpr int kOneCentreCost = 10;
+
 // A feature that varies less than this over a window is left out of its
 // fit (its column is zero): what varies less is rounding, not geometry.
 constexpr double kFlatFeature = 1e-3;
@@ -61,16 +72,15 @@ double dot(const double* x, const double* y, std::size_t n) {
     return (lane[0] + lane[1]) + (lane[2] + lane[3]);
 }
 
-void build_window(int px, int py, PixelRect tile, const std::vector<float>& tile_weights, const Raster& features,
-                  const NlMeansParams& params, Window& window) {
+// `own_weights`: the pixel's non-local-means weights over its window.
+void build_window(int px, int py, const float* own_weights, const Raster& features, const NlMeansParams& params,
+                  Window& window) {
     const int radius = params.window_radius, side = window_side(params);
     window.rect = {std::max(px - radius, 0), std::max(py - radius, 0), std::min(px + radius + 1, features.width),
                    std::min(py + radius + 1, features.height)};
     const PixelRect& rect = window.rect;
     const std::size_t n = static_cast<std::size_t>(rect.width()) * static_cast<std::size_t>(rect.height());
     window.padded = (n + kLanes - 1) / kLanes * kLanes;
-    const std::size_t centre = static_cast<std::size_t>(py - tile.y0) * static_cast<std::size_t>(tile.width()) +
-                               static_cast<std::size_t>(px - tile.x0);
     // Every entry below n is written next; the padding is zero.
     for (std::vector<double>& column : window.column) {
         column.resize(window.padded);
@@ -78,7 +88,6 @@ void build_window(int px, int py, PixelRect tile, const std::vector<float>& tile
     }
     window.weight.resize(window.padded);
     std::fill(window.weight.begin() + static_cast<std::ptrdiff_t>(n), window.weight.end(), 0.0);
-    const float* own_weights = tile_weights.data() + centre * static_cast<std::size_t>(window_offsets(params));
     const float* fp = features.at(px, py);
     const double inverse_radius = 1.0 / std::max(radius, 1);
     std::size_t i = 0;
@@ -122,16 +131,19 @@ void build_window(int px, int py, PixelRect tile, const std::vector<float>& tile
     window.llt.compute(normal);
 }
 
-// Runs `visit(px, py, tile, tile_weights, window)` for every pixel of the
-// tiles in `tiles_x0…tiles_x1 × tiles_y0…tiles_y1` whose tile phase is
-// (phase_x, phase_y), tiles of one phase in parallel. Windows of two
-// tiles of one phase never overlap (2R + 32 < 64), so a visit may add to
-// the pixels of its window without a lock, and every pixel receives its
-// sums in the same order whatever the thread count. Tiles not yet begun
-// once `*cancel` is true are skipped.
+// Runs `visit(window)` for the windows of the tiles in `tiles` (in tile
+// units): centred on every kCentreStride-th pixel along x and y, or, with
+// `extra`, on the pixels it marks. Tiles run in four phases of a 2 × 2
+// checkerboard, the tiles of one phase in parallel. Windows of two tiles
+// of one phase never overlap (2R + 32 < 64), so a visit may add to the
+// pixels of its window without a lock, and every pixel receives its sums
+// in the same order whatever the thread count. Tiles not yet begun once
+// `*cancel` is true are skipped.
 template <typename Visit>
 void for_each_window(const Raster& guide, const Raster& guide_variance, const Raster& features,
-                     const NlMeansParams& params, PixelRect tiles, const std::atomic<bool>* cancel, Visit visit) {
+                     const NlMeansParams& params, PixelRect tiles, const std::vector<unsigned char>* extra,
+                     const std::atomic<bool>* cancel, Visit visit) {
+    const auto offsets = static_cast<std::size_t>(window_offsets(params));
     for (int phase = 0; phase < 4; ++phase) {
         std::vector<std::array<int, 2>> list;
         for (int ty = tiles.y0; ty < tiles.y1; ++ty)
@@ -142,10 +154,31 @@ void for_each_window(const Raster& guide, const Raster& guide_variance, const Ra
             thread_local Window window;
             if (cancel != nullptr && cancel->load(std::memory_order_relaxed)) return;
             const PixelRect tile = tile_rect(list[t][0], list[t][1], guide.width, guide.height);
-            nl_means_tile_weights(guide, guide_variance, tile, params, weights, scratch);
+            if (extra == nullptr) {
+                nl_means_tile_weights(guide, guide_variance, tile, kCentreStride, params, weights, scratch);
+                const float* own = weights.data();
+                for (int py = tile.y0; py < tile.y1; py += kCentreStride)
+                    for (int px = tile.x0; px < tile.x1; px += kCentreStride, own += offsets) {
+                        build_window(px, py, own, features, params, window);
+                        visit(window);
+                    }
+                return;
+            }
+            int marked = 0;
+            for (int py = tile.y0; py < tile.y1; ++py)
+                for (int px = tile.x0; px < tile.x1; ++px) marked += (*extra)[guide.pixel(px, py)];
+            const bool whole_tile = marked * kOneCentreCost > tile.width() * tile.height();
+            if (whole_tile) nl_means_tile_weights(guide, guide_variance, tile, 1, params, weights, scratch);
             for (int py = tile.y0; py < tile.y1; ++py)
                 for (int px = tile.x0; px < tile.x1; ++px) {
-                    build_window(px, py, tile, weights, features, params, window);
+                    if ((*extra)[guide.pixel(px, py)] == 0) continue;
+                    const float* own = weights.data();
+                    if (whole_tile)
+                        own += static_cast<std::size_t>((py - tile.y0) * tile.width() + px - tile.x0) * offsets;
+                    else
+                        nl_means_tile_weights(guide, guide_variance, {px, py, px + 1, py + 1}, 1, params, weights,
+                                              scratch);
+                    build_window(px, py, own, features, params, window);
                     visit(window);
                 }
         });
@@ -200,35 +233,44 @@ RegressionResult collaborative_regression(const Raster& target, const Raster& gu
                                           const Raster& features, const NlMeansParams& params, int threads,
                                           const std::atomic<bool>* cancel) {
     const int width = target.width, height = target.height;
-    RegressionResult result{Raster(width, height, 3), Raster(width, height, 1)};
+    RegressionResult result{Raster(width, height, 3), Raster(width, height, 1), {}};
+    const auto fit = [&](const Window& window) {
+        thread_local std::array<std::vector<double>, 3> values, prediction;
+        gather(target, window, values);
+        const Coefficients beta = window.llt.solve(weighted_sums(window, window.weight, values));
+        predict(window, beta, prediction);
+        std::size_t i = 0;
+        for (int qy = window.rect.y0; qy < window.rect.y1; ++qy)
+            for (int qx = window.rect.x0; qx < window.rect.x1; ++qx, ++i) {
+                const double w = window.weight[i];
+                if (w <= 0.0) continue;
+                float* out = result.value.at(qx, qy);
+                for (int ch = 0; ch < 3; ++ch) out[ch] += static_cast<float>(w * prediction[ch][i]);
+                *result.weight_sum.at(qx, qy) += static_cast<float>(w);
+            }
+    };
+    const PixelRect tiles{0, 0, tile_count(width), tile_count(height)};
     tbb::task_arena arena(threads > 0 ? threads : tbb::task_arena::automatic);
     arena.execute([&] {
-        for_each_window(guide, guide_variance, features, params, {0, 0, tile_count(width), tile_count(height)}, cancel,
-                        [&](const Window& window) {
-                            thread_local std::array<std::vector<double>, 3> values, fit;
-                            gather(target, window, values);
-                            const Coefficients beta = window.llt.solve(weighted_sums(window, window.weight, values));
-                            predict(window, beta, fit);
-                            std::size_t i = 0;
-                            for (int qy = window.rect.y0; qy < window.rect.y1; ++qy)
-                                for (int qx = window.rect.x0; qx < window.rect.x1; ++qx, ++i) {
-                                    const double w = window.weight[i];
-                                    if (w <= 0.0) continue;
-                                    float* out = result.value.at(qx, qy);
-                                    for (int ch = 0; ch < 3; ++ch) out[ch] += static_cast<float>(w * fit[ch][i]);
-                                    *result.weight_sum.at(qx, qy) += static_cast<float>(w);
-                                }
-                        });
+        for_each_window(guide, guide_variance, features, params, tiles, nullptr, cancel, fit);
+        result.own_window.assign(result.weight_sum.values.size(), 0);
+        bool any = false;
+        for (std::size_t p = 0; p < result.own_window.size(); ++p)
+            if (result.weight_sum.values[p] < kOwnWindowBelow) {
+                result.own_window[p] = 1;
+                any = true;
+            }
+        if (any) for_each_window(guide, guide_variance, features, params, tiles, &result.own_window, cancel, fit);
     });
     if (cancel != nullptr && cancel->load()) return result;  // unfinished: sums of 0 stay
-    // Every pixel has weight 1 in its own window, so the sums are ≥ 1.
+    // A pixel's weight in its own window is 1, so every sum is ≥ kOwnWindowBelow.
     for (std::size_t p = 0; p < result.weight_sum.values.size(); ++p)
         for (int ch = 0; ch < 3; ++ch) result.value.values[3 * p + ch] /= result.weight_sum.values[p];
     return result;
 }
 
 void collaborative_regression_adjoint(const Raster& guide, const Raster& guide_variance, const Raster& features,
-                                      const NlMeansParams& params, const Raster& weight_sum, const Raster& g,
+                                      const NlMeansParams& params, const RegressionResult& forward, const Raster& g,
                                       PixelRect support, Raster& g_target) {
     if (support.empty()) return;
     const int radius = params.window_radius;
@@ -237,36 +279,37 @@ void collaborative_regression_adjoint(const Raster& guide, const Raster& guide_v
                             std::min(support.x1 + radius, g.width), std::min(support.y1 + radius, g.height)};
     const PixelRect tiles{centres.x0 / kDenoiseTile, centres.y0 / kDenoiseTile, (centres.x1 - 1) / kDenoiseTile + 1,
                           (centres.y1 - 1) / kDenoiseTile + 1};
+    const auto back_fit = [&](const Window& window) {
+        const PixelRect& rect = window.rect;
+        if (rect.x1 <= support.x0 || rect.x0 >= support.x1 || rect.y1 <= support.y0 || rect.y0 >= support.y1) return;
+        // ∂value[q]/∂fit[q] = w_q / S_q: the collaborative mean's share of this window.
+        std::vector<double> share(window.padded, 0.0);
+        std::array<std::vector<double>, 3> g_values;
+        gather(g, window, g_values);
+        std::size_t i = 0;
+        bool any = false;
+        for (int qy = rect.y0; qy < rect.y1; ++qy)
+            for (int qx = rect.x0; qx < rect.x1; ++qx, ++i) {
+                share[i] = window.weight[i] / *forward.weight_sum.at(qx, qy);
+                any = any || g_values[0][i] != 0.0 || g_values[1][i] != 0.0 || g_values[2][i] != 0.0;
+            }
+        if (!any) return;
+        const Coefficients u = window.llt.solve(weighted_sums(window, share, g_values));
+        std::array<std::vector<double>, 3> back;
+        predict(window, u, back);
+        i = 0;
+        for (int qy = rect.y0; qy < rect.y1; ++qy)
+            for (int qx = rect.x0; qx < rect.x1; ++qx, ++i) {
+                const double w = window.weight[i];
+                if (w <= 0.0) continue;
+                float* out = g_target.at(qx, qy);
+                for (int ch = 0; ch < 3; ++ch) out[ch] += static_cast<float>(w * back[ch][i]);
+            }
+    };
     tbb::task_arena arena(1);  // one pixel's weights: small, and in a fixed order
     arena.execute([&] {
-        for_each_window(guide, guide_variance, features, params, tiles, nullptr, [&](const Window& window) {
-            const PixelRect& rect = window.rect;
-            if (rect.x1 <= support.x0 || rect.x0 >= support.x1 || rect.y1 <= support.y0 || rect.y0 >= support.y1)
-                return;
-            // ∂value[q]/∂fit[q] = w_q / S_q: the collaborative mean's share of this window.
-            std::vector<double> share(window.padded, 0.0);
-            std::array<std::vector<double>, 3> g_values;
-            gather(g, window, g_values);
-            std::size_t i = 0;
-            bool any = false;
-            for (int qy = rect.y0; qy < rect.y1; ++qy)
-                for (int qx = rect.x0; qx < rect.x1; ++qx, ++i) {
-                    share[i] = window.weight[i] / *weight_sum.at(qx, qy);
-                    any = any || g_values[0][i] != 0.0 || g_values[1][i] != 0.0 || g_values[2][i] != 0.0;
-                }
-            if (!any) return;
-            const Coefficients u = window.llt.solve(weighted_sums(window, share, g_values));
-            std::array<std::vector<double>, 3> back;
-            predict(window, u, back);
-            i = 0;
-            for (int qy = rect.y0; qy < rect.y1; ++qy)
-                for (int qx = rect.x0; qx < rect.x1; ++qx, ++i) {
-                    const double w = window.weight[i];
-                    if (w <= 0.0) continue;
-                    float* out = g_target.at(qx, qy);
-                    for (int ch = 0; ch < 3; ++ch) out[ch] += static_cast<float>(w * back[ch][i]);
-                }
-        });
+        for_each_window(guide, guide_variance, features, params, tiles, nullptr, nullptr, back_fit);
+        for_each_window(guide, guide_variance, features, params, tiles, &forward.own_window, nullptr, back_fit);
     });
 }
 

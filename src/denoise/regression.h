@@ -1,14 +1,16 @@
-// NFOR's core (Bitterli et al. 2016, §4): for every pixel p, a first-order
-// weighted least-squares fit of the target colour to the features over
-// p's window, weighted by non-local means on a guide image; the fit then
-// predicts every pixel of the window, and each pixel's output is the
-// weighted mean of the predictions of all windows that hold it
-// ("collaborative"). The output is linear in the target with weights that
+// NFOR's core (Bitterli et al. 2016, §4): for pixels p on a grid of every
+// second row and column (and any pixel the grid leaves with little
+// weight), a first-order weighted least-squares fit of the target colour
+// to the features over p's window, weighted by non-local means on a guide
+// image; the fit then predicts every pixel of the window, and each
+// pixel's output is the weighted mean of the predictions of all windows
+// that hold it ("collaborative"). The output is linear in the target with weights that
 // depend on the guide and features only, so it can be run backwards
 // (the adjoint) to give one pixel's weights over the target.
 #pragma once
 
 #include <atomic>
+#include <vector>
 
 #include "denoise/nl_means.h"
 #include "denoise/raster.h"
@@ -29,6 +31,9 @@ inline constexpr double kRegressionRidge = 1e-6;
 struct RegressionResult {
     Raster value;       // 3 channels
     Raster weight_sum;  // 1 channel: Σ over the windows holding the pixel of its weight in them (≥ 1)
+    // 1 where the pixel's own window was fitted besides the grid's (pixel
+    // index): those the grid's windows left with little weight.
+    std::vector<unsigned char> own_window;
 };
 
 // `target` and `guide` have 3 channels, `guide_variance` the variance of
@@ -42,9 +47,9 @@ RegressionResult collaborative_regression(const Raster& target, const Raster& gu
 // The adjoint of collaborative_regression with its weights held fixed:
 // adds ∂(Σ_p g[p]·value[p]) / ∂target[q], per channel, to g_target[q] for
 // every pixel q, given `g` (3 channels) that is zero outside `support`
-// and the forward run's `weight_sum`.
+// and the forward run's result.
 void collaborative_regression_adjoint(const Raster& guide, const Raster& guide_variance, const Raster& features,
-                                      const NlMeansParams& params, const Raster& weight_sum, const Raster& g,
+                                      const NlMeansParams& params, const RegressionResult& forward, const Raster& g,
                                       PixelRect support, Raster& g_target);
 
 }  // namespace sombra

@@ -7,6 +7,7 @@
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
+#include <initializer_list>
 #include <random>
 #include <vector>
 
@@ -27,18 +28,27 @@ Inputs random_inputs(int w, int h, unsigned seed) {
             random_raster(w, h, kRegressionFeatures, -1.0f, 1.0f, seed + 3)};
 }
 
+// A guide value far above its neighbours at each of `pixels`: a firefly
+// that no window of the grid trusts, so it gets a window of its own.
+void add_fireflies(Inputs& in, std::initializer_list<std::array<int, 2>> pixels) {
+    for (const auto& [x, y] : pixels)
+        for (int c = 0; c < 3; ++c) in.guide.at(x, y)[c] = 40.0f;
+}
+
 // The regression as the paper states it, one window at a time: the
 // weighted ridge least-squares fit solved by a QR of the stacked system
-// [√W·X; √λ·I'] (I' without the constant column), in doubles.
-Raster brute_force(const Inputs& in, const NlMeansParams& params) {
+// [√W·X; √λ·I'] (I' without the constant column), in doubles; windows
+// centred on the pixels of even x and y, then on each pixel those gave
+// a total weight below 1. `own_windows` counts the latter.
+Raster brute_force(const Inputs& in, const NlMeansParams& params, int& own_windows) {
     const int w = in.target.width, h = in.target.height, R = params.window_radius, side = window_side(params);
     std::vector<float> weights, scratch;
-    nl_means_tile_weights(in.guide, in.variance, PixelRect{0, 0, w, h}, params, weights, scratch);
+    nl_means_tile_weights(in.guide, in.variance, PixelRect{0, 0, w, h}, 1, params, weights, scratch);
     const std::size_t n_all = static_cast<std::size_t>(w) * static_cast<std::size_t>(h);
     std::vector<double> sum(3 * n_all, 0.0), total(n_all, 0.0);
     constexpr int d = 3 + kRegressionFeatures;
-    for (int py = 0; py < h; ++py)
-        for (int px = 0; px < w; ++px) {
+    const auto fit = [&](int px, int py) {
+        {
             std::vector<std::array<int, 2>> qs;
             std::vector<double> ws;
             for (int qy = std::max(py - R, 0); qy < std::min(py + R + 1, h); ++qy)
@@ -87,6 +97,17 @@ Raster brute_force(const Inputs& in, const NlMeansParams& params) {
                 total[q] += ws[i];
             }
         }
+    };
+    for (int py = 0; py < h; py += 2)
+        for (int px = 0; px < w; px += 2) fit(px, py);
+    const std::vector<double> grid_total = total;
+    own_windows = 0;
+    for (int py = 0; py < h; ++py)
+        for (int px = 0; px < w; ++px)
+            if (grid_total[static_cast<std::size_t>(py * w + px)] < 1.0) {
+                fit(px, py);
+                ++own_windows;
+            }
     Raster out(w, h, 3);
     for (std::size_t q = 0; q < n_all; ++q)
         for (int c = 0; c < 3; ++c) out.values[3 * q + c] = static_cast<float>(sum[3 * q + c] / total[q]);
@@ -95,10 +116,15 @@ Raster brute_force(const Inputs& in, const NlMeansParams& params) {
 
 TEST(CollaborativeRegression, MatchesABruteForceSolve) {
     const NlMeansParams params{3, 1, 1.0f};
-    const Inputs in = random_inputs(11, 9, 10);
-    const Raster fast = collaborative_regression(in.target, in.guide, in.variance, in.features, params, 2).value;
-    const Raster slow = brute_force(in, params);
-    for (std::size_t i = 0; i < fast.values.size(); ++i) EXPECT_NEAR(fast.values[i], slow.values[i], 1e-5) << i;
+    Inputs in = random_inputs(11, 9, 10);
+    add_fireflies(in, {{3, 3}, {8, 5}});
+    const RegressionResult fast = collaborative_regression(in.target, in.guide, in.variance, in.features, params, 2);
+    int own_windows = 0;
+    const Raster slow = brute_force(in, params, own_windows);
+    for (std::size_t i = 0; i < fast.value.values.size(); ++i)
+        EXPECT_NEAR(fast.value.values[i], slow.values[i], 1e-5) << i;
+    EXPECT_GT(own_windows, 0);
+    EXPECT_EQ(std::count(fast.own_window.begin(), fast.own_window.end(), 1), own_windows);
 }
 
 TEST(CollaborativeRegression, KeepsAConstant) {
@@ -139,13 +165,16 @@ TEST(CollaborativeRegression, AdjointIsTheTransposeOfTheForwardMap) {
     // so that ⟨g, L·y⟩ = ⟨Lᵀ·g, y⟩ for any y, and for g one pixel's indicator
     // its row of L (weights adding up to 1).
     const NlMeansParams params{9, 3, 0.5f};
-    const Inputs in = random_inputs(70, 50, 50);
+    Inputs in = random_inputs(70, 50, 50);
+    add_fireflies(in, {{39, 31}, {43, 35}, {41, 33}});
     const RegressionResult forward = collaborative_regression(in.target, in.guide, in.variance, in.features, params, 2);
     Raster g(70, 50, 3);
     const int px = 41, py = 33;
     for (int c = 0; c < 3; ++c) g.at(px, py)[c] = 1.0f;
     Raster row(70, 50, 3);
-    collaborative_regression_adjoint(in.guide, in.variance, in.features, params, forward.weight_sum, g,
+    // The row must cover the pixels' own windows as well as the grid's.
+    EXPECT_GT(std::count(forward.own_window.begin(), forward.own_window.end(), 1), 0);
+    collaborative_regression_adjoint(in.guide, in.variance, in.features, params, forward, g,
                                      PixelRect{px, py, px + 1, py + 1}, row);
     for (int c = 0; c < 3; ++c) {
         double total = 0, value = 0, magnitude = 0;
