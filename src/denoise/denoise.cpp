@@ -16,19 +16,22 @@ namespace sombra {
 
 namespace {
 
-// NFOR's parameters (the paper's §5): patches of 7 × 7 pixels; features
-// cross-filtered over 11 × 11 windows; colour regressed with two
-// bandwidths over 15 × 15 (the paper's 19 × 19 took 1.5× as long for no
-// better images: docs/performance.md); the error estimates and the choice
-// between bandwidths smoothed with 3 × 3 patches; the second pass's
-// features over 5 × 5.
+// NFOR's parameters (the paper's §5), tuned on this project's four test
+// scenes (docs/performance.md, "The denoiser"): features cross-filtered
+// over 11 × 11 windows with 7 × 7 patches; colour regressed with
+// bandwidths 0.4 and 1 (the paper's 0.5 and 1) over 15 × 15 windows (the
+// paper's 19 × 19 took 1.5× as long for no better images) with 5 × 5
+// patches in the first pass (the paper's 7 × 7 blurred more) and 7 × 7 in
+// the second; the error estimates and the choice between bandwidths
+// smoothed with 3 × 3 patches over 15 × 15; the second pass's features
+// over 5 × 5.
 constexpr NlMeansParams kFeaturePrefilter{5, 3, 0.5f};
-constexpr float kBandwidths[2] = {0.5f, 1.0f};
+constexpr float kBandwidths[2] = {0.4f, 1.0f};
 constexpr int kRegressionRadius = 7;
-constexpr int kRegressionPatch = 3;
+constexpr int kRegressionPatch = 2;
 constexpr NlMeansParams kSelectionFilter{7, 1, 1.0f};
 constexpr NlMeansParams kSecondFeatureFilter{2, 3, 0.5f};
-constexpr NlMeansParams kSecondRegression{kRegressionRadius, kRegressionPatch, 1.0f};
+constexpr NlMeansParams kSecondRegression{kRegressionRadius, 3, 1.0f};
 
 // The feature groups, each filtered with its own weights: albedo, normal, depth.
 struct FeatureGroup {
@@ -258,9 +261,9 @@ PixelRect grown(PixelRect r, int by, int width, int height) {
 }  // namespace
 
 double denoise_seconds_estimate(int width, int height, int threads) {
-    // One thread's seconds a pixel: 48.5 µs measured on a quiet 2-core
+    // One thread's seconds a pixel: 25–26 µs measured on a quiet 2-core
     // machine, and a margin (docs/performance.md, "The denoiser").
-    constexpr double kSecondsPerPixel = 56e-6;
+    constexpr double kSecondsPerPixel = 30e-6;
     const int available = threads > 0 ? threads : tbb::info::default_concurrency();
     // The tiles of one phase run side by side: no more threads than those help.
     const int tiles = std::max(1, tile_count(width) * tile_count(height) / 4);

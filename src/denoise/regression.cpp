@@ -30,6 +30,11 @@ constexpr float kOwnWindowBelow = 1.0f;
 // of a whole tile's: a tile with more own windows computes them all.
 constexpr int kOneCentreCost = 10;
 
+// A window whose pixels other than its centre weigh less than half the
+// centre (weight 1) in all is fitted by its weighted mean: a first-order
+// fit would lean on the centre alone, and it costs ten times as much.
+constexpr double kFirstOrderFrom = 1.5;
+
 // A feature that varies less than this over a window is left out of its
 // fit (its column is zero): what varies less is rounding, not geometry.
 constexpr double kFlatFeature = 1e-3;
@@ -52,6 +57,8 @@ struct Window {
     std::size_t padded = 0;  // pixels, padded to a multiple of kLanes
     std::array<std::vector<double>, kDesign> column;
     std::vector<double> weight;
+    double weight_total = 0;
+    bool constant = false;  // fitted by its weighted mean alone: no columns, no factor
     Eigen::LLT<NormalMatrix> llt;
 };
 
@@ -88,13 +95,20 @@ void build_window(int px, int py, const float* own_weights, const Raster& featur
     }
     window.weight.resize(window.padded);
     std::fill(window.weight.begin() + static_cast<std::ptrdiff_t>(n), window.weight.end(), 0.0);
+    std::size_t i = 0;
+    window.weight_total = 0;
+    for (int qy = rect.y0; qy < rect.y1; ++qy)
+        for (int qx = rect.x0; qx < rect.x1; ++qx, ++i) {
+            window.weight[i] = own_weights[(qy - py + radius) * side + (qx - px + radius)];
+            window.weight_total += window.weight[i];
+        }
+    window.constant = window.weight_total < kFirstOrderFrom;
+    if (window.constant) return;
     const float* fp = features.at(px, py);
     const double inverse_radius = 1.0 / std::max(radius, 1);
-    std::size_t i = 0;
+    i = 0;
     for (int qy = rect.y0; qy < rect.y1; ++qy) {
         for (int qx = rect.x0; qx < rect.x1; ++qx, ++i) {
-            const int offset = (qy - py + radius) * side + (qx - px + radius);
-            window.weight[i] = own_weights[offset];
             window.column[0][i] = 1.0;
             window.column[1][i] = (qx - px) * inverse_radius;
             window.column[2][i] = (qy - py) * inverse_radius;
@@ -205,6 +219,10 @@ void gather(const Raster& image, const Window& window, std::array<std::vector<do
 void predict(const Window& window, const Coefficients& coefficients, std::array<std::vector<double>, 3>& out) {
     for (int ch = 0; ch < 3; ++ch) {
         out[ch].assign(window.padded, 0.0);
+        if (window.constant) {
+            std::fill(out[ch].begin(), out[ch].end(), coefficients(0, ch));
+            continue;
+        }
         for (int a = 0; a < kDesign; ++a) {
             const double b = coefficients(a, ch);
             const double* x = window.column[a].data();
@@ -219,12 +237,24 @@ Coefficients weighted_sums(const Window& window, const std::vector<double>& scal
                            const std::array<std::vector<double>, 3>& columns) {
     std::vector<double>& weighted = window_scratch();
     weighted.resize(window.padded);
-    Coefficients sums;
+    Coefficients sums = Coefficients::Zero();
+    if (window.constant) {
+        for (int ch = 0; ch < 3; ++ch) sums(0, ch) = dot(scale.data(), columns[ch].data(), window.padded);
+        return sums;
+    }
     for (int a = 0; a < kDesign; ++a) {
         for (std::size_t k = 0; k < window.padded; ++k) weighted[k] = scale[k] * window.column[a][k];
         for (int ch = 0; ch < 3; ++ch) sums(a, ch) = dot(weighted.data(), columns[ch].data(), window.padded);
     }
     return sums;
+}
+
+// (XᵀWX + ridge)⁻¹·sums; a constant window's fit is its sums over its total weight.
+Coefficients solve(const Window& window, const Coefficients& sums) {
+    if (!window.constant) return window.llt.solve(sums);
+    Coefficients out = Coefficients::Zero();
+    out.row(0) = sums.row(0) / window.weight_total;
+    return out;
 }
 
 }  // namespace
@@ -237,7 +267,7 @@ RegressionResult collaborative_regression(const Raster& target, const Raster& gu
     const auto fit = [&](const Window& window) {
         thread_local std::array<std::vector<double>, 3> values, prediction;
         gather(target, window, values);
-        const Coefficients beta = window.llt.solve(weighted_sums(window, window.weight, values));
+        const Coefficients beta = solve(window, weighted_sums(window, window.weight, values));
         predict(window, beta, prediction);
         std::size_t i = 0;
         for (int qy = window.rect.y0; qy < window.rect.y1; ++qy)
@@ -294,7 +324,7 @@ void collaborative_regression_adjoint(const Raster& guide, const Raster& guide_v
                 any = any || g_values[0][i] != 0.0 || g_values[1][i] != 0.0 || g_values[2][i] != 0.0;
             }
         if (!any) return;
-        const Coefficients u = window.llt.solve(weighted_sums(window, share, g_values));
+        const Coefficients u = solve(window, weighted_sums(window, share, g_values));
         std::array<std::vector<double>, 3> back;
         predict(window, u, back);
         i = 0;

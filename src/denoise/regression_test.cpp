@@ -88,8 +88,13 @@ Raster brute_force(const Inputs& in, const NlMeansParams& params, int& own_windo
                 b.row(i) = std::sqrt(ws[i]) * y.row(i);
             }
             for (int j = 1; j < d; ++j) a(n + j - 1, j) = std::sqrt(kRegressionRidge * wsum);
-            const Eigen::MatrixXd beta = a.colPivHouseholderQr().solve(b);
-            const Eigen::MatrixXd prediction = x * beta;
+            Eigen::MatrixXd prediction = x * a.colPivHouseholderQr().solve(b);
+            if (wsum < 1.5) {
+                // Neighbours that weigh less than half the centre: the window's weighted mean.
+                Eigen::RowVectorXd mean = Eigen::RowVectorXd::Zero(3);
+                for (int i = 0; i < n; ++i) mean += ws[i] * y.row(i) / wsum;
+                prediction = mean.replicate(n, 1);
+            }
             for (int i = 0; i < n; ++i) {
                 const std::size_t q = static_cast<std::size_t>(qs[i][1]) * static_cast<std::size_t>(w) +
                                       static_cast<std::size_t>(qs[i][0]);
