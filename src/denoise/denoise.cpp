@@ -18,18 +18,19 @@ namespace {
 
 // NFOR's parameters (the paper's §5), tuned on this project's four test
 // scenes (docs/performance.md, "The denoiser"): features cross-filtered
-// over 11 × 11 windows with 7 × 7 patches; colour regressed with
-// bandwidths 0.4 and 1 (the paper's 0.5 and 1) over 15 × 15 windows (the
-// paper's 19 × 19 took 1.5× as long for no better images) with 5 × 5
-// patches in the first pass (the paper's 7 × 7 blurred more) and 7 × 7 in
-// the second; the error estimates and the choice between bandwidths
-// smoothed with 3 × 3 patches over 15 × 15; the second pass's features
+// over 9 × 9 windows with 5 × 5 patches; colour regressed with bandwidths
+// 0.4 and 1 (the paper's 0.5 and 1) over 15 × 15 windows (the paper's
+// 19 × 19 took 1.5× as long for no better images) with 5 × 5 patches in
+// the first pass (the paper's 7 × 7 blurred more) and 7 × 7 in the
+// second; the error estimates and the choice between bandwidths smoothed
+// over 3 × 3 (wider smoothing blurred fireflies' surroundings: the
+// spheres' error grew by 25 % at 15 × 15); the second pass's features
 // over 5 × 5.
-constexpr NlMeansParams kFeaturePrefilter{5, 3, 0.5f};
+constexpr NlMeansParams kFeaturePrefilter{4, 2, 0.5f};
 constexpr float kBandwidths[2] = {0.4f, 1.0f};
 constexpr int kRegressionRadius = 7;
 constexpr int kRegressionPatch = 2;
-constexpr NlMeansParams kSelectionFilter{7, 1, 1.0f};
+constexpr NlMeansParams kSelectionFilter{1, 1, 1.0f};
 constexpr NlMeansParams kSecondFeatureFilter{2, 3, 0.5f};
 constexpr NlMeansParams kSecondRegression{kRegressionRadius, 3, 1.0f};
 
@@ -261,9 +262,9 @@ PixelRect grown(PixelRect r, int by, int width, int height) {
 }  // namespace
 
 double denoise_seconds_estimate(int width, int height, int threads) {
-    // One thread's seconds a pixel: 25–26 µs measured on a quiet 2-core
+    // One thread's seconds a pixel: 20–23 µs measured on a quiet 2-core
     // machine, and a margin (docs/performance.md, "The denoiser").
-    constexpr double kSecondsPerPixel = 30e-6;
+    constexpr double kSecondsPerPixel = 26e-6;
     const int available = threads > 0 ? threads : tbb::info::default_concurrency();
     // The tiles of one phase run side by side: no more threads than those help.
     const int tiles = std::max(1, tile_count(width) * tile_count(height) / 4);
