@@ -133,7 +133,7 @@ void nl_means_tile_weights(const Raster& guide, const Raster& guide_variance, Pi
                 }
                 float* __restrict row = out + static_cast<std::size_t>(j) * static_cast<std::size_t>(nx);
                 for (int i = 0; i < nx; ++i) {
-                    const auto c = static_cast<std::size_t>(i * stride);
+                    const auto c = static_cast<std::size_t>(i) * static_cast<std::size_t>(stride);
                     const float scale = inverse_span_x[c] * inverse_span_y;
                     const float distance_mean = sum[c] * scale;
                     const float w = exp_negative(distance_mean > 0.0f ? distance_mean : 0.0f);

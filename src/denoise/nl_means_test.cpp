@@ -53,7 +53,8 @@ TEST(NlMeans, TileWeightsMatchTheDefinition) {
                 for (int dy = -4; dy <= 4; ++dy)
                     for (int dx = -4; dx <= 4; ++dx) {
                         const auto c =
-                            static_cast<std::size_t>((y - centres.y0) / stride * nx + (x - centres.x0) / stride);
+                            static_cast<std::size_t>((y - centres.y0) / stride) * static_cast<std::size_t>(nx) +
+                            static_cast<std::size_t>((x - centres.x0) / stride);
                         const float w = weights[c * static_cast<std::size_t>(window_offsets(params)) +
                                                 static_cast<std::size_t>((dy + 4) * side + dx + 4)];
                         EXPECT_NEAR(w, direct_weight(guide, variance, x, y, dx, dy, params), 2e-5)

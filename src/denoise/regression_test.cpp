@@ -109,7 +109,8 @@ Raster brute_force(const Inputs& in, const NlMeansParams& params, int& own_windo
     own_windows = 0;
     for (int py = 0; py < h; ++py)
         for (int px = 0; px < w; ++px)
-            if (grid_total[static_cast<std::size_t>(py * w + px)] < 1.0) {
+            if (grid_total[static_cast<std::size_t>(py) * static_cast<std::size_t>(w) + static_cast<std::size_t>(px)] <
+                1.0) {
                 fit(px, py);
                 ++own_windows;
             }
