@@ -6,9 +6,12 @@ For each scene: a converged reference (cached), raw renders at 16, 64 and
 as long as the whole denoised 16-spp command took. Prints relative MSE, mean((x - ref)^2 /
 (ref^2 + 0.01)), and seconds, as a Markdown table, and how well the
 denoised image keeps the light (its mean over the raw image's, whole and
-per quarter).
+per quarter). With --seeds N the denoised 16-spp and raw --time renders
+are made with seeds 1..N and their errors and seconds averaged (a raw
+render's error at 16-128 spp rests on a few fireflies: one seed's ratio
+can be off by 20 %); the last column is then their ratio.
 
-  tools/denoise-quality.py SOMBRA OUTDIR [--ref-spp 2048] SCENE.json:WxH ...
+  tools/denoise-quality.py SOMBRA OUTDIR [--ref-spp 2048] [--seeds N] SCENE.json:WxH ...
 """
 import argparse
 import os
@@ -45,6 +48,7 @@ def main():
     parser.add_argument("sombra")
     parser.add_argument("outdir")
     parser.add_argument("--ref-spp", type=int, default=2048)
+    parser.add_argument("--seeds", type=int, default=0, help="average the equal-time figures over seeds 1..N")
     parser.add_argument("scenes", nargs="+", help="SCENE.json:WIDTHxHEIGHT")
     args = parser.parse_args()
     os.makedirs(args.outdir, exist_ok=True)
@@ -80,6 +84,18 @@ def main():
               f"{rel_mse(denoised, ref):.4f} | {seconds:.1f} | {same_time:.4f} | {same_time_denoised:.4f} | "
               f"{ratios[0]:.4f}, {worst:.4f} |",
               flush=True)
+        if args.seeds > 0:
+            errors, raw_errors, times = [], [], []
+            for seed in range(1, args.seeds + 1):
+                t = render(args.sombra, scene, size, path("seeded"), "--spp", "16", "--denoise", "--seed", str(seed))
+                errors.append(rel_mse(read_pfm(path("seeded")), ref))
+                render(args.sombra, scene, size, path("seeded-time"), "--time", f"{t:.3f}", "--seed", str(seed))
+                raw_errors.append(rel_mse(read_pfm(path("seeded-time")), ref))
+                times.append(t)
+            print(f"|   seeds 1–{args.seeds}: denoised 16 {np.mean(errors):.5f} ({min(errors):.5f}–{max(errors):.5f}), "
+                  f"{np.mean(times):.2f} s; raw, same seconds {np.mean(raw_errors):.5f} "
+                  f"({min(raw_errors):.5f}–{max(raw_errors):.5f}); ratio {np.mean(errors) / np.mean(raw_errors):.3f} |",
+                  flush=True)
 
 
 if __name__ == "__main__":

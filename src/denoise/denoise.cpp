@@ -6,6 +6,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstddef>
+#include <iterator>
 #include <limits>
 
 #include "denoise/nl_means.h"
@@ -18,19 +19,24 @@ namespace {
 
 // NFOR's parameters (the paper's §5), tuned on this project's four test
 // scenes (docs/performance.md, "The denoiser"): features cross-filtered
-// over 9 × 9 windows with 5 × 5 patches; colour regressed with bandwidths
-// 0.4 and 1 (the paper's 0.5 and 1) over 15 × 15 windows (the paper's
-// 19 × 19 took 1.5× as long for no better images) with 5 × 5 patches in
-// the first pass (the paper's 7 × 7 blurred more) and 7 × 7 in the
-// second; the error estimates and the choice between bandwidths smoothed
-// over 3 × 3 (wider smoothing blurred fireflies' surroundings: the
-// spheres' error grew by 25 % at 15 × 15); the second pass's features
+// over 9 × 9 windows with 5 × 5 patches; colour regressed over 15 × 15
+// windows (the paper's 19 × 19 took 1.5× as long for no better images)
+// with 5 × 5 patches in the first pass (the paper's 7 × 7 blurred more)
+// and 7 × 7 in the second; the error estimates and the choice between
+// candidates smoothed over 5 × 5 (over 7 × 7 the spheres' error was 17 %
+// larger, over 3 × 3 the Cornell box's 44 %); the second pass's features
 // over 5 × 5.
 constexpr NlMeansParams kFeaturePrefilter{4, 2, 0.5f};
-constexpr float kBandwidths[2] = {0.4f, 1.0f};
+// The first pass's candidates, chosen between per pixel: the half as it
+// is (kUnfiltered), and regressions with non-local-means bandwidths 0.4
+// and 1. Where neither the features nor alike patches explain the colour
+// (glass, a mirror's sky) the half's own noise is the smallest error.
+constexpr float kUnfiltered = 0.0f;
+constexpr float kBandwidths[] = {kUnfiltered, 0.4f, 1.0f};
+constexpr int kCandidates = static_cast<int>(std::size(kBandwidths));
 constexpr int kRegressionRadius = 7;
 constexpr int kRegressionPatch = 2;
-constexpr NlMeansParams kSelectionFilter{1, 1, 1.0f};
+constexpr NlMeansParams kSelectionFilter{2, 1, 1.0f};
 constexpr NlMeansParams kSecondFeatureFilter{2, 3, 0.5f};
 constexpr NlMeansParams kSecondRegression{kRegressionRadius, 3, 1.0f};
 
@@ -141,12 +147,12 @@ Guide demodulated(const Raster& color, const Raster& variance, const Raster& fea
 
 // Everything the forward pass makes that the weights of a pixel need.
 struct NforPasses {
-    Raster color[2];               // the halves
-    Raster half_variance;          // the variance of a half's mean
-    Raster features[2];            // each half's features, cross-filtered
-    Guide guide[2];                // each half demodulated: the guide of the other half's regression
-    RegressionResult first[2][2];  // [bandwidth][half]
-    Raster selection;              // per channel: 0 = first bandwidth, 1 = second
+    Raster color[2];                         // the halves
+    Raster half_variance;                    // the variance of a half's mean
+    Raster features[2];                      // each half's features, cross-filtered
+    Guide guide[2];                          // each half demodulated: the guide of the other half's regression
+    RegressionResult first[kCandidates][2];  // [bandwidth][half]
+    Raster selection[kCandidates];           // per pixel and channel, each bandwidth's share (adding up to 1)
     Raster combined, combined_variance, final_features;
     Guide second_guide;
     RegressionResult second;
@@ -199,46 +205,64 @@ NforPasses run_passes(const DenoiseLayers& layers, int threads, const std::atomi
     const Raster mean_features =
         pointwise(s.features[0], s.features[1], [](float a, float b) { return 0.5f * (a + b); });
     const Guide mean_guide = demodulated(mean_color, variance, mean_features);
-    for (int k = 0; k < 2; ++k) {
+    for (int k = 0; k < kCandidates; ++k) {
         const NlMeansParams params{kRegressionRadius, kRegressionPatch, kBandwidths[k]};
         for (int half = 0; half < 2; ++half)
-            s.first[k][half] =
-                collaborative_regression(s.color[half], s.guide[1 - half].color, s.guide[1 - half].variance,
-                                         s.features[1 - half], params, threads, cancel);
+            if (kBandwidths[k] == kUnfiltered)
+                s.first[k][half].value = s.color[half];
+            else
+                s.first[k][half] =
+                    collaborative_regression(s.color[half], s.guide[1 - half].color, s.guide[1 - half].variance,
+                                             s.features[1 - half], params, threads, cancel);
     }
     times.regression += lap(start);
     // Each half's filtered value against the other half's noisy one, less
     // that half's variance, estimates the error (the paper's §5.3); both
     // bandwidths' estimates side by side, filtered with one set of weights.
-    Raster noisy_mse(w, h, 6);
+    // Value i of a 3-channel image (pixel i / 3, channel i % 3) in the
+    // candidates' images side by side: candidate k's is at slot(i) + 3·k.
+    const auto slot = [](std::size_t i) { return kCandidates * (i - i % 3) + i % 3; };
+    Raster noisy_mse(w, h, 3 * kCandidates);
     for (std::size_t i = 0; i < s.color[0].values.size(); ++i) {
         const float a = s.color[0].values[i], b = s.color[1].values[i];
-        for (std::size_t k = 0; k < 2; ++k) {
+        for (std::size_t k = 0; k < kCandidates; ++k) {
             const float fa = s.first[k][0].value.values[i], fb = s.first[k][1].value.values[i];
             const float mse_a = (b - fa) * (b - fa) - s.half_variance.values[i];
             const float mse_b = (a - fb) * (a - fb) - s.half_variance.values[i];
-            noisy_mse.values[2 * i - i % 3 + 3 * k] = 0.5f * (mse_a + mse_b) - 0.25f * (fb - fa) * (fb - fa);
+            noisy_mse.values[slot(i) + 3 * k] = 0.5f * (mse_a + mse_b) - 0.25f * (fb - fa) * (fb - fa);
         }
     }
     const Raster mse =
         nl_means_filter(noisy_mse, mean_guide.color, mean_guide.variance, kSelectionFilter, threads, cancel);
-    Raster choice(w, h, 3);
-    for (std::size_t i = 0; i < choice.values.size(); ++i) {
-        const std::size_t at = 2 * i - i % 3;  // pixel i / 3's channel i % 3, first bandwidth
-        choice.values[i] = mse.values[at] < mse.values[at + 3] ? 0.0f : 1.0f;
+    // The best candidate per pixel and channel as indicators (the last one's
+    // is 1 less the others'), smoothed so that the choice blends.
+    Raster choice(w, h, 3 * (kCandidates - 1));
+    for (std::size_t i = 0; i < s.color[0].values.size(); ++i) {
+        std::size_t best = 0;
+        for (std::size_t k = 1; k < kCandidates; ++k)
+            if (!(mse.values[slot(i) + 3 * best] < mse.values[slot(i) + 3 * k])) best = k;
+        if (best + 1 < kCandidates) choice.values[(kCandidates - 1) * (i - i % 3) + i % 3 + 3 * best] = 1.0f;
     }
-    s.selection = nl_means_filter(choice, mean_guide.color, mean_guide.variance, kSelectionFilter, threads, cancel);
+    const Raster shares =
+        nl_means_filter(choice, mean_guide.color, mean_guide.variance, kSelectionFilter, threads, cancel);
+    for (int k = 0; k < kCandidates; ++k) s.selection[k] = Raster(w, h, 3);
+    for (std::size_t i = 0; i < s.color[0].values.size(); ++i) {
+        float rest = 1.0f;
+        for (std::size_t k = 0; k + 1 < kCandidates; ++k) {
+            s.selection[k].values[i] = shares.values[(kCandidates - 1) * (i - i % 3) + i % 3 + 3 * k];
+            rest -= s.selection[k].values[i];
+        }
+        s.selection[kCandidates - 1].values[i] = rest;
+    }
 
     times.selection += lap(start);
 
     Raster result[2];
     for (int half = 0; half < 2; ++half) {
         result[half] = Raster(w, h, 3);
-        for (std::size_t i = 0; i < result[half].values.size(); ++i) {
-            const float t = s.selection.values[i];
-            result[half].values[i] =
-                (1.0f - t) * s.first[0][half].value.values[i] + t * s.first[1][half].value.values[i];
-        }
+        for (std::size_t i = 0; i < result[half].values.size(); ++i)
+            for (int k = 0; k < kCandidates; ++k)
+                result[half].values[i] += s.selection[k].values[i] * s.first[k][half].value.values[i];
     }
     // The second pass: the halves' results together, with their difference
     // as the noise left, regressed on features filtered once more.
@@ -297,16 +321,18 @@ DenoisedPixel explain_denoised_pixel(const DenoiseLayers& layers, int x, int y, 
                                      s.second, g_out, pixel, g_combined);
     const PixelRect combined_support = grown(pixel, 2 * kRegressionRadius, w, h);
     Raster g_half[2] = {Raster(w, h, 3), Raster(w, h, 3)};
-    for (int k = 0; k < 2; ++k) {
+    for (int k = 0; k < kCandidates; ++k) {
         const NlMeansParams params{kRegressionRadius, kRegressionPatch, kBandwidths[k]};
         Raster g_first(w, h, 3);
-        for (std::size_t i = 0; i < g_first.values.size(); ++i) {
-            const float t = s.selection.values[i];
-            g_first.values[i] = 0.5f * g_combined.values[i] * (k == 0 ? 1.0f - t : t);
-        }
+        for (std::size_t i = 0; i < g_first.values.size(); ++i)
+            g_first.values[i] = 0.5f * g_combined.values[i] * s.selection[k].values[i];
         for (int half = 0; half < 2; ++half)
-            collaborative_regression_adjoint(s.guide[1 - half].color, s.guide[1 - half].variance, s.features[1 - half],
-                                             params, s.first[k][half], g_first, combined_support, g_half[half]);
+            if (kBandwidths[k] == kUnfiltered)
+                for (std::size_t i = 0; i < g_first.values.size(); ++i) g_half[half].values[i] += g_first.values[i];
+            else
+                collaborative_regression_adjoint(s.guide[1 - half].color, s.guide[1 - half].variance,
+                                                 s.features[1 - half], params, s.first[k][half], g_first,
+                                                 combined_support, g_half[half]);
     }
 
     DenoisedPixel out;

@@ -157,7 +157,7 @@ Raster nl_means_filter(const Raster& values, const Raster& guide, const Raster& 
     const int tiles_x = tile_count(values.width), tiles_y = tile_count(values.height);
     const int radius = params.window_radius, side = window_side(params);
     const int channels = values.channels;
-    if (channels > kMaxFilterChannels) throw std::invalid_argument("nl_means_filter: more than 6 channels");
+    if (channels > kMaxFilterChannels) throw std::invalid_argument("nl_means_filter: more than 9 channels");
     tbb::task_arena arena(threads > 0 ? threads : tbb::task_arena::automatic);
     arena.execute([&] {
         tbb::parallel_for(tbb::blocked_range<int>(0, tiles_x * tiles_y), [&](const tbb::blocked_range<int>& range) {

@@ -35,8 +35,8 @@ void nl_means_tile_weights(const Raster& guide, const Raster& guide_variance, Pi
                            const NlMeansParams& params, std::vector<float>& weights, std::vector<float>& scratch);
 
 // The most channels nl_means_filter takes (colours, the feature groups,
-// two colours' error estimates).
-inline constexpr int kMaxFilterChannels = 6;
+// three colours' error estimates).
+inline constexpr int kMaxFilterChannels = 9;
 
 // Each pixel of `values` (at most kMaxFilterChannels channels; more throws
 // std::invalid_argument) replaced by the weighted mean of its window's,
