@@ -112,13 +112,41 @@ std::string explain(const std::shared_ptr<PyScene>& scene, const py::int_& colum
         throw Error("pixel (" + std::string(py::repr(column)) + ", " + std::string(py::repr(row)) + ")",
                     "outside the " + std::to_string(settings.width) + "x" + std::to_string(settings.height) + " image");
     check_explain_pixel(x, y, sample, settings);
-    py::gil_scoped_release release;
-    const RenderLock lock = lock_at_frame(*scene, settings, o);
-    const Scene& s = scene->loaded.scene;
-    const Accel accel = make_accel(s, o.accel);
-    const RenderJob job = make_job(s, accel, settings, o, std::chrono::steady_clock::now());
-    const SampleRecord record = record_pixel_sample(job, x, y, sample);
-    return explain_json(ExplainContext{s, job, scene->source}, record);
+    if (!o.denoise) {
+        py::gil_scoped_release release;
+        const RenderLock lock = lock_at_frame(*scene, settings, o);
+        const Scene& s = scene->loaded.scene;
+        const Accel accel = make_accel(s, o.accel);
+        const RenderJob job = make_job(s, accel, settings, o, std::chrono::steady_clock::now());
+        return explain_json(ExplainContext{s, job, scene->source}, record_pixel_sample(job, x, y, sample));
+    }
+    // Under denoise: the whole image as render(denoise=True) makes it, and
+    // the weights that made this pixel of it, on a thread Ctrl-C can stop.
+    const RenderSettings render_settings = resolve_render_settings(scene->loaded.settings, o);
+    RenderProgress watched;
+    std::string story;
+    const std::uint64_t total = static_cast<std::uint64_t>(render_settings.width) *
+                                static_cast<std::uint64_t>(render_settings.height) *
+                                static_cast<std::uint64_t>(render_settings.spp);
+    run_watched(
+        [&] {
+            const RenderLock lock = lock_at_frame(*scene, render_settings, o);
+            const Scene& s = scene->loaded.scene;
+            const Accel accel = make_accel(s, o.accel);
+            const RenderJob job = make_job(s, accel, render_settings, o, std::chrono::steady_clock::now());
+            const SampleRecord record = record_pixel_sample(job, x, y, sample);
+            const RenderOutput rendered = render_image(job, watched);
+            if (rendered.cancelled) return;
+            const std::size_t p =
+                (static_cast<std::size_t>(y) * static_cast<std::size_t>(render_settings.width) +
+                 static_cast<std::size_t>(x)) *
+                3;
+            const DenoiseStory denoised{explain_denoised_pixel(rendered.aovs.denoise, x, y, o.threads),
+                                        {rendered.film.rgb[p], rendered.film.rgb[p + 1], rendered.film.rgb[p + 2]}};
+            story = explain_json(ExplainContext{s, job, scene->source, &denoised}, record);
+        },
+        watched, total, py::none());
+    return story;
 }
 
 }  // namespace

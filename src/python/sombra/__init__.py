@@ -21,7 +21,7 @@ from typing import Any, Mapping, Optional, Sequence, Union
 import numpy as np
 
 from . import _sombra
-from ._options import _RENDER_OPTIONS, _RUN_OPTIONS, _SCENE_OPTIONS, PathLike, Progress, _options, _path
+from ._options import _EXPLAIN_OPTIONS, _RENDER_OPTIONS, _SCENE_OPTIONS, PathLike, Progress, _options, _path
 from ._progress import Bar as _Bar
 from ._scene import Scene
 
@@ -142,13 +142,17 @@ def explain(scene: Scene, x: int, y: int, sample: int = 0, **options: Any) -> di
     computes for that sample), "camera_ray", "hit", "lights" and "vertices".
 
     options: width, height, spp, seed, threads, integrator, max_depth,
-    light_tree, texture_filter, accel, as for :func:`render`.
+    light_tree, texture_filter, accel, frame, as for :func:`render`, and
+    denoise: True adds "denoise" (spec §25), as ``sombra explain --denoise``
+    does: the pixel of ``render(scene, denoise=True, ...)`` with the same
+    options, its raw value, and every weight the denoiser gave a pixel's
+    half-buffer colour to make it. It renders the whole image first.
     """
     impl = _scene_impl(scene, "explain")
     for name, value in (("x", x), ("y", y), ("sample", sample)):
         if isinstance(value, bool) or not isinstance(value, int):
             raise TypeError(f"explain(): {name} must be int, not {type(value).__name__}")
-    return json.loads(_sombra.explain(impl, x, y, sample, _options("explain", options, _RUN_OPTIONS)))
+    return json.loads(_sombra.explain(impl, x, y, sample, _options("explain", options, _EXPLAIN_OPTIONS)))
 
 
 def write_image(path: PathLike, array: np.ndarray, exposure: float = 0) -> None:

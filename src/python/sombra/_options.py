@@ -39,6 +39,10 @@ _RUN_OPTIONS = {
     "light_tree": ("--light-tree", _STR),
     "frame": ("--frame", _INT),
 }
+_EXPLAIN_OPTIONS = {
+    **_RUN_OPTIONS,
+    "denoise": ("--denoise", _BOOL),
+}
 _RENDER_OPTIONS = {
     **_RUN_OPTIONS,
     "time": ("--time", _NUMBER),

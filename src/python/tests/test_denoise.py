@@ -159,3 +159,22 @@ def test_an_interrupt_stops_a_long_denoise_within_a_second():
     finally:
         timer.cancel()
     assert time.monotonic() - start < 1.2
+
+
+def test_explain_denoise_is_the_command_lines_json_and_the_rendered_pixel(scene, denoised):
+    status, out, err = run_cli("explain", SCENE, 30, 22, "--width", 48, "--height", 40, "--spp", 4, "--denoise",
+                               "--json")
+    assert status == 0, err
+    story = sombra.explain(scene, 30, 22, denoise=True, **SMALL)
+    assert story == json.loads(out)
+    terms = story["denoise"]["weights"]
+    assert terms, "the denoised pixel has its weights"
+    for c in range(3):
+        assert sum(t["w"][c] for t in terms) == pytest.approx(1.0, abs=1e-4)
+    assert story["denoise"]["value"] == pytest.approx(denoised[22, 30].tolist(), rel=1e-5, abs=1e-6)
+
+
+def test_explain_without_denoise_has_no_denoise_story(scene):
+    assert "denoise" not in sombra.explain(scene, 30, 22, **SMALL)
+    with pytest.raises(TypeError, match="denoise must be bool"):
+        sombra.explain(scene, 30, 22, denoise=1, **SMALL)
