@@ -141,8 +141,9 @@ std::string denoise_weight_map(const DenoiseStory& story, int x, int y, float le
                                      .append(std::to_string(g.y0))
                                      .append(" to ")
                                      .append(std::to_string(g.y0 + g.height - 1))
-                                     .append("; the pixel outlined."),
-                                 std::to_string(story.pixel.terms.size()) + " terms; the text lists the ten largest."};
+                                     .append(";"),
+                                 "the pixel outlined. " + std::to_string(story.pixel.terms.size()) + " terms;",
+                                 "the text lists the ten largest."};
     float line_y = label_y + 20;
     for (const std::string& line : lines) {
         svg << "<text x=\"" << svg_number(left) << "\" y=\"" << svg_number(line_y) << "\" fill=\"#555555\">"
