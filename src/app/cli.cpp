@@ -230,6 +230,8 @@ CliParse parse(int argc, const char* const* argv, std::ostream& out, std::ostrea
     view->add_option("--port", o.port, "Port on 127.0.0.1 to listen on; 0 = a free one")
         ->check(CLI::Range(0, 65535))
         ->capture_default_str();
+    view->add_flag("--denoise", o.render.denoise,
+                   "Start with the denoise switch on: the newest finished pass shown denoised (at least 2 spp)");
     add_render_options(*view, o);
 
     CLI::App* merge =

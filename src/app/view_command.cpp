@@ -31,6 +31,7 @@ int run_view(const CliOptions& o) {
         options.threads = o.render.threads;
         options.light_selection = o.render.light_selection;
         options.exposure = o.exposure;
+        options.denoise = o.render.denoise;
         options.port = o.port;
         options.scene_file = o.input;
         ViewServer server(scene, accel, options);

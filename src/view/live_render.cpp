@@ -9,9 +9,10 @@
 namespace sombra {
 
 LiveRender::LiveRender(const Scene& scene, const Accel& accel, const ViewSettings& initial, int threads,
-                       LightSelection light_selection)
+                       LightSelection light_selection, bool denoise)
     : scene_(scene), accel_(accel), threads_(threads), light_selection_(light_selection), settings_(initial) {
     frame_.generation = 1;
+    frame_.denoise = denoise;  // before the first pass: it gathers the layers from the start
     frame_.target_spp = initial.settings.spp;
     thread_ = std::thread([this] { run(); });
     denoiser_ = std::thread([this] { denoise_passes(); });

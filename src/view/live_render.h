@@ -58,9 +58,10 @@ struct ViewFrame {
 
 class LiveRender {
 public:
-    // Starts the render thread on `initial`. `scene` and `accel` must outlive it.
+    // Starts the render thread on `initial`, with the denoise switch as
+    // `denoise` says. `scene` and `accel` must outlive it.
     LiveRender(const Scene& scene, const Accel& accel, const ViewSettings& initial, int threads,
-               LightSelection light_selection);
+               LightSelection light_selection, bool denoise = false);
     ~LiveRender();  // cancels the passes and joins the thread
     LiveRender(const LiveRender&) = delete;
     LiveRender& operator=(const LiveRender&) = delete;

@@ -30,6 +30,7 @@ struct ViewServerOptions {
     int threads = 0;       // render threads; 0 = all hardware threads
     LightSelection light_selection = LightSelection::Automatic;
     float exposure = 0;      // the page's starting exposure (PNG only)
+    bool denoise = false;    // the denoise switch's starting state (spec §25)
     int port = 0;            // 0 = a free port the system picks
     std::string scene_file;  // for explain's story and the page's title
     std::string token;       // empty = make_view_token()

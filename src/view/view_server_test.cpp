@@ -309,6 +309,24 @@ TEST(ViewServer, TheDenoiseSwitchShowsTheNewestPassDenoised) {
     EXPECT_EQ(bytes_apart(image(), s.sombra_render_png("--spp 1")), 0);
 }
 
+// `sombra view --denoise`: the switch is on from the first pass, which
+// gathers the denoiser's layers, so nothing restarts.
+TEST(ViewServer, StartsWithTheDenoiseSwitchOnWhenAsked) {
+    ServedScene s(8, "", 32, 24, std::nullopt, /*denoise=*/true);
+    const auto denoised_to_the_end = [](const std::vector<nlohmann::json>& e) {
+        return !e.empty() && e.back()["done"].get<bool>() && e.back()["denoised"] == e.back()["version"];
+    };
+    const std::vector<nlohmann::json> events = s.read_events_until(denoised_to_the_end);
+    ASSERT_TRUE(denoised_to_the_end(events));
+    EXPECT_TRUE(events.back()["denoise"].get<bool>());
+    EXPECT_EQ(events.back()["generation"], 1);
+    EXPECT_EQ(events.back()["denoised_spp"], 8);
+    httplib::Client client("127.0.0.1", s.port());
+    const auto r = client.Get("/image.png?token=" + std::string(kToken));
+    ASSERT_TRUE(r);
+    EXPECT_EQ(bytes_apart(decode_png(r->body), s.sombra_render_png("--spp 8 --denoise")), 0);
+}
+
 TEST(ViewServer, ExplainsAPixelWithTheRendersValue) {
     ServedScene s(1);  // one sample a pixel: the pixel's value is sample 0's
     s.wait_done();

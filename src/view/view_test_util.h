@@ -106,7 +106,7 @@ inline Rgb8 decode_png(const std::string& bytes) {
 class ServedScene {
 public:
     explicit ServedScene(int spp, const std::string& render_extra = "", int width = 32, int height = 24,
-                         std::optional<float> ortho_half_height = std::nullopt) {
+                         std::optional<float> ortho_half_height = std::nullopt, bool denoise = false) {
         dir_ = fs::temp_directory_path() / ("sombra-view-" + std::to_string(::getpid()) + "-" +
                                             ::testing::UnitTest::GetInstance()->current_test_info()->name());
         fs::remove_all(dir_);
@@ -132,6 +132,7 @@ public:
         options.threads = 2;
         options.scene_file = "scene.json";
         options.token = kToken;
+        options.denoise = denoise;
         server_ = std::make_unique<ViewServer>(loaded_->scene, *accel_, options);
         thread_ = std::thread([this] { server_->run(); });
     }
