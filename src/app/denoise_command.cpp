@@ -15,8 +15,11 @@ namespace sombra {
 int run_denoise(const CliOptions& o) {
     return reporting_errors(o.input, [&] {
         check_output_path(o.output);
-        const ExrChannels exr = read_exr_channels(o.input, denoise_channel_names());
-        const DenoiseLayers layers = denoise_layers_from(exr.names, exr.values, exr.width, exr.height, o.input);
+        // The file's channels are let go once copied into the layers: a large frame's peak is lower.
+        const DenoiseLayers layers = [&] {
+            const ExrChannels exr = read_exr_channels(o.input, denoise_channel_names());
+            return denoise_layers_from(exr.names, exr.values, exr.width, exr.height, o.input);
+        }();
         check_denoise_layers(layers, o.input);
         const auto start = std::chrono::steady_clock::now();
         const std::vector<float> image = denoise_image(layers, o.render.threads);

@@ -168,57 +168,20 @@ double lap(Clock::time_point& start) {
     return seconds;
 }
 
-// Under `cancel`, once it is true the passes go on to their end without
-// filtering: their values are then unfinished.
-NforPasses run_passes(const DenoiseLayers& layers, int threads, const std::atomic<bool>* cancel, DenoiseTimes& times) {
-    Clock::time_point start = Clock::now();
-    const int w = layers.width, h = layers.height;
-    NforPasses s;
-    for (int half = 0; half < 2; ++half) s.color[half] = raster_of(layers.color[half], w, h, 3);
-    // Halves of equal size each have twice the variance of the whole mean.
-    // A variance the render could not estimate (+∞: one sample) reads as the image's largest.
-    float largest = 0.0f;
-    for (const float v : layers.variance)
-        if (std::isfinite(v)) largest = std::max(largest, v);
-    s.half_variance = Raster(w, h, 3);
-    for (std::size_t i = 0; i < layers.variance.size(); ++i)
-        s.half_variance.values[i] = 2.0f * (std::isfinite(layers.variance[i]) ? layers.variance[i] : largest);
-    const Raster variance = pointwise(s.half_variance, s.half_variance, [](float v, float) { return 0.5f * v; });
+// Drops an image no later step reads, so that a large frame's peak stays low.
+void release(Raster& r) { r = Raster(); }
 
-    float depth_scale = 0.0f;
-    for (int half = 0; half < 2; ++half)
-        for (const float d : layers.depth[half])
-            if (std::isfinite(d)) depth_scale = std::max(depth_scale, d);
-    if (!(depth_scale > 0.0f)) depth_scale = 1.0f;
-    const Raster raw_features[2] = {half_features(layers, 0, depth_scale), half_features(layers, 1, depth_scale)};
-    const Raster feature_variance =
-        box3(pointwise(raw_features[0], raw_features[1], [](float a, float b) { return 0.5f * (a - b) * (a - b); }));
-    // Cross-filtering: each half's features, weighted by the other half's,
-    // so that a half's noise does not choose its own weights.
-    for (int half = 0; half < 2; ++half)
-        s.features[half] = filter_features(raw_features[half], raw_features[1 - half], feature_variance,
-                                           kFeaturePrefilter, threads, cancel);
-    times.features += lap(start);
+// Which of the passes' images run_passes keeps: explain's backward run reads
+// the weights' inputs of every step; the image alone needs none of them.
+enum class Keep { Image, ForExplain };
 
-    for (int half = 0; half < 2; ++half) s.guide[half] = demodulated(s.color[half], s.half_variance, s.features[half]);
-    const Raster mean_color = pointwise(s.color[0], s.color[1], [](float a, float b) { return 0.5f * (a + b); });
-    const Raster mean_features =
-        pointwise(s.features[0], s.features[1], [](float a, float b) { return 0.5f * (a + b); });
-    const Guide mean_guide = demodulated(mean_color, variance, mean_features);
-    for (int k = 0; k < kCandidates; ++k) {
-        const NlMeansParams params{kRegressionRadius, kRegressionPatch, kBandwidths[k]};
-        for (int half = 0; half < 2; ++half)
-            if (kBandwidths[k] == kUnfiltered)
-                s.first[k][half].value = s.color[half];
-            else
-                s.first[k][half] =
-                    collaborative_regression(s.color[half], s.guide[1 - half].color, s.guide[1 - half].variance,
-                                             s.features[1 - half], params, threads, cancel);
-    }
-    times.regression += lap(start);
+// The first pass's candidates per pixel and channel, each one's share of
+// the result (adding up to 1): the smallest error estimate, smoothed.
+void choose_candidates(NforPasses& s, const Guide& mean_guide, int threads, const std::atomic<bool>* cancel) {
+    const int w = s.color[0].width, h = s.color[0].height;
     // Each half's filtered value against the other half's noisy one, less
-    // that half's variance, estimates the error (the paper's §5.3); both
-    // bandwidths' estimates side by side, filtered with one set of weights.
+    // that half's variance, estimates the error (the paper's §5.3); the
+    // candidates' estimates side by side, filtered with one set of weights.
     // Value i of a 3-channel image (pixel i / 3, channel i % 3) in the
     // candidates' images side by side: candidate k's is at slot(i) + 3·k.
     const auto slot = [](std::size_t i) { return kCandidates * (i - i % 3) + i % 3; };
@@ -234,6 +197,7 @@ NforPasses run_passes(const DenoiseLayers& layers, int threads, const std::atomi
     }
     const Raster mse =
         nl_means_filter(noisy_mse, mean_guide.color, mean_guide.variance, kSelectionFilter, threads, cancel);
+    release(noisy_mse);
     // The best candidate per pixel and channel as indicators (the last one's
     // is 1 less the others'), smoothed so that the choice blends.
     Raster choice(w, h, 3 * (kCandidates - 1));
@@ -254,7 +218,62 @@ NforPasses run_passes(const DenoiseLayers& layers, int threads, const std::atomi
         }
         s.selection[kCandidates - 1].values[i] = rest;
     }
+}
 
+// Under `cancel`, once it is true the passes go on to their end without
+// filtering: their values are then unfinished.
+NforPasses run_passes(const DenoiseLayers& layers, int threads, const std::atomic<bool>* cancel, DenoiseTimes& times,
+                      Keep keep) {
+    Clock::time_point start = Clock::now();
+    const int w = layers.width, h = layers.height;
+    NforPasses s;
+    for (int half = 0; half < 2; ++half) s.color[half] = raster_of(layers.color[half], w, h, 3);
+    // Halves of equal size each have twice the variance of the whole mean.
+    // A variance the render could not estimate (+∞: one sample) reads as the image's largest.
+    float largest = 0.0f;
+    for (const float v : layers.variance)
+        if (std::isfinite(v)) largest = std::max(largest, v);
+    s.half_variance = Raster(w, h, 3);
+    for (std::size_t i = 0; i < layers.variance.size(); ++i)
+        s.half_variance.values[i] = 2.0f * (std::isfinite(layers.variance[i]) ? layers.variance[i] : largest);
+
+    float depth_scale = 0.0f;
+    for (int half = 0; half < 2; ++half)
+        for (const float d : layers.depth[half])
+            if (std::isfinite(d)) depth_scale = std::max(depth_scale, d);
+    if (!(depth_scale > 0.0f)) depth_scale = 1.0f;
+    {
+        const Raster raw_features[2] = {half_features(layers, 0, depth_scale), half_features(layers, 1, depth_scale)};
+        const Raster feature_variance = box3(
+            pointwise(raw_features[0], raw_features[1], [](float a, float b) { return 0.5f * (a - b) * (a - b); }));
+        // Cross-filtering: each half's features, weighted by the other half's,
+        // so that a half's noise does not choose its own weights.
+        for (int half = 0; half < 2; ++half)
+            s.features[half] = filter_features(raw_features[half], raw_features[1 - half], feature_variance,
+                                               kFeaturePrefilter, threads, cancel);
+    }
+    times.features += lap(start);
+
+    for (int half = 0; half < 2; ++half) s.guide[half] = demodulated(s.color[half], s.half_variance, s.features[half]);
+    Raster mean_features = pointwise(s.features[0], s.features[1], [](float a, float b) { return 0.5f * (a + b); });
+    for (int k = 0; k < kCandidates; ++k) {
+        const NlMeansParams params{kRegressionRadius, kRegressionPatch, kBandwidths[k]};
+        for (int half = 0; half < 2; ++half)
+            if (kBandwidths[k] == kUnfiltered)
+                s.first[k][half].value = s.color[half];
+            else
+                s.first[k][half] =
+                    collaborative_regression(s.color[half], s.guide[1 - half].color, s.guide[1 - half].variance,
+                                             s.features[1 - half], params, threads, cancel);
+    }
+    if (keep == Keep::Image)
+        for (Guide& g : s.guide) release(g.color), release(g.variance);
+    times.regression += lap(start);
+    {
+        const Raster mean_color = pointwise(s.color[0], s.color[1], [](float a, float b) { return 0.5f * (a + b); });
+        const Raster variance = pointwise(s.half_variance, s.half_variance, [](float v, float) { return 0.5f * v; });
+        choose_candidates(s, demodulated(mean_color, variance, mean_features), threads, cancel);
+    }
     times.selection += lap(start);
 
     Raster result[2];
@@ -264,14 +283,25 @@ NforPasses run_passes(const DenoiseLayers& layers, int threads, const std::atomi
             for (int k = 0; k < kCandidates; ++k)
                 result[half].values[i] += s.selection[k].values[i] * s.first[k][half].value.values[i];
     }
+    if (keep == Keep::Image) {
+        for (auto& candidate : s.first)
+            for (RegressionResult& r : candidate) r = RegressionResult{};
+        for (Raster& r : s.selection) release(r);
+    }
     // The second pass: the halves' results together, with their difference
     // as the noise left, regressed on features filtered once more.
-    const Raster features_variance =
-        pointwise(s.features[0], s.features[1], [](float a, float b) { return 0.25f * (a - b) * (a - b); });
-    s.final_features =
-        filter_features(mean_features, mean_features, features_variance, kSecondFeatureFilter, threads, cancel);
+    {
+        const Raster features_variance =
+            pointwise(s.features[0], s.features[1], [](float a, float b) { return 0.25f * (a - b) * (a - b); });
+        s.final_features =
+            filter_features(mean_features, mean_features, features_variance, kSecondFeatureFilter, threads, cancel);
+    }
+    release(mean_features);
+    if (keep == Keep::Image)
+        for (Raster& r : s.features) release(r);
     s.combined = pointwise(result[0], result[1], [](float a, float b) { return 0.5f * (a + b); });
     s.combined_variance = pointwise(result[0], result[1], [](float a, float b) { return 0.25f * (a - b) * (a - b); });
+    for (Raster& r : result) release(r);
     s.second_guide = demodulated(s.combined, s.combined_variance, s.final_features);
     s.second = collaborative_regression(s.combined, s.second_guide.color, s.second_guide.variance, s.final_features,
                                         kSecondRegression, threads, cancel);
@@ -299,7 +329,7 @@ double denoise_seconds_estimate(int width, int height, int threads) {
 std::vector<float> denoise_image(const DenoiseLayers& layers, int threads, const std::atomic<bool>* cancel,
                                  DenoiseTimes* times) {
     DenoiseTimes ignored;
-    NforPasses passes = run_passes(layers, threads, cancel, times != nullptr ? *times : ignored);
+    NforPasses passes = run_passes(layers, threads, cancel, times != nullptr ? *times : ignored, Keep::Image);
     if (cancel != nullptr && cancel->load()) return {};
     std::vector<float> out = std::move(passes.second.value.values);
     for (float& v : out) v = std::max(v, 0.0f);
@@ -308,7 +338,7 @@ std::vector<float> denoise_image(const DenoiseLayers& layers, int threads, const
 
 DenoisedPixel explain_denoised_pixel(const DenoiseLayers& layers, int x, int y, int threads) {
     DenoiseTimes times;
-    const NforPasses s = run_passes(layers, threads, nullptr, times);
+    const NforPasses s = run_passes(layers, threads, nullptr, times, Keep::ForExplain);
     const int w = layers.width, h = layers.height;
     // Backwards through the passes, the weights held as they were: the
     // second regression, the mean of the halves, the choice of bandwidth,
