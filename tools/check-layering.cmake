@@ -8,7 +8,7 @@
 # reader and render/'s settings; the renderer's stages never reach the file
 # readers or the front ends;
 # inside render/, the BSDFs (render/bsdf/) and the lights (render/lights/)
-# know nothing of each other; the library API (api/) reads no file; the front ends (app/, python/,
+# know nothing of each other, and the media (render/media/) nothing of either; the library API (api/) reads no file; the front ends (app/, python/,
 # view/) call the API, and neither Python nor the viewer reaches into the
 # command line (app/); the denoiser (denoise/) works on plain arrays and
 # includes nothing but core/ and itself; the scene model includes nothing but core/ and itself. Test code is exempt, a file whose
@@ -28,6 +28,7 @@ set(rules
   "render:io,api,distributed,view,python,app"
   "render/bsdf:render/lights"
   "render/lights:render/bsdf"
+  "render/media:render/bsdf,render/lights"
   "explain:io,api,distributed,view,python,app"
   "image:io,api,distributed,view,python,app"
   "denoise:scene,io,accel,render,explain,image,api,distributed,view,python,app"
