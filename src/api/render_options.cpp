@@ -27,6 +27,10 @@ void check_render_options(const RenderOptions& o) {
     if (o.overrides.max_depth && (*o.overrides.max_depth < 0 || *o.overrides.max_depth > kMaxDepth))
         throw Error("--max-depth", "must be between 0 and " + std::to_string(kMaxDepth) + ", not " +
                                        std::to_string(*o.overrides.max_depth));
+    if (o.overrides.max_volume_depth &&
+        (*o.overrides.max_volume_depth < 0 || *o.overrides.max_volume_depth > kMaxVolumeDepth))
+        throw Error("--max-volume-depth", "must be between 0 and " + std::to_string(kMaxVolumeDepth) + ", not " +
+                                              std::to_string(*o.overrides.max_volume_depth));
     if (o.aovs.noisy && !o.denoise) throw Error("--aov", "noisy is the image before denoising: it needs --denoise");
     check_positive("--time", o.time_budget, kMaxTimeBudget);
     check_positive("--noise-threshold", o.noise_threshold, kMaxNoiseThreshold);
@@ -57,6 +61,10 @@ RenderSettings resolve_settings(const RenderSettings& scene_settings, const Sett
     if (o.max_depth) {
         s.max_depth = *o.max_depth;
         check("--max-depth");
+    }
+    if (o.max_volume_depth) {
+        s.max_volume_depth = *o.max_volume_depth;
+        check("--max-volume-depth");
     }
     if (o.texture_filter) s.texture_filter = *o.texture_filter;
     return s;

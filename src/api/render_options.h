@@ -25,6 +25,7 @@ struct SettingOverrides {
     std::optional<std::uint64_t> seed;
     std::optional<IntegratorKind> integrator;
     std::optional<int> max_depth;
+    std::optional<int> max_volume_depth;
     std::optional<TextureFilter> texture_filter;
 };
 

@@ -102,6 +102,10 @@ void add_render_options(CLI::App& command, CliOptions& o) {
                     "Most scattering events on a path, 0 to 1024 (path; overrides the scene)")
         ->check(library_check<int>([](RenderOptions& p, int v) { p.overrides.max_depth = v; }));
     command
+        .add_option("--max-volume-depth", r.overrides.max_volume_depth,
+                    "Most scattering events in media on a path, 0 to 65536 (path; default 256; overrides the scene)")
+        ->check(library_check<int>([](RenderOptions& p, int v) { p.overrides.max_volume_depth = v; }));
+    command
         .add_option_function<std::string>(
             "--light-tree", [&r](const std::string& name) { r.light_selection = light_selection_option(name); },
             "Choose emitters by a light tree: auto (from 8 emitters on), on, or off (in proportion to power)")

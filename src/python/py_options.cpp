@@ -77,6 +77,8 @@ RenderOptions render_options_from(const py::dict& options) {
             s.integrator = integrator_option(py::cast<std::string>(value));
         } else if (key == "max_depth") {
             s.max_depth = int_option(key, value);
+        } else if (key == "max_volume_depth") {
+            s.max_volume_depth = int_option(key, value);
         } else if (key == "texture_filter") {
             s.texture_filter = texture_filter_option(py::cast<std::string>(value));
         } else if (key == "threads") {

@@ -61,6 +61,7 @@ py::dict settings_dict(const RenderSettings& r) {
     d["seed"] = r.seed;
     d["integrator"] = std::string(integrator_name(r.integrator));
     d["max_depth"] = r.max_depth;
+    d["max_volume_depth"] = r.max_volume_depth;
     d["texture_filter"] = std::string(texture_filter_name(r.texture_filter));
     return d;
 }

@@ -51,6 +51,8 @@ struct RenderSettings {
     std::uint64_t seed = 0;
     IntegratorKind integrator = IntegratorKind::Direct;
     int max_depth = 8;  // path: the most scattering events on a path, 0 … kMaxDepth
+    // path: the most scattering events in media on a path (spec §26), 0 … kMaxVolumeDepth
+    int max_volume_depth = 256;
     // Mipmap needs the textures' pyramids (build_mip_pyramids, scene/texture_mipmap.h)
     // built before rendering; without them lookups stay at full resolution.
     TextureFilter texture_filter = TextureFilter::Bilinear;
@@ -61,6 +63,7 @@ struct RenderSettings {
 // scene file reader and the command-line overrides check the same numbers.
 inline constexpr int kMaxSpp = 65536;
 inline constexpr int kMaxDepth = 1024;
+inline constexpr int kMaxVolumeDepth = 65536;
 
 // "" when the settings lie within the limits above, else a short message
 // naming the offending field, e.g. "width must be between 1 and 32768".
@@ -71,6 +74,8 @@ inline std::string render_settings_problem(const RenderSettings& r) {
     if (r.spp < 1 || r.spp > kMaxSpp) return "spp must be between 1 and " + std::to_string(kMaxSpp);
     if (r.max_depth < 0 || r.max_depth > kMaxDepth)
         return "max_depth must be between 0 and " + std::to_string(kMaxDepth);
+    if (r.max_volume_depth < 0 || r.max_volume_depth > kMaxVolumeDepth)
+        return "max_volume_depth must be between 0 and " + std::to_string(kMaxVolumeDepth);
     const std::int64_t pixels = std::int64_t{r.width} * r.height;
     if (pixels > kMaxPixels)
         return "image of " + std::to_string(r.width) + "x" + std::to_string(r.height) +

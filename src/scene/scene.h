@@ -13,6 +13,7 @@
 #include "scene/hdr_image.h"
 #include "scene/light.h"
 #include "scene/material.h"
+#include "scene/medium.h"
 #include "scene/mesh.h"
 #include "scene/texture.h"
 #include "scene/transform.h"
@@ -104,6 +105,10 @@ struct Scene {
     // Keyframes (spec §22); the rest of the scene is at the moment
     // set_scene_time (scene/animation.h) last moved it to.
     std::optional<SceneAnimation> animation;
+    // Participating media (spec §26) and the one that fills the space
+    // outside every object, where the camera starts (kNoMedium: vacuum).
+    std::vector<Medium> media;
+    std::uint32_t render_medium = kNoMedium;
 };
 
 // Places `instance` by `object_to_world`, deriving its inverse, normals'

@@ -77,6 +77,12 @@ public:
     void set_environment(EnvironmentMap environment) { scene_.environment = std::move(environment); }
     // A light in world space, after those added before it.
     void add_light(const PunctualLight& light) { scene_.lights.push_back(light); }
+    // Participating media (spec §26), and the index of the one that fills
+    // the space outside every object (kNoMedium: none).
+    void set_media(std::vector<Medium> media, std::uint32_t render_medium) {
+        scene_.media = std::move(media);
+        scene_.render_medium = render_medium;
+    }
 
     // Adds a texture to Scene::textures and returns its index; a texture with
     // the same source and encoding as one already there is shared (add_texture).

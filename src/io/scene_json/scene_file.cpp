@@ -263,6 +263,34 @@ std::string read_scene_text(const fs::path& path) {
     return std::move(text).str();
 }
 
+// "media" and the render's medium, "render": {"medium": NAME} (spec §26).
+void read_scene_media(const SceneJson& s, const Json& root, SceneBuilder& builder) {
+    std::vector<Medium> media;
+    if (const Json* v = find_member(root, "media")) media = read_media(s, *v, "/media");
+    std::uint32_t render_medium = kNoMedium;
+    const Json* render = find_member(root, "render");
+    if (const Json* name = render != nullptr ? find_member(*render, "medium") : nullptr) {
+        const std::string& wanted = read_string(s, *name, "/render/medium");
+        for (std::size_t i = 0; i < media.size(); ++i)
+            if (media[i].name == wanted) render_medium = static_cast<std::uint32_t>(i);
+        if (render_medium == kNoMedium) json_fail(s, "/render/medium", "no medium '" + wanted + "' in /media");
+        // What lies infinitely far is hidden by a medium without end (spec §26, as in Cycles).
+        bool far = find_member(root, "environment") != nullptr;
+        if (const Json* background = find_member(root, "background"))
+            far = far || (background->is_array() && max_component(read_rgb(s, *background, "/background")) > 0.0f);
+        if (const Json* lights = find_member(root, "lights"); lights != nullptr && lights->is_array())
+            for (const Json& light : *lights)
+                if (const Json* type = light.is_object() ? find_member(light, "type") : nullptr)
+                    far = far || (type->is_string() && *type == "directional");
+        if (far && max_component(extinction(media[render_medium])) > 0.0f)
+            json_warn(s, "/render/medium",
+                      "the medium '" + wanted +
+                          "' fills space without end: the environment, the background and directional lights, "
+                          "infinitely far, are hidden by it");
+    }
+    builder.set_media(std::move(media), render_medium);
+}
+
 }  // namespace
 
 LoadedScene load_scene_file(const fs::path& path, Diagnostics& diag) {
@@ -274,7 +302,8 @@ LoadedScene load_scene_text(const std::string& text, const fs::path& path, Diagn
     const SceneJson s{path.string(), diag};
     const Json root = parse_scene_json(text, s.name);
     expect_keys(s, root, "",
-                {"render", "background", "environment", "camera", "materials", "lights", "objects", "animation"});
+                {"render", "background", "environment", "camera", "materials", "lights", "objects", "animation",
+                 "media"});
     SceneClock clock;
     if (const Json* v = find_member(root, "animation")) clock = read_animation(s, *v, "/animation");
     // The scene is built at its first frame's moment (spec §22).
@@ -284,6 +313,7 @@ LoadedScene load_scene_text(const std::string& text, const fs::path& path, Diagn
     LoadedScene out;
     SceneBuilder builder;
     if (const Json* v = find_member(root, "render")) out.settings = read_render(s, *v, "/render");
+    read_scene_media(s, root, builder);
     if (const Json* v = find_member(root, "background")) builder.set_background(read_rgb(s, *v, "/background"));
     const Json& camera = require_member(s, root, "", "camera");
     if (camera.is_object() && find_member(camera, "keys")) {

@@ -146,6 +146,11 @@ LoadedMesh make_quad_light_mesh(const QuadLight& quad);
 EnvironmentMap read_environment(const SceneJson& s, const Json& v, std::string_view pointer,
                                 const std::filesystem::path& folder);
 
+// "media" (spec §26): {"NAME": {"type": "homogeneous", "sigma_a", "sigma_s",
+// "g", "emission", "scale"}, …}. Coefficients are
+// non-negative and come scaled; |g| < 1. In name order.
+std::vector<Medium> read_media(const SceneJson& s, const Json& v, std::string_view pointer);
+
 // "transform": a list of steps, the first listed acting first. The result is
 // finite and invertible.
 Transform read_transform(const SceneJson& s, const Json& v, std::string_view pointer);

@@ -145,7 +145,10 @@ std::string transform_problem(const Transform& t) {
 }  // namespace
 
 RenderSettings read_render(const SceneJson& s, const Json& v, std::string_view pointer) {
-    expect_keys(s, v, pointer, {"width", "height", "spp", "seed", "integrator", "max_depth", "texture_filter"});
+    // "medium" names one of the scene's media: load_scene_text reads it.
+    expect_keys(s, v, pointer,
+                {"width", "height", "spp", "seed", "integrator", "max_depth", "max_volume_depth", "texture_filter",
+                 "medium"});
     RenderSettings r;
     if (const Json* w = find_member(v, "width"))
         r.width = static_cast<int>(read_integer(s, *w, json_child(pointer, "width"), 1, kMaxImageSide));
@@ -163,6 +166,9 @@ RenderSettings read_render(const SceneJson& s, const Json& v, std::string_view p
     }
     if (const Json* depth = find_member(v, "max_depth"))
         r.max_depth = static_cast<int>(read_integer(s, *depth, json_child(pointer, "max_depth"), 0, kMaxDepth));
+    if (const Json* depth = find_member(v, "max_volume_depth"))
+        r.max_volume_depth =
+            static_cast<int>(read_integer(s, *depth, json_child(pointer, "max_volume_depth"), 0, kMaxVolumeDepth));
     if (const Json* filter = find_member(v, "texture_filter")) {
         const std::string p = json_child(pointer, "texture_filter");
         const std::string& name = read_string(s, *filter, p);

@@ -30,6 +30,7 @@ _SCENE_OPTIONS = {
     "seed": ("--seed", _INT),
     "integrator": ("--integrator", _STR),
     "max_depth": ("--max-depth", _INT),
+    "max_volume_depth": ("--max-volume-depth", _INT),
     "texture_filter": ("--texture-filter", _STR),
 }
 _RUN_OPTIONS = {
