@@ -162,6 +162,29 @@ TEST(Session, TheJobCarriesTheOptions) {
     EXPECT_EQ(record.value.z, traced.z);
 }
 
+TEST(Session, ExplainRefusesAPathThroughAMediumForNow) {
+    Diagnostics diag;
+    LoadedScene loaded =
+        load_scene_file(std::filesystem::path(SOMBRA_SOURCE_DIR) / "scenes" / "cornell-box-path.json", diag);
+    Medium fog;
+    fog.sigma_s = Vec3{1.0f};
+    loaded.scene.media = {fog};
+    loaded.scene.render_medium = 0;
+    RenderOptions o;
+    o.overrides.width = 8;
+    o.overrides.height = 8;
+    const RenderSettings settings = resolve_render_settings(loaded.settings, o);
+    const Accel accel = make_accel(loaded.scene, o.accel);
+    const RenderJob job = make_job(loaded.scene, accel, settings, o, std::chrono::steady_clock::now());
+    EXPECT_EQ(error_of([&] { record_pixel_sample(job, 4, 4, 0); }),
+              "explain: a path through a medium (spec §26) cannot be told yet; render the scene instead");
+    // The direct integrator ignores media: its story is told.
+    RenderSettings direct = settings;
+    direct.integrator = IntegratorKind::Direct;
+    const RenderJob direct_job = make_job(loaded.scene, accel, direct, o, std::chrono::steady_clock::now());
+    EXPECT_EQ(error_of([&] { record_pixel_sample(direct_job, 4, 4, 0); }), "");
+}
+
 TEST(Session, ExplainPixelIsCheckedAgainstTheImage) {
     RenderSettings s;
     s.width = 48;

@@ -80,6 +80,27 @@ TEST_F(HostileRenderSettings, MaxDepthOutOfRangeOnTheCommandLine) {
     EXPECT_EQ(ok.status, 0) << ok.err;
 }
 
+TEST_F(HostileRenderSettings, MaxVolumeDepthOutOfRangeAndMediaUnderDirect) {
+    const std::string fog = R"({"render": {"width": 8, "height": 6, "spp": 1, "medium": "fog"},
+        "media": {"fog": {"type": "homogeneous", "sigma_s": [1, 1, 1]}},
+        "camera": {"origin": [0, 0, 3], "look_at": [0, 0, 0]},
+        "lights": [{"type": "point", "position": [0, 1, 2], "intensity": [5, 5, 5]}],
+        "objects": [{"file": "square.obj"}]})";
+    for (const char* depth : {"65537", "-1"}) {
+        const RunResult r = render(fog, std::string("--integrator path --max-volume-depth ") + depth);
+        EXPECT_EQ(r.status, 2) << depth << ": " << r.err;
+        EXPECT_EQ(r.err, "sombra: error: command line: --max-volume-depth: must be between 0 and 65536, not " +
+                             std::string(depth) + " (see 'sombra render --help')\n");
+    }
+    const std::string warning = "the direct integrator ignores media (spec §26); use --integrator path";
+    RunResult r = render(fog);
+    EXPECT_EQ(r.status, 0) << r.err;
+    EXPECT_EQ(count(r.err, warning), 1u) << r.err;
+    r = render(fog, "--integrator path --max-volume-depth 0");
+    EXPECT_EQ(r.status, 0) << r.err;
+    EXPECT_EQ(count(r.err, warning), 0u) << r.err;
+}
+
 TEST_F(HostileRenderSettings, DirectWarnsOnceAboutContentOnlyPathLights) {
     const std::string warning = "the direct integrator lights with point, spot and directional lights only";
     const std::string quad = light_scene(

@@ -6,12 +6,14 @@
 
 #include <cmath>
 #include <cstdint>
+#include <limits>
 
 #include "accel/accel.h"
 #include "render/bsdf/bsdf.h"
 #include "render/interaction.h"
 #include "render/lights/delta_light_types.h"
 #include "render/lights/lights.h"
+#include "render/media/homogeneous_medium.h"
 #include "render/ray_counters.h"
 #include "render/sample_record.h"
 #include "render/shading_view.h"
@@ -28,10 +30,12 @@ namespace sombra {
 // (render/sample_recorder.h: NoRecorder or SampleRecorder) hears every
 // light's outcome. Defined here, so that each integrator inlines it and no
 // hit pays for a call's prologue and the spills of its eleven arguments.
+// With `medium` (a homogeneous one filling the scene, spec §26) each light's
+// term is also multiplied by the transmittance along its shadow ray.
 template <class Recorder>
 void add_delta_lights(const LightSet& lights, const Accel& accel, const SurfaceInteraction& si,
                       const Material& material, const BsdfPoint& bsdf_point, Vec3 wo, Vec3 beta, Vec3& radiance,
-                      RayCounters& counters, Recorder& recorder) {
+                      RayCounters& counters, Recorder& recorder, const Medium* medium = nullptr) {
     const ShadingView view{si, material, bsdf_point, wo};
     const Vec3 shadow_origin = offset_ray_origin(si.position, si.position_error, si.n_g);
     // The light array read through a pointer and a count held in locals:
@@ -74,8 +78,13 @@ void add_delta_lights(const LightSet& lights, const Accel& accel, const SurfaceI
 
         // L += I / |c − x|² · f_r(x, ω_i, ω_o) · |n_s · ω_i|   (a spot's I carries s²; a sun's E divided by 1, exactly)
         const Vec3 f_r = eval_bsdf(material, bsdf_point, wo, a.wi);
-        const Vec3 contribution = beta * (emitted_towards(light, factor) *
-                                          (std::fabs(dot(si.n_s, a.wi)) / inverse_square_divisor(light, a)) * f_r);
+        Vec3 contribution = beta * (emitted_towards(light, factor) *
+                                    (std::fabs(dot(si.n_s, a.wi)) / inverse_square_divisor(light, a)) * f_r);
+        if (medium != nullptr)
+            contribution =
+                contribution * homogeneous_transmittance(*medium, light_type_traits(light.type).positioned
+                                                                      ? std::sqrt(a.distance_squared)
+                                                                      : std::numeric_limits<float>::infinity());
         radiance += contribution;
         recorder.delta_light(index, LightOutcome::Visible, view, a, &shadow, contribution);
     }

@@ -38,6 +38,9 @@ inline Vec3 material_albedo(const Material& m) {
 // nothing else: every other hook is NoRecorder's empty one.
 class FirstHitRecorder : public NoRecorder {
 public:
+    // The first surface "media notwithstanding" (spec §25): also where the
+    // camera ray scatters in a medium before it.
+    static constexpr bool kWantsFirstSurface = true;
     explicit FirstHitRecorder(FirstHit& out) : out_(out) {}
 
     void surface(const Ray& ray, const Hit& hit, const SurfaceInteraction& si, const Material& material, Vec3) {

@@ -36,6 +36,7 @@ struct IntegratorContext {
     const LightSet* lights = nullptr;
     int max_depth = 8;  // path: the most scattering events on a path (spec §10)
     LightStrategy strategy = LightStrategy::Mis;
+    int max_volume_depth = 256;  // path: the most scattering events in media on a path (spec §26)
     // Mip-mapping (--texture-filter mipmap): the rays given to trace_direct
     // and trace_path are camera rays of a camera whose pixel is
     // camera_pixel_area (render/ray_cone.h), and their cones choose the

@@ -13,6 +13,9 @@
 #include "render/first_hit.h"
 #include "render/integrator.h"
 #include "render/interaction.h"
+#include "render/media/homogeneous_medium.h"
+#include "render/media/phase_function.h"
+#include "render/medium_vertex.h"
 #include "render/ray_cone.h"
 #include "render/sample_recorder.h"
 #include "render/shading.h"
@@ -43,7 +46,7 @@ Vec3 light_normal(const Material& m, const SurfaceInteraction& si) {
 // BSDF's density for the same direction (spec §10's next-event estimation).
 template <class Recorder>
 Vec3 sample_one_light(const IntegratorContext& ctx, const ShadingView& view, float u_choice, SampleStream::Pair u,
-                      RayCounters& counters, Recorder& recorder) {
+                      RayCounters& counters, Recorder& recorder, const Medium* medium) {
     const SurfaceInteraction& si = view.si;
     LightSample ls;
     if (!sample_light(*ctx.lights, *ctx.scene, si.position, light_normal(view.material, si), u_choice, u.u1, u.u2,
@@ -69,7 +72,10 @@ Vec3 sample_one_light(const IntegratorContext& ctx, const ShadingView& view, flo
     const float bsdf_pdf =
         ctx.strategy == LightStrategy::Mis ? pdf_bsdf(view.material, view.bsdf_point, view.wo, ls.wi) : 0.0f;
     const float weight = ctx.strategy == LightStrategy::Mis ? power_heuristic(ls.pdf, bsdf_pdf) : 1.0f;
-    const Vec3 contribution = f * ls.radiance * (weight / ls.pdf);
+    Vec3 contribution = f * ls.radiance * (weight / ls.pdf);
+    if (medium != nullptr)
+        contribution =
+            contribution * homogeneous_transmittance(*medium, shadow_length(ls.at_infinity, origin, ls.target));
     recorder.sampled_light(&ls, view, &shadow, false, bsdf_pdf, weight, contribution);
     return contribution;
 }
@@ -108,9 +114,87 @@ Vec3 trace_path_recorded(const IntegratorContext& ctx, const Ray& camera_ray, Sa
         return power_heuristic(bsdf_pdf, light_pdf);
     };
 
-    for (int depth = 0;; ++depth) {
+    // Russian roulette after `events` scattering events (surface and
+    // medium), unbiased: survivors are re-weighted by 1/q.
+    auto survives_roulette = [&](int events, SampleStream::Slot slot) {
+        if (events + 1 <= kRouletteStart) return true;
+        const float q = roulette_survival(beta, eta_scale);
+        if (q >= 1.0f) return true;
+        const float u_roulette = samples.read_1d(slot);
+        const bool survived = !(u_roulette >= q);
+        if (survived) beta = beta / q;
+        recorder.roulette(q, u_roulette, survived, beta);
+        if (!survived) recorder.end("Russian roulette ended the path");
+        return survived;
+    };
+
+    // The medium filling the space outside every object (spec §26), or none.
+    const Medium* fog = scene.render_medium != kNoMedium ? &scene.media[scene.render_medium] : nullptr;
+    int volume_events = 0;
+    for (int depth = 0;;) {
         Hit hit;
-        if (!intersect(*ctx.accel, ray, hit)) {
+        const bool found = intersect(*ctx.accel, ray, hit);
+        if (fog != nullptr) {
+            // Along the segment to the hit (or without end): the fog's own
+            // light, then where, if anywhere, the path scatters in it.
+            const float dir_length = length(ray.dir);
+            const float end = found ? hit.t * dir_length : std::numeric_limits<float>::infinity();
+            if constexpr (Recorder::kWantsFirstSurface) {
+                // The denoiser's features describe the surface the camera
+                // ray meets, whether or not the path scatters before it.
+                if (found && depth + volume_events == 0) {
+                    SurfaceInteraction first = make_surface_interaction(scene, ray, hit);
+                    std::optional<Material> first_textured;
+                    recorder.surface(ray, hit, first,
+                                     needs_resolved_material(scene, first)
+                                         ? resolve_material(scene, first, first_textured.emplace(),
+                                                            surface_footprint(cone,
+                                                                              cone.active() ? hit.t * dir_length : 0.0f,
+                                                                              ray.dir, first.n_g))
+                                         : scene.materials[first.material],
+                                     beta);
+                }
+            }
+            radiance += beta * homogeneous_emission(*fog, end);
+            const SampleStream::Slot channel_slot = samples.take_1d();
+            const SampleStream::Slot distance_slot = samples.take_1d();
+            const FreeFlight flight = sample_homogeneous_free_flight(*fog, end, samples.read_1d(channel_slot),
+                                                                     samples.read_1d(distance_slot));
+            beta = beta * flight.weight;
+            if (!(max_component(beta) > 0.0f)) {
+                recorder.end("the medium absorbed the path");
+                break;
+            }
+            if (flight.scattered) {
+                if (volume_events >= ctx.max_volume_depth) {
+                    recorder.end("max_volume_depth scattering events in media reached");
+                    break;
+                }
+                ++volume_events;
+                const Vec3 d_in = ray.dir / dir_length;
+                const Vec3 x = ray.origin + d_in * flight.t;
+                const SampleStream::Slot light_slot = samples.take_2d();
+                const SampleStream::Slot choice_slot = samples.take_1d();
+                const SampleStream::Slot phase_slot = samples.take_2d();
+                const SampleStream::Slot roulette_slot = samples.take_1d();
+                const SampleStream::Pair u_light = samples.read_2d(light_slot);
+                radiance += beta * medium_direct_light(ctx, *fog, x, d_in, samples.read_1d(choice_slot), u_light.u1,
+                                                       u_light.u2, counters);
+                // The phase function is sampled exactly: the throughput is unchanged.
+                const SampleStream::Pair u_phase = samples.read_2d(phase_slot);
+                const PhaseSample ps = sample_henyey_greenstein(fog->g, d_in, u_phase.u1, u_phase.u2);
+                previous_delta = false;
+                previous_pdf = ps.pdf;
+                previous_position = x;
+                previous_normal = Vec3{0.0f};
+                ray = Ray{x, ps.out};
+                cone = RayCone{};
+                ++counters.bounce_rays;
+                if (!survives_roulette(depth + volume_events - 1, roulette_slot)) break;
+                continue;
+            }
+        }
+        if (!found) {
             const Vec3 dir = normalize(ray.dir);
             const Vec3 le = eval_environment(lights.environment, dir);
             if (max_component(le) > 0.0f) {
@@ -121,7 +205,7 @@ Vec3 trace_path_recorded(const IntegratorContext& ctx, const Ray& camera_ray, Sa
             } else {
                 recorder.escaped(ray, beta, le, 1.0f, 0.0f, 0.0f);
             }
-            recorder.end(depth == 0 ? "the camera ray left the scene" : "the ray left the scene");
+            recorder.end(depth + volume_events == 0 ? "the camera ray left the scene" : "the ray left the scene");
             break;
         }
 
@@ -165,11 +249,11 @@ Vec3 trace_path_recorded(const IntegratorContext& ctx, const Ray& camera_ray, Sa
 
         const ShadingView view{si, material, bsdf_point, wo};
         if (!is_delta_bsdf(material)) {
-            add_delta_lights(lights, *ctx.accel, si, material, bsdf_point, wo, beta, radiance, counters, recorder);
+            add_delta_lights(lights, *ctx.accel, si, material, bsdf_point, wo, beta, radiance, counters, recorder, fog);
             if (lights.has_sampled_lights() && ctx.strategy != LightStrategy::BsdfOnly) {
                 const SampleStream::Pair u_light = samples.read_2d(light_slot);
                 radiance +=
-                    beta * sample_one_light(ctx, view, samples.read_1d(choice_slot), u_light, counters, recorder);
+                    beta * sample_one_light(ctx, view, samples.read_1d(choice_slot), u_light, counters, recorder, fog);
             }
         } else {
             recorder.delta_material();
@@ -198,20 +282,8 @@ Vec3 trace_path_recorded(const IntegratorContext& ctx, const Ray& camera_ray, Sa
         cone = scattered_cone(cone, hit_distance, bs.delta);
         ++counters.bounce_rays;
 
-        // Russian roulette, unbiased: survivors are re-weighted by 1/q.
-        if (depth + 1 > kRouletteStart) {
-            const float q = roulette_survival(beta, eta_scale);
-            if (q < 1.0f) {
-                const float u_roulette = samples.read_1d(roulette_slot);
-                const bool survived = !(u_roulette >= q);
-                if (survived) beta = beta / q;
-                recorder.roulette(q, u_roulette, survived, beta);
-                if (!survived) {
-                    recorder.end("Russian roulette ended the path");
-                    break;
-                }
-            }
-        }
+        if (!survives_roulette(depth + volume_events, roulette_slot)) break;
+        ++depth;
     }
 
     const bool finite = is_finite(radiance);

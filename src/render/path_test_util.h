@@ -88,12 +88,13 @@ struct PathRun {
     int max_depth = 8;
     LightStrategy strategy = LightStrategy::Mis;
     std::uint32_t pixel_samples = 1;
+    int max_volume_depth = 256;
 
     Estimate estimate(Vec3 origin, Vec3 target, int samples, std::uint64_t seed, int channel = 0) const {
         const Accel accel = make_accel(scene, AccelKind::Bvh);
         const bool path = true;
         const LightSet lights = make_light_set(scene, make_constant_environment(scene.background), path);
-        const IntegratorContext ctx{&scene, &accel, &lights, max_depth, strategy};
+        const IntegratorContext ctx{&scene, &accel, &lights, max_depth, strategy, max_volume_depth};
         Estimate e;
         RayCounters counters;
         for (int k = 0; k < samples; ++k) {

@@ -128,6 +128,7 @@ RenderJob make_render_job(const Scene& scene, const Accel& accel, const RenderSe
 
 IntegratorContext make_integrator_context(const RenderJob& job) {
     IntegratorContext ctx{job.scene, job.accel, &job.lights, job.settings.max_depth};
+    ctx.max_volume_depth = job.settings.max_volume_depth;
     if (job.settings.texture_filter == TextureFilter::Mipmap) {
         ctx.ray_cones = true;
         ctx.camera_pixel_area =

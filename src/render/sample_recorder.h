@@ -20,6 +20,9 @@ namespace sombra {
 
 // Records nothing; every hook compiles to nothing.
 struct NoRecorder {
+    // True for a recorder that wants the camera ray's first surface even
+    // where the path scatters in a medium before reaching it (FirstHitRecorder).
+    static constexpr bool kWantsFirstSurface = false;
     template <class... Args>
     void escaped(const Args&...) {}
     template <class... Args>
@@ -46,6 +49,7 @@ struct NoRecorder {
 // (a closest-hit query of its own), which the integrator never needs.
 class SampleRecorder {
 public:
+    static constexpr bool kWantsFirstSurface = false;
     SampleRecorder(const Scene& scene, const LightSet& lights, const Accel& accel, SampleRecord& record)
         : scene_(scene), lights_(lights), accel_(accel), record_(record) {}
 
