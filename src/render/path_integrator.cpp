@@ -134,7 +134,7 @@ Vec3 trace_path_recorded(const IntegratorContext& ctx, const Ray& camera_ray, Sa
     for (int depth = 0;;) {
         Hit hit;
         const bool found = intersect(*ctx.accel, ray, hit);
-        if (fog != nullptr) {
+        if (fog != nullptr) [[unlikely]] {
             // Along the segment to the hit (or without end): the fog's own
             // light, then where, if anywhere, the path scatters in it.
             const float dir_length = length(ray.dir);
