@@ -186,13 +186,14 @@ void for_each_window(const Raster& guide, const Raster& guide_variance, const Ra
             for (int py = tile.y0; py < tile.y1; ++py)
                 for (int px = tile.x0; px < tile.x1; ++px) {
                     if ((*extra)[guide.pixel(px, py)] == 0) continue;
-                    const float* own = weights.data();
+                    // The pointer is taken after the weights are made: making them may reallocate.
+                    std::size_t at = 0;
                     if (whole_tile)
-                        own += static_cast<std::size_t>((py - tile.y0) * tile.width() + px - tile.x0) * offsets;
+                        at = static_cast<std::size_t>((py - tile.y0) * tile.width() + px - tile.x0) * offsets;
                     else
                         nl_means_tile_weights(guide, guide_variance, {px, py, px + 1, py + 1}, 1, params, weights,
                                               scratch);
-                    build_window(px, py, own, features, params, window);
+                    build_window(px, py, weights.data() + at, features, params, window);
                     visit(window);
                 }
         });
