@@ -137,10 +137,9 @@ std::string explain(const std::shared_ptr<PyScene>& scene, const py::int_& colum
             const SampleRecord record = record_pixel_sample(job, x, y, sample);
             const RenderOutput rendered = render_image(job, watched);
             if (rendered.cancelled) return;
-            const std::size_t p =
-                (static_cast<std::size_t>(y) * static_cast<std::size_t>(render_settings.width) +
-                 static_cast<std::size_t>(x)) *
-                3;
+            const std::size_t p = (static_cast<std::size_t>(y) * static_cast<std::size_t>(render_settings.width) +
+                                   static_cast<std::size_t>(x)) *
+                                  3;
             const DenoiseStory denoised{explain_denoised_pixel(rendered.aovs.denoise, x, y, o.threads),
                                         {rendered.film.rgb[p], rendered.film.rgb[p + 1], rendered.film.rgb[p + 2]}};
             story = explain_json(ExplainContext{s, job, scene->source, &denoised}, record);
