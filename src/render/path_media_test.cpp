@@ -42,18 +42,6 @@ Material emitter(float radiance) {
     return m;
 }
 
-// The closed box [-s, s]³, faces wound counter-clockwise seen from outside.
-void add_box(TriangleMesh& mesh, float s, std::uint32_t material) {
-    const Vec3 a{-s, -s, -s}, b{s, -s, -s}, c{s, s, -s}, e{-s, s, -s};
-    const Vec3 up{0, 0, 2 * s};
-    add_quad(mesh, a + up, b + up, c + up, e + up, material);
-    add_quad(mesh, a, e, c, b, material);
-    add_quad(mesh, a, b, b + up, a + up, material);
-    add_quad(mesh, b, c, c + up, b + up, material);
-    add_quad(mesh, c, e, e + up, c + up, material);
-    add_quad(mesh, e, a, a + up, e + up, material);
-}
-
 TEST(PathMedia, AnAbsorbingMediumKeepsBeersLawOfAnEmitter) {
     // An emitter of radiance 1 seen through distance d of a medium that only
     // absorbs, differently per channel: exp(−σ_a d).
@@ -82,7 +70,7 @@ TEST(PathMedia, AMediumFurnaceStaysWhiteAtAnyG) {
         SceneBuilder b;
         b.set_background(Vec3{0.0f});
         TriangleMesh mesh;
-        add_box(mesh, 1.0f, 0);
+        testing::add_box(mesh, Vec3{-1.0f}, Vec3{1.0f}, 0);
         add_world_mesh(b, mesh, {emitter(1.0f)});
         b.set_media({fog(Vec3{0.0f}, {0.5f, 1.5f, 3.0f}, g)}, 0);
         const Scene scene = b.finish();

@@ -85,18 +85,6 @@ TEST(PathVolume, WhiteFurnaceRoughTransmissiveSpheres) {
     }
 }
 
-// A closed box [-s, s]² × [0, d], faces wound counter-clockwise seen from outside.
-void add_slab(TriangleMesh& mesh, float s, float d, std::uint32_t material) {
-    const Vec3 a{-s, -s, 0}, b{s, -s, 0}, c{s, s, 0}, e{-s, s, 0};
-    const Vec3 up{0, 0, d};
-    add_quad(mesh, a + up, b + up, c + up, e + up, material);  // top, +z
-    add_quad(mesh, a, e, c, b, material);                      // bottom, −z
-    add_quad(mesh, a, b, b + up, a + up, material);            // −y
-    add_quad(mesh, b, c, c + up, b + up, material);            // +x
-    add_quad(mesh, c, e, e + up, c + up, material);            // +y
-    add_quad(mesh, e, a, a + up, e + up, material);            // −x
-}
-
 TEST(PathVolume, SlabTransmitsBeerLambert) {
     // A slab of thickness d over an emitter of radiance 1 under a black sky,
     // seen at normal incidence: with σ = −ln(colour)/distance,
@@ -118,7 +106,7 @@ TEST(PathVolume, SlabTransmitsBeerLambert) {
         SceneBuilder b;
         b.set_background(Vec3{0.0f});
         TriangleMesh mesh;
-        add_slab(mesh, 50.0f, d, 0);
+        testing::add_box(mesh, {-50.0f, -50.0f, 0.0f}, {50.0f, 50.0f, d}, 0);  // the slab
         add_quad(mesh, {-100, -100, -1}, {100, -100, -1}, {100, 100, -1}, {-100, 100, -1}, 1);
         add_world_mesh(b, mesh, {glass, light});
         const Scene scene = b.finish();

@@ -32,6 +32,19 @@ inline void add_quad(TriangleMesh& mesh, Vec3 a, Vec3 b, Vec3 c, Vec3 d, std::ui
     mesh.material_ids.insert(mesh.material_ids.end(), {material, material});
 }
 
+// Appends the closed box [lo, hi] (axis-aligned), its faces wound
+// counter-clockwise seen from outside.
+inline void add_box(TriangleMesh& mesh, Vec3 lo, Vec3 hi, std::uint32_t material) {
+    const Vec3 a{lo.x, lo.y, lo.z}, b{hi.x, lo.y, lo.z}, c{hi.x, hi.y, lo.z}, e{lo.x, hi.y, lo.z};
+    const Vec3 up{0, 0, hi.z - lo.z};
+    add_quad(mesh, a + up, b + up, c + up, e + up, material);  // top, +z
+    add_quad(mesh, a, e, c, b, material);                      // bottom, −z
+    add_quad(mesh, a, b, b + up, a + up, material);            // −y
+    add_quad(mesh, b, c, c + up, b + up, material);            // +x
+    add_quad(mesh, c, e, e + up, c + up, material);            // +y
+    add_quad(mesh, e, a, a + up, e + up, material);            // −x
+}
+
 // Adds `mesh`, in world space as it is, with the materials its
 // material_ids index (and the textures their TextureRefs index) to `builder`
 // as one object.
