@@ -177,7 +177,8 @@ TEST(Session, ExplainRefusesAPathThroughAMediumForNow) {
     const Accel accel = make_accel(loaded.scene, o.accel);
     const RenderJob job = make_job(loaded.scene, accel, settings, o, std::chrono::steady_clock::now());
     EXPECT_EQ(error_of([&] { record_pixel_sample(job, 4, 4, 0); }),
-              "explain: a path through a medium (spec §26) cannot be told yet; render the scene instead");
+              "explain: a path through media or interface surfaces (spec §26) cannot be told yet; render the scene "
+              "instead");
     // The direct integrator ignores media: its story is told.
     RenderSettings direct = settings;
     direct.integrator = IntegratorKind::Direct;

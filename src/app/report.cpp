@@ -23,7 +23,7 @@ void print_warnings(const Diagnostics& diag, const Scene& scene, const RenderSet
                   << ": the direct integrator lights with point, spot and directional lights only: quad lights "
                      "and the environment are only seen, mirror and glass reflect nothing from them; use "
                      "--integrator path\n";
-    if (settings.integrator == IntegratorKind::Direct && scene.render_medium != kNoMedium)
+    if (settings.integrator == IntegratorKind::Direct && uses_media(scene))
         std::cerr << "sombra: warning: " << one_line_message(input)
                   << ": the direct integrator ignores media (spec §26); use --integrator path\n";
 }

@@ -14,6 +14,7 @@ std::string material_type_name(MaterialType type) {
         case MaterialType::Dielectric: return "dielectric";
         case MaterialType::Conductor: return "conductor";
         case MaterialType::Pbr: return "pbr";
+        case MaterialType::Interface: return "interface";
     }
     return "?";
 }
@@ -33,6 +34,7 @@ std::vector<MaterialParameter> material_parameters(const Material& m) {
                  {"roughness", {m.roughness}},
                  {"ior", {m.ior}}};
             break;
+        case MaterialType::Interface: break;
     }
     if (is_emissive(m)) p.push_back({"ke", rgb(m.ke)});
     return p;

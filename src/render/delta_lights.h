@@ -6,17 +6,16 @@
 
 #include <cmath>
 #include <cstdint>
-#include <limits>
 
 #include "accel/accel.h"
 #include "render/bsdf/bsdf.h"
 #include "render/interaction.h"
 #include "render/lights/delta_light_types.h"
 #include "render/lights/lights.h"
-#include "render/media/homogeneous_medium.h"
 #include "render/ray_counters.h"
 #include "render/sample_record.h"
 #include "render/shading_view.h"
+#include "render/shadow_ray.h"
 
 namespace sombra {
 
@@ -30,12 +29,13 @@ namespace sombra {
 // (render/sample_recorder.h: NoRecorder or SampleRecorder) hears every
 // light's outcome. Defined here, so that each integrator inlines it and no
 // hit pays for a call's prologue and the spills of its eleven arguments.
-// With `medium` (a homogeneous one filling the scene, spec §26) each light's
-// term is also multiplied by the transmittance along its shadow ray.
+// With `media` (spec §26: the scene has media or interface surfaces) each
+// shadow ray crosses interfaces and each light's term is multiplied by the
+// transmittance along its shadow ray.
 template <class Recorder>
 void add_delta_lights(const LightSet& lights, const Accel& accel, const SurfaceInteraction& si,
                       const Material& material, const BsdfPoint& bsdf_point, Vec3 wo, Vec3 beta, Vec3& radiance,
-                      RayCounters& counters, Recorder& recorder, const Medium* medium = nullptr) {
+                      RayCounters& counters, Recorder& recorder, const ShadowMedia* media = nullptr) {
     const ShadingView view{si, material, bsdf_point, wo};
     const Vec3 shadow_origin = offset_ray_origin(si.position, si.position_error, si.n_g);
     // The light array read through a pointer and a count held in locals:
@@ -71,7 +71,9 @@ void add_delta_lights(const LightSet& lights, const Accel& accel, const SurfaceI
         const Vec3 origin = behind ? offset_ray_origin(si.position, si.position_error, -si.n_g) : shadow_origin;
         const Ray shadow = delta_shadow_ray(light, a, origin);
         ++counters.shadow_rays;
-        if (occluded(accel, shadow)) {
+        const Vec3 transmittance =
+            media != nullptr ? shadow_transmittance(accel, *media, si.n_g, shadow) : Vec3{1.0f};
+        if (media != nullptr ? !(max_component(transmittance) > 0.0f) : occluded(accel, shadow)) {
             recorder.delta_light(index, LightOutcome::Blocked, view, a, &shadow, Vec3{0.0f});
             continue;
         }
@@ -80,11 +82,7 @@ void add_delta_lights(const LightSet& lights, const Accel& accel, const SurfaceI
         const Vec3 f_r = eval_bsdf(material, bsdf_point, wo, a.wi);
         Vec3 contribution = beta * (emitted_towards(light, factor) *
                                     (std::fabs(dot(si.n_s, a.wi)) / inverse_square_divisor(light, a)) * f_r);
-        if (medium != nullptr)
-            contribution =
-                contribution * homogeneous_transmittance(*medium, light_type_traits(light.type).positioned
-                                                                      ? std::sqrt(a.distance_squared)
-                                                                      : std::numeric_limits<float>::infinity());
+        if (media != nullptr) contribution = contribution * transmittance;
         radiance += contribution;
         recorder.delta_light(index, LightOutcome::Visible, view, a, &shadow, contribution);
     }

@@ -11,6 +11,7 @@
 #include "render/ray_cone.h"
 #include "render/sample_recorder.h"
 #include "render/shading.h"
+#include "render/shadow_ray.h"
 
 namespace sombra {
 
@@ -32,9 +33,12 @@ Vec3 shade_direct(const IntegratorContext& ctx, const Ray& ray, const Hit& hit, 
     // The direct integrator only evaluates the BSDF: no frame for a
     // diffuse or Phong surface, which would not read it.
     if (!is_delta_bsdf(material)) {
+        // Shadow rays cross interface surfaces; media are ignored (spec §26).
+        const ShadowMedia interfaces{ctx.scene, MediumSides{}, false};
         add_delta_lights(*ctx.lights, *ctx.accel, si, material,
                          make_eval_bsdf_point(material, si.n_g, si.n_s, si.outside, si.n_c), wo, Vec3{1.0f}, radiance,
-                         counters, recorder);
+                         counters, recorder,
+                         ctx.scene->interface_material != kNoInterface ? &interfaces : nullptr);
     } else {
         recorder.delta_material();
     }
@@ -48,7 +52,7 @@ Vec3 trace_direct_recorded(const IntegratorContext& ctx, const Ray& ray, RayCoun
     ++counters.camera_rays;
     Hit hit;
     Vec3 radiance{0.0f};
-    if (!intersect(*ctx.accel, ray, hit)) {
+    if (!intersect_past_interfaces(*ctx.accel, scene, ray, hit)) {
         // A miss sees the background or the environment map (only seen, spec §10).
         radiance = eval_environment(ctx.lights->environment, normalize(ray.dir));
         recorder.escaped(ray, Vec3{1.0f}, radiance, 1.0f, 0.0f, 0.0f);

@@ -30,6 +30,7 @@ inline Vec3 material_albedo(const Material& m) {
         case MaterialType::Dielectric: return m.kt;
         case MaterialType::Conductor: return m.ks;
         case MaterialType::Pbr: return m.base_color;
+        case MaterialType::Interface: return Vec3{0.0f};
     }
     return m.kd;
 }

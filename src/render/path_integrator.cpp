@@ -14,11 +14,13 @@
 #include "render/integrator.h"
 #include "render/interaction.h"
 #include "render/media/homogeneous_medium.h"
+#include "render/media/medium_boundary.h"
 #include "render/media/phase_function.h"
 #include "render/medium_vertex.h"
 #include "render/ray_cone.h"
 #include "render/sample_recorder.h"
 #include "render/shading.h"
+#include "render/shadow_ray.h"
 
 namespace sombra {
 
@@ -26,6 +28,11 @@ namespace {
 
 // Russian roulette may end a path only after this many scattering events.
 constexpr int kRouletteStart = 3;
+
+// A path crossing more interface surfaces than this ends: it bounds the work
+// of a ray caught between coincident interfaces. Crossings are no
+// scattering events and count against no depth (spec §26).
+constexpr int kMaxInterfaceCrossings = 1024;
 
 // Russian roulette's survival probability for a path of throughput β (with
 // refraction's (η_i/η_t)² undone): the cube root of max(β), where the usual
@@ -46,7 +53,7 @@ Vec3 light_normal(const Material& m, const SurfaceInteraction& si) {
 // BSDF's density for the same direction (spec §10's next-event estimation).
 template <class Recorder>
 Vec3 sample_one_light(const IntegratorContext& ctx, const ShadingView& view, float u_choice, SampleStream::Pair u,
-                      RayCounters& counters, Recorder& recorder, const Medium* medium) {
+                      RayCounters& counters, Recorder& recorder, const ShadowMedia* media) {
     const SurfaceInteraction& si = view.si;
     LightSample ls;
     if (!sample_light(*ctx.lights, *ctx.scene, si.position, light_normal(view.material, si), u_choice, u.u1, u.u2,
@@ -65,7 +72,8 @@ Vec3 sample_one_light(const IntegratorContext& ctx, const ShadingView& view, flo
     // Toward an emitter the ray stops just short of the sampled point, so
     // that the emitter itself does not count as its own occluder.
     const Ray shadow = ls.at_infinity ? Ray{origin, ls.wi} : Ray{origin, ls.target - origin, 1.0f - 1e-4f};
-    if (occluded(*ctx.accel, shadow)) {
+    const Vec3 transmittance = media != nullptr ? shadow_transmittance(*ctx.accel, *media, si.n_g, shadow) : Vec3{1.0f};
+    if (media != nullptr ? !(max_component(transmittance) > 0.0f) : occluded(*ctx.accel, shadow)) {
         recorder.sampled_light(&ls, view, &shadow, true, 0.0f, 0.0f, Vec3{0.0f});
         return Vec3{0.0f};
     }
@@ -73,11 +81,25 @@ Vec3 sample_one_light(const IntegratorContext& ctx, const ShadingView& view, flo
         ctx.strategy == LightStrategy::Mis ? pdf_bsdf(view.material, view.bsdf_point, view.wo, ls.wi) : 0.0f;
     const float weight = ctx.strategy == LightStrategy::Mis ? power_heuristic(ls.pdf, bsdf_pdf) : 1.0f;
     Vec3 contribution = f * ls.radiance * (weight / ls.pdf);
-    if (medium != nullptr)
-        contribution =
-            contribution * homogeneous_transmittance(*medium, shadow_length(ls.at_infinity, origin, ls.target));
+    if (media != nullptr) contribution = contribution * transmittance;
     recorder.sampled_light(&ls, view, &shadow, false, bsdf_pdf, weight, contribution);
     return contribution;
+}
+
+// Tells `recorder` of the first surface a camera ray meets where the path
+// may scatter in a medium before it (the denoiser's features).
+template <class Recorder>
+void record_first_surface(const Scene& scene, const Ray& ray, const Hit& hit, const RayCone& cone, Recorder& recorder,
+                          Vec3 beta) {
+    SurfaceInteraction first = make_surface_interaction(scene, ray, hit);
+    std::optional<Material> first_textured;
+    const Material& material =
+        needs_resolved_material(scene, first)
+            ? resolve_material(scene, first, first_textured.emplace(),
+                               surface_footprint(cone, cone.active() ? hit.t * length(ray.dir) : 0.0f, ray.dir,
+                                                 first.n_g))
+            : scene.materials[first.material];
+    recorder.surface(ray, hit, first, material, beta);
 }
 
 template <class Recorder>
@@ -128,37 +150,31 @@ Vec3 trace_path_recorded(const IntegratorContext& ctx, const Ray& camera_ray, Sa
         return survived;
     };
 
-    // The medium filling the space outside every object (spec §26), or none.
-    const Medium* fog = scene.render_medium != kNoMedium ? &scene.media[scene.render_medium] : nullptr;
+    // Which medium the path is in (spec §26; kNoMedium: vacuum), tracked
+    // only where the scene has media or interface surfaces.
+    const bool tracking = tracks_media(scene);
+    std::uint32_t medium = starting_medium(scene);
     int volume_events = 0;
+    int crossings = 0;
     for (int depth = 0;;) {
         Hit hit;
         const bool found = intersect(*ctx.accel, ray, hit);
-        if (fog != nullptr) [[unlikely]] {
-            // Along the segment to the hit (or without end): the fog's own
+        if (medium != kNoMedium) [[unlikely]] {
+            const Medium& m = scene.media[medium];
+            // Along the segment to the hit (or without end): the medium's own
             // light, then where, if anywhere, the path scatters in it.
             const float dir_length = length(ray.dir);
             const float end = found ? hit.t * dir_length : std::numeric_limits<float>::infinity();
             if constexpr (Recorder::kWantsFirstSurface) {
                 // The denoiser's features describe the surface the camera
                 // ray meets, whether or not the path scatters before it.
-                if (found && depth + volume_events == 0) {
-                    SurfaceInteraction first = make_surface_interaction(scene, ray, hit);
-                    std::optional<Material> first_textured;
-                    recorder.surface(ray, hit, first,
-                                     needs_resolved_material(scene, first)
-                                         ? resolve_material(scene, first, first_textured.emplace(),
-                                                            surface_footprint(cone,
-                                                                              cone.active() ? hit.t * dir_length : 0.0f,
-                                                                              ray.dir, first.n_g))
-                                         : scene.materials[first.material],
-                                     beta);
-                }
+                if (found && depth + volume_events == 0 && !is_interface(scene, hit.triangle, hit.instance))
+                    record_first_surface(scene, ray, hit, cone, recorder, beta);
             }
-            radiance += beta * homogeneous_emission(*fog, end);
+            radiance += beta * homogeneous_emission(m, end);
             const SampleStream::Slot channel_slot = samples.take_1d();
             const SampleStream::Slot distance_slot = samples.take_1d();
-            const FreeFlight flight = sample_homogeneous_free_flight(*fog, end, samples.read_1d(channel_slot),
+            const FreeFlight flight = sample_homogeneous_free_flight(m, end, samples.read_1d(channel_slot),
                                                                      samples.read_1d(distance_slot));
             beta = beta * flight.weight;
             if (!(max_component(beta) > 0.0f)) {
@@ -178,11 +194,11 @@ Vec3 trace_path_recorded(const IntegratorContext& ctx, const Ray& camera_ray, Sa
                 const SampleStream::Slot phase_slot = samples.take_2d();
                 const SampleStream::Slot roulette_slot = samples.take_1d();
                 const SampleStream::Pair u_light = samples.read_2d(light_slot);
-                radiance += beta * medium_direct_light(ctx, *fog, x, d_in, samples.read_1d(choice_slot), u_light.u1,
+                radiance += beta * medium_direct_light(ctx, medium, x, d_in, samples.read_1d(choice_slot), u_light.u1,
                                                        u_light.u2, counters);
                 // The phase function is sampled exactly: the throughput is unchanged.
                 const SampleStream::Pair u_phase = samples.read_2d(phase_slot);
-                const PhaseSample ps = sample_henyey_greenstein(fog->g, d_in, u_phase.u1, u_phase.u2);
+                const PhaseSample ps = sample_henyey_greenstein(m.g, d_in, u_phase.u1, u_phase.u2);
                 previous_delta = false;
                 previous_pdf = ps.pdf;
                 previous_position = x;
@@ -193,6 +209,19 @@ Vec3 trace_path_recorded(const IntegratorContext& ctx, const Ray& camera_ray, Sa
                 if (!survives_roulette(depth + volume_events - 1, roulette_slot)) break;
                 continue;
             }
+        }
+        if (found && tracking && is_interface(scene, hit.triangle, hit.instance)) [[unlikely]] {
+            // An interface changes the medium and nothing else: the ray goes
+            // on from the far side, and the last bounce's MIS data stay.
+            if (++crossings > kMaxInterfaceCrossings) {
+                recorder.end("more interface crossings than sombra follows");
+                break;
+            }
+            const SurfaceInteraction si = make_surface_interaction(scene, ray, hit);
+            medium = medium_sides(scene, si, medium).far;
+            cone = scattered_cone(cone, cone.active() ? hit.t * length(ray.dir) : 0.0f, true);
+            ray = Ray{offset_ray_origin(si.position, si.position_error, -si.n_g), ray.dir};
+            continue;
         }
         if (!found) {
             const Vec3 dir = normalize(ray.dir);
@@ -216,9 +245,11 @@ Vec3 trace_path_recorded(const IntegratorContext& ctx, const Ray& camera_ray, Sa
                                                           surface_footprint(cone, hit_distance, ray.dir, si.n_g))
                                        : scene.materials[si.material];
         const Vec3 wo = -normalize(ray.dir);
+        const MediumSides sides = tracking ? medium_sides(scene, si, medium) : MediumSides{medium, medium, false};
         // The segment just travelled ran inside the volume that the hit
-        // surface bounds (KHR_materials_volume): Beer–Lambert along its length.
-        if (!si.outside && material.type == MaterialType::Pbr && material.thickness > 0.0f)
+        // surface bounds (KHR_materials_volume): Beer–Lambert along its
+        // length, unless the object's interior medium replaces it.
+        if (!si.outside && material.type == MaterialType::Pbr && material.thickness > 0.0f && !sides.boundary)
             beta = beta * volume_transmittance(material, hit.t * length(ray.dir));
         recorder.surface(ray, hit, si, material, beta);
 
@@ -249,11 +280,14 @@ Vec3 trace_path_recorded(const IntegratorContext& ctx, const Ray& camera_ray, Sa
 
         const ShadingView view{si, material, bsdf_point, wo};
         if (!is_delta_bsdf(material)) {
-            add_delta_lights(lights, *ctx.accel, si, material, bsdf_point, wo, beta, radiance, counters, recorder, fog);
+            const ShadowMedia shadow_media{&scene, sides, true};
+            const ShadowMedia* media = tracking ? &shadow_media : nullptr;
+            add_delta_lights(lights, *ctx.accel, si, material, bsdf_point, wo, beta, radiance, counters, recorder,
+                             media);
             if (lights.has_sampled_lights() && ctx.strategy != LightStrategy::BsdfOnly) {
                 const SampleStream::Pair u_light = samples.read_2d(light_slot);
-                radiance +=
-                    beta * sample_one_light(ctx, view, samples.read_1d(choice_slot), u_light, counters, recorder, fog);
+                radiance += beta * sample_one_light(ctx, view, samples.read_1d(choice_slot), u_light, counters,
+                                                    recorder, media);
             }
         } else {
             recorder.delta_material();
@@ -279,6 +313,7 @@ Vec3 trace_path_recorded(const IntegratorContext& ctx, const Ray& camera_ray, Sa
         previous_position = si.position;
         previous_normal = light_normal(material, si);
         ray = Ray{spawn_origin(si, bs.wi), bs.wi};
+        medium = medium_toward(sides, si.n_g, bs.wi);
         cone = scattered_cone(cone, hit_distance, bs.delta);
         ++counters.bounce_rays;
 

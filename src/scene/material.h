@@ -23,6 +23,9 @@ enum class MaterialType {
     Dielectric,  // smooth glass: Fresnel reflection and refraction, ior, kt (§11)
     Conductor,   // GGX microfacet metal, Schlick Fresnel from ks, roughness (§11)
     Pbr,         // glTF 2.0 metallic–roughness: base_color, metallic, roughness, ior (§11)
+    // A boundary of a medium that rays cross unchanged (spec §26's
+    // "interface", Cycles' volume-only objects): no BSDF, no emission.
+    Interface,
 };
 
 // Marks a material parameter without a texture.

@@ -70,7 +70,16 @@ struct SceneObject {
     // first_instance … first_instance + instance_count − 1 instead.
     std::uint32_t first_instance = 0;
     std::uint32_t instance_count = 0;
+    // A medium boundary (spec §26): `interior` fills the side its winding
+    // normals point away from, `exterior` the other side (kNoMedium:
+    // vacuum). Without bounds_medium a crossing keeps the current medium.
+    bool bounds_medium = false;
+    std::uint32_t interior = kNoMedium;
+    std::uint32_t exterior = kNoMedium;
 };
+
+// Scene::interface_material when no object is an "interface" (spec §26).
+inline constexpr std::uint32_t kNoInterface = 0xffffffffu;
 
 // Marks "not in an instance": a triangle of Scene::geometry.
 inline constexpr std::uint32_t kNoInstance = 0xffffffffu;
@@ -109,7 +118,20 @@ struct Scene {
     // outside every object, where the camera starts (kNoMedium: vacuum).
     std::vector<Medium> media;
     std::uint32_t render_medium = kNoMedium;
+    // Where the camera starts when it sits inside an object's interior
+    // ("camera": {"medium"}); unset: the render medium.
+    std::optional<std::uint32_t> camera_medium;
+    // The index in `materials` of the "interface" material (MaterialType::
+    // Interface), or kNoInterface when no object uses it.
+    std::uint32_t interface_material = kNoInterface;
 };
+
+// True when some medium fills space: the render's, the camera's or an
+// object's interior (spec §26).
+bool uses_media(const Scene& scene);
+
+// The medium a camera ray starts in.
+inline std::uint32_t starting_medium(const Scene& scene) { return scene.camera_medium.value_or(scene.render_medium); }
 
 // Places `instance` by `object_to_world`, deriving its inverse, normals'
 // matrix and mirroring; false (the instance untouched) when the matrix is
@@ -121,6 +143,10 @@ bool place_instance(Instance& instance, const Transform& object_to_world);
 inline const TriangleMesh& surface_mesh(const Scene& scene, std::uint32_t instance) {
     return instance == kNoInstance ? scene.geometry : scene.instanced_meshes[scene.instances[instance].mesh];
 }
+
+// The object a hit on `triangle` of surface_mesh(scene, instance) belongs to
+// (nullptr if none does).
+const SceneObject* object_of_surface(const Scene& scene, std::uint32_t triangle, std::uint32_t instance);
 
 // Triangles stored (the world geometry and each instanced mesh once) and
 // drawn (each instance's mesh once per instance): spec §23's statistics.

@@ -113,10 +113,30 @@ void SceneBuilder::reserve(const MeshSizes& s) {
     attribute(s.any_colors, w.colors, s.colors, w.color_indices);
 }
 
+void SceneBuilder::add_object(SceneObject object, const MeshPlacement& placement) {
+    if (placement.media) {
+        object.bounds_medium = true;
+        object.interior = placement.media->interior;
+        object.exterior = placement.media->exterior;
+    }
+    scene_.objects.push_back(std::move(object));
+}
+
+std::uint32_t SceneBuilder::interface_material() {
+    if (scene_.interface_material == kNoInterface) {
+        Material m;
+        m.name = "interface";
+        m.type = MaterialType::Interface;
+        scene_.interface_material = add_material(std::move(m));
+    }
+    return scene_.interface_material;
+}
+
 MeshProblem SceneBuilder::add_mesh(const TriangleMesh& in, std::span<const Material> materials,
                                    std::span<const Texture> textures, const MeshPlacement& placement) {
-    scene_.objects.push_back(
-        SceneObject{placement.name, placement.file, u32(scene_.geometry.triangles.size()), u32(in.triangles.size())});
+    add_object(SceneObject{placement.name, placement.file, u32(scene_.geometry.triangles.size()),
+                           u32(in.triangles.size())},
+               placement);
     return append_mesh(scene_.geometry, in, materials, textures, placement.transform, placement.material);
 }
 
@@ -169,8 +189,9 @@ MeshProblem SceneBuilder::add_instanced_mesh(const TriangleMesh& in, std::span<c
     if (scene_.instances.size() + instances.size() > kMaxInstances) return MeshProblem::TooManyInstances;
     const auto mesh_index = u32(scene_.instanced_meshes.size());
     const auto object_index = u32(scene_.objects.size());
-    scene_.objects.push_back(SceneObject{placement.name, placement.file, u32(scene_.geometry.triangles.size()), 0,
-                                         u32(scene_.instances.size()), u32(instances.size())});
+    add_object(SceneObject{placement.name, placement.file, u32(scene_.geometry.triangles.size()), 0,
+                           u32(scene_.instances.size()), u32(instances.size())},
+               placement);
     TriangleMesh& mesh = scene_.instanced_meshes.emplace_back();
     if (const MeshProblem p = append_mesh(mesh, in, materials, textures, std::nullopt, placement.material);
         p != MeshProblem::None)
@@ -210,7 +231,7 @@ MeshProblem SceneBuilder::add_mesh(TriangleMesh&& mesh, std::vector<Material>&& 
     if (placement.transform || !has_no_geometry(scene_.geometry))
         return add_mesh(std::as_const(mesh), materials, textures, placement);
 
-    scene_.objects.push_back(SceneObject{placement.name, placement.file, 0, u32(mesh.triangles.size())});
+    add_object(SceneObject{placement.name, placement.file, 0, u32(mesh.triangles.size())}, placement);
     if (!indices_in_range(mesh)) return MeshProblem::BadVertexIndex;
     scene_.geometry = std::move(mesh);
     std::vector<std::uint32_t>& ids = scene_.geometry.material_ids;

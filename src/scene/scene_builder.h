@@ -35,6 +35,13 @@
 namespace sombra {
 
 // How a mesh joins the scene.
+// The media on the two sides of an object's surface (indices into
+// Scene::media, kNoMedium: vacuum): SceneObject::interior and exterior.
+struct MediumBoundary {
+    std::uint32_t interior = kNoMedium;
+    std::uint32_t exterior = kNoMedium;
+};
+
 struct MeshPlacement {
     std::string name;  // SceneObject::name: the scene file's JSON pointer, or the model's file name
     std::string file;  // SceneObject::file: the mesh file; "" when there is none (a quad light)
@@ -45,6 +52,8 @@ struct MeshPlacement {
     // Set: every triangle gets this material, an index into Scene::materials,
     // and the mesh's own materials and textures are not added.
     std::optional<std::uint32_t> material;
+    // Set: the mesh bounds a medium (spec §26), SceneObject's interior and exterior.
+    std::optional<MediumBoundary> media{};
 };
 
 // What add_mesh found wrong with a mesh. The scene then holds part of the
@@ -83,6 +92,10 @@ public:
         scene_.media = std::move(media);
         scene_.render_medium = render_medium;
     }
+    // The medium the camera sits in when it is not the render medium.
+    void set_camera_medium(std::uint32_t medium) { scene_.camera_medium = medium; }
+    // The index of the "interface" material (spec §26), added on first use.
+    std::uint32_t interface_material();
 
     // Adds a texture to Scene::textures and returns its index; a texture with
     // the same source and encoding as one already there is shared (add_texture).
@@ -138,6 +151,8 @@ public:
     Scene finish();
 
 private:
+    // Appends `object`, with the placement's medium boundary when it has one.
+    void add_object(SceneObject object, const MeshPlacement& placement);
     // Renumbers the TextureRefs of materials [first, end) by `texture_index`
     // (their own table's index → Scene::textures) and sets `textured`.
     void renumber_textures(std::size_t first, const std::vector<std::uint32_t>& texture_index);

@@ -38,6 +38,8 @@ struct ObjectSpec {
     std::vector<Transform> instances;
     bool is_quad_light = false;         // a quad light: no file behind it
     const LoadedMesh* given = nullptr;  // a mesh made from arrays ("mesh": i), no file behind it
+    bool interface = false;             // "material": "interface" (spec §26)
+    std::optional<MediumBoundary> media;  // "interior" and "exterior" (spec §26)
 };
 
 // The object's file, checked to be one before any mesh is read.
@@ -61,14 +63,14 @@ void read_object_file(const SceneJson& s, const Json& v, std::string_view pointe
 
 ObjectSpec read_object(const SceneJson& s, const Json& v, std::string_view pointer, const fs::path& scene_path,
                        const std::map<std::string, std::uint32_t, std::less<>>& material_index,
-                       std::span<const LoadedMesh* const> given_meshes, double start_time) {
+                       std::span<const LoadedMesh* const> given_meshes, double start_time, const Scene& scene) {
     ObjectSpec spec;
     spec.pointer = std::string(pointer);
     if (given_meshes.empty()) {
-        expect_keys(s, v, pointer, {"file", "material", "transform", "instances"});
+        expect_keys(s, v, pointer, {"file", "material", "transform", "instances", "interior", "exterior"});
         read_object_file(s, v, pointer, scene_path, spec);
     } else {
-        expect_keys(s, v, pointer, {"file", "mesh", "material", "transform", "instances"});
+        expect_keys(s, v, pointer, {"file", "mesh", "material", "transform", "instances", "interior", "exterior"});
         if (const Json* m = find_member(v, "mesh")) {
             if (find_member(v, "file")) json_fail(s, pointer, "give either 'file' or 'mesh', not both");
             const std::int64_t i =
@@ -84,9 +86,13 @@ ObjectSpec read_object(const SceneJson& s, const Json& v, std::string_view point
         const std::string material_pointer = json_child(pointer, "material");
         const std::string& name = read_string(s, *m, material_pointer);
         const auto it = material_index.find(name);
-        if (it == material_index.end()) json_fail(s, material_pointer, "unknown material '" + name + "'");
-        spec.material = it->second;
+        spec.interface = name == "interface";
+        if (it != material_index.end())
+            spec.material = it->second;
+        else if (!spec.interface)
+            json_fail(s, material_pointer, "unknown material '" + name + "'");
     }
+    spec.media = read_object_media(s, v, pointer, scene.media, scene.render_medium);
     if (const Json* t = find_member(v, "transform")) {
         if (t->is_object()) {
             spec.keys = read_transform_keys(s, *t, json_child(pointer, "transform"));
@@ -128,7 +134,7 @@ void add_whole(SceneBuilder& builder, const LoadedMesh& loaded, ObjectSpec spec,
     const bool instanced = spec.instances.size() > 1 || !spec.keys.empty();
     const std::string mesh_name = spec.path.string();
     MeshPlacement placement{spec.pointer, spec.is_quad_light ? std::string{} : mesh_name, spec.transform,
-                            spec.material};
+                            spec.material, spec.media};
     std::size_t bad = 0;
     MeshProblem problem = MeshProblem::None;
     if (!instanced && spec.instances.size() == 1) placement.transform = compose(spec.transform, spec.instances[0]);
@@ -163,7 +169,7 @@ void add_whole(SceneBuilder& builder, const LoadedMesh& loaded, ObjectSpec spec,
 void add_parts(SceneBuilder& builder, const LoadedMesh& loaded, const ObjectSpec& spec, const SceneJson& s,
                SceneAnimation& animation) {
     const std::string mesh_name = spec.path.string();
-    const MeshPlacement placement{spec.pointer, mesh_name, std::nullopt, spec.material};
+    const MeshPlacement placement{spec.pointer, mesh_name, std::nullopt, spec.material, spec.media};
     const std::size_t copies = std::max<std::size_t>(1, spec.instances.size());
     const std::string list = json_child(spec.pointer, spec.instances.empty() ? "transform" : "instances");
     const std::string too_many = "the scene would hold more than " + std::to_string(kMaxInstances) + " instances";
@@ -263,34 +269,6 @@ std::string read_scene_text(const fs::path& path) {
     return std::move(text).str();
 }
 
-// "media" and the render's medium, "render": {"medium": NAME} (spec §26).
-void read_scene_media(const SceneJson& s, const Json& root, SceneBuilder& builder) {
-    std::vector<Medium> media;
-    if (const Json* v = find_member(root, "media")) media = read_media(s, *v, "/media");
-    std::uint32_t render_medium = kNoMedium;
-    const Json* render = find_member(root, "render");
-    if (const Json* name = render != nullptr ? find_member(*render, "medium") : nullptr) {
-        const std::string& wanted = read_string(s, *name, "/render/medium");
-        for (std::size_t i = 0; i < media.size(); ++i)
-            if (media[i].name == wanted) render_medium = static_cast<std::uint32_t>(i);
-        if (render_medium == kNoMedium) json_fail(s, "/render/medium", "no medium '" + wanted + "' in /media");
-        // What lies infinitely far is hidden by a medium without end (spec §26, as in Cycles).
-        bool far = find_member(root, "environment") != nullptr;
-        if (const Json* background = find_member(root, "background"))
-            far = far || (background->is_array() && max_component(read_rgb(s, *background, "/background")) > 0.0f);
-        if (const Json* lights = find_member(root, "lights"); lights != nullptr && lights->is_array())
-            for (const Json& light : *lights)
-                if (const Json* type = light.is_object() ? find_member(light, "type") : nullptr)
-                    far = far || (type->is_string() && *type == "directional");
-        if (far && max_component(extinction(media[render_medium])) > 0.0f)
-            json_warn(s, "/render/medium",
-                      "the medium '" + wanted +
-                          "' fills space without end: the environment, the background and directional lights, "
-                          "infinitely far, are hidden by it");
-    }
-    builder.set_media(std::move(media), render_medium);
-}
-
 }  // namespace
 
 LoadedScene load_scene_file(const fs::path& path, Diagnostics& diag) {
@@ -349,7 +327,10 @@ LoadedScene load_scene_text(const std::string& text, const fs::path& path, Diagn
     specs.reserve(objects.size());
     for (std::size_t i = 0; i < objects.size(); ++i)
         specs.push_back(
-            read_object(s, objects[i], json_child("/objects", i), path, material_index, given_meshes, start_time));
+            read_object(s, objects[i], json_child("/objects", i), path, material_index, given_meshes, start_time,
+                        builder.scene()));
+    for (ObjectSpec& spec : specs)
+        if (spec.interface) spec.material = builder.interface_material();
 
     // Quad lights join the geometry after the objects, through the same
     // assembly: each is a two-triangle mesh with its own material.
@@ -432,6 +413,7 @@ LoadedScene load_scene_text(const std::string& text, const fs::path& path, Diagn
     for (std::size_t i = 0; i < quad_meshes.size(); ++i)
         add_object(builder, quad_meshes[i], quad_specs[i], s, animation);
     out.scene = builder.finish();
+    check_medium_objects(s, out.scene);
     if (find_member(root, "animation") || !animation.objects.empty() || !animation.camera.empty() ||
         !animation.lights.empty()) {
         out.scene.animation = std::move(animation);

@@ -1,5 +1,6 @@
-// A scene file's "media" and the render's medium (spec §26): the values read,
-// scaled, and every bad value refused in one line naming its key.
+// A scene file's "media", the render's and the camera's medium and the
+// objects that bound media (spec §26): the values read, scaled, every bad
+// value refused in one line naming its key, and the warnings.
 #include <gtest/gtest.h>
 
 #include <string>
@@ -24,6 +25,15 @@ protected:
             EXPECT_EQ(e.where(), scene_path.string() + where) << text;
             EXPECT_NE(e.message().find(what), std::string::npos) << e.message();
         }
+    }
+    // A closed cube of side 1 (12 triangles) and the same cube without its top.
+    static void write_cubes() {
+        const std::string corners =
+            "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nv 0 0 1\nv 1 0 1\nv 0 1 1\nv 1 1 1\n";
+        const std::string sides =
+            "f 1 3 2\nf 2 3 4\nf 5 6 7\nf 6 8 7\nf 1 2 5\nf 2 6 5\nf 1 5 3\nf 3 5 7\nf 2 4 6\nf 4 8 6\n";
+        write(dir / "cube.obj", corners + sides + "f 3 7 4\nf 4 7 8\n");
+        write(dir / "open_cube.obj", corners + sides);
     }
 };
 
@@ -77,6 +87,79 @@ TEST_F(SceneMedia, BadValuesNameTheirKey) {
                  "no medium 'smoke' in /media");
     expect_error(scene(R"("render": {"medium": "fog"})"), ": /render/medium", "no medium 'fog' in /media");
     expect_error(scene(R"("render": {"max_volume_depth": -1})"), ": /render/max_volume_depth", "between 0 and 65536");
+}
+
+constexpr const char* kTwoMedia = R"("media": {"smoke": {"type": "homogeneous", "sigma_s": [1, 1, 1]},
+                                              "fog": {"type": "homogeneous", "sigma_a": [0.1, 0.1, 0.1]}})";
+
+TEST_F(SceneMedia, ObjectsBoundTheirInteriorAndDefaultToTheRendersMediumOutside) {
+    write_cubes();
+    const Scene s = load(scene(std::string(kTwoMedia) + R"(, "render": {"medium": "fog"})",
+                               R"([{"file": "cube.obj", "material": "interface", "interior": "smoke"},
+                                   {"file": "cube.obj", "material": "interface", "interior": "fog",
+                                    "exterior": "smoke", "transform": [{"translate": [3, 0, 0]}]},
+                                   {"file": "tri.obj"}])"));
+    ASSERT_EQ(s.objects.size(), 3u);
+    const std::uint32_t smoke = s.media[0].name == "smoke" ? 0 : 1, fog = 1 - smoke;
+    EXPECT_TRUE(s.objects[0].bounds_medium);
+    EXPECT_EQ(s.objects[0].interior, smoke);
+    EXPECT_EQ(s.objects[0].exterior, fog);
+    EXPECT_EQ(s.objects[1].interior, fog);
+    EXPECT_EQ(s.objects[1].exterior, smoke);
+    EXPECT_FALSE(s.objects[2].bounds_medium);
+    ASSERT_NE(s.interface_material, kNoInterface);
+    EXPECT_EQ(s.materials[s.interface_material].type, MaterialType::Interface);
+    EXPECT_EQ(s.geometry.material_ids[0], s.interface_material);
+    EXPECT_EQ(s.geometry.material_ids[12], s.interface_material);
+    EXPECT_EQ(starting_medium(s), fog);
+    EXPECT_TRUE(diag.warnings.empty()) << diag.warnings.front();
+}
+
+TEST_F(SceneMedia, TheCameraMayStartInsideAnInterior) {
+    write_cubes();
+    const Scene s = load(std::string("{") + kTwoMedia + R"(, "camera": {"origin": [0.5, 0.5, 0.5], "look_at": [0, 0, 5],
+        "medium": "smoke"}, "objects": [{"file": "cube.obj", "material": "interface", "interior": "smoke"}]})");
+    EXPECT_EQ(s.media[starting_medium(s)].name, "smoke");
+    EXPECT_EQ(s.render_medium, kNoMedium);
+}
+
+TEST_F(SceneMedia, AWarningForAnOpaqueBoundaryAndForAnOpenOne) {
+    write_cubes();
+    load(scene(kTwoMedia, R"([{"file": "cube.obj", "interior": "smoke"}])"));
+    ASSERT_EQ(diag.warnings.size(), 1u);
+    EXPECT_NE(diag.warnings[0].find("/objects/0/interior"), std::string::npos) << diag.warnings[0];
+    EXPECT_NE(diag.warnings[0].find("never entered"), std::string::npos) << diag.warnings[0];
+    diag.warnings.clear();
+    load(scene(kTwoMedia, R"([{"file": "open_cube.obj", "material": "interface", "interior": "smoke"}])"));
+    ASSERT_EQ(diag.warnings.size(), 1u);
+    EXPECT_NE(diag.warnings[0].find("not closed (4 edges"), std::string::npos) << diag.warnings[0];
+}
+
+TEST_F(SceneMedia, BadObjectMediaNameTheirKey) {
+    write_cubes();
+    expect_error(scene(kTwoMedia, R"([{"file": "cube.obj", "interior": "milk"}])"), ": /objects/0/interior",
+                 "no medium 'milk' in /media");
+    expect_error(scene(kTwoMedia, R"([{"file": "cube.obj", "interior": "smoke", "exterior": 3}])"),
+                 ": /objects/0/exterior", "expected a string");
+    expect_error(scene(kTwoMedia, R"([{"file": "cube.obj", "exterior": "smoke"}])"), ": /objects/0/exterior",
+                 "needs 'interior'");
+    expect_error(std::string("{") + kTwoMedia + R"(, "camera": {"origin": [0, 0, 5], "look_at": [0, 0, 0],
+                     "medium": "milk"}, "objects": [{"file": "cube.obj"}]})",
+                 ": /camera/medium", "no medium 'milk' in /media");
+}
+
+TEST_F(SceneMedia, ARoughDielectricIsGltfsRoughTransmission) {
+    const Scene s = load(with_material(R"({"type": "dielectric", "ior": 1.4, "kt": [0.5, 0.6, 0.7], "roughness": 0.3})"));
+    const Material& m = s.materials[s.geometry.material_ids[0]];
+    EXPECT_EQ(m.type, MaterialType::Pbr);
+    EXPECT_FLOAT_EQ(m.roughness, 0.3f);
+    EXPECT_FLOAT_EQ(m.ior, 1.4f);
+    EXPECT_EQ(m.base_color, (Vec3{0.5f, 0.6f, 0.7f}));
+    EXPECT_EQ(m.transmission, 1.0f);
+    EXPECT_GT(m.thickness, 0.0f);  // refracts into a volume, not a thin wall
+    EXPECT_EQ(m.metallic, 0.0f);
+    const Scene smooth = load(with_material(R"({"type": "dielectric", "roughness": 0})"));
+    EXPECT_EQ(smooth.materials[smooth.geometry.material_ids[0]].type, MaterialType::Dielectric);
 }
 
 }  // namespace

@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <initializer_list>
+#include <optional>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <string_view>
@@ -18,6 +19,7 @@
 #include "io/mesh_file.h"
 #include "render/render_settings.h"
 #include "scene/scene.h"
+#include "scene/scene_builder.h"
 #include "scene/transform.h"
 
 namespace sombra {
@@ -150,6 +152,20 @@ EnvironmentMap read_environment(const SceneJson& s, const Json& v, std::string_v
 // "g", "emission", "scale"}, …}. Coefficients are
 // non-negative and come scaled; |g| < 1. In name order.
 std::vector<Medium> read_media(const SceneJson& s, const Json& v, std::string_view pointer);
+
+// The scene's "media", the render's medium ("render": {"medium"}) and the
+// camera's ("camera": {"medium"}), into `builder`.
+void read_scene_media(const SceneJson& s, const Json& root, SceneBuilder& builder);
+
+// An object's "interior" and "exterior" (default: the render's medium) as
+// indices into `media`; nothing when it has neither.
+std::optional<MediumBoundary> read_object_media(const SceneJson& s, const Json& v, std::string_view pointer,
+                                                const std::vector<Medium>& media, std::uint32_t render_medium);
+
+// One warning for each object bounding a medium whose material lets no
+// light in, whose glTF volume attenuation its interior replaces, or whose
+// surface is not closed (spec §26).
+void check_medium_objects(const SceneJson& s, const Scene& scene);
 
 // "transform": a list of steps, the first listed acting first. The result is
 // finite and invertible.

@@ -24,10 +24,14 @@ double read_key_time(const SceneJson& s, const Json& key, const std::string& poi
     return time;
 }
 
-// The "keys" array of a keyed value: at least one entry.
-const Json& read_keys(const SceneJson& s, const Json& v, std::string_view pointer) {
+// The "keys" array of a keyed value: at least one entry. A keyed camera
+// may also name its medium (spec §26), which no key changes.
+const Json& read_keys(const SceneJson& s, const Json& v, std::string_view pointer, bool camera = false) {
     expect_object(s, v, pointer);
-    expect_keys(s, v, pointer, {"keys"});
+    if (camera)
+        expect_keys(s, v, pointer, {"keys", "medium"});
+    else
+        expect_keys(s, v, pointer, {"keys"});
     const std::string p = json_child(pointer, "keys");
     const Json& keys = require_member(s, v, pointer, "keys");
     expect_array(s, keys, p);
@@ -40,8 +44,8 @@ const Json& read_keys(const SceneJson& s, const Json& v, std::string_view pointe
 // read_key(key, its pointer, its time) reads the rest of one.
 template <class Key, class ReadKey>
 std::vector<Key> read_keyed(const SceneJson& s, const Json& v, std::string_view pointer,
-                            std::initializer_list<std::string_view> members, ReadKey read_key) {
-    const Json& keys = read_keys(s, v, pointer);
+                            std::initializer_list<std::string_view> members, ReadKey read_key, bool camera = false) {
+    const Json& keys = read_keys(s, v, pointer, camera);
     const std::string keys_pointer = json_child(pointer, "keys");
     std::vector<Key> out;
     for (std::size_t i = 0; i < keys.size(); ++i) {
@@ -89,6 +93,8 @@ std::vector<CameraKey> read_camera_keys(const SceneJson& s, const Json& v, std::
         // The rest of the key is a camera object of the look-at form (spec §22).
         Json camera = key;
         camera.erase("time");
+        if (camera.contains("medium"))
+            json_fail(s, json_child(p, "medium"), "the camera's medium goes beside 'keys': no key changes it");
         const CameraSpec spec = read_camera(s, camera, p);
         if (!spec.look_at) json_fail(s, p, "a camera key is a look-at camera: 'origin', 'look_at', 'up', 'fov'");
         return CameraKey{time,
@@ -98,7 +104,7 @@ std::vector<CameraKey> read_camera_keys(const SceneJson& s, const Json& v, std::
                          spec.look_at->fov_degrees,
                          spec.aperture_radius,
                          spec.focus_distance};
-    });
+    }, true);
 }
 
 }  // namespace sombra

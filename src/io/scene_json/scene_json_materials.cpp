@@ -17,7 +17,7 @@ const TypeKeys kTypes[] = {
     {"diffuse", {"type", "kd", "ke", "normal_map", "alpha"}},
     {"phong", {"type", "kd", "ks", "shininess", "ke", "normal_map", "alpha"}},
     {"mirror", {"type", "kr", "ke", "normal_map", "alpha"}},
-    {"dielectric", {"type", "ior", "kt", "ke", "normal_map", "alpha"}},
+    {"dielectric", {"type", "ior", "kt", "roughness", "ke", "normal_map", "alpha"}},
     {"conductor", {"type", "ks", "roughness", "ke", "normal_map", "alpha"}},
     {"pbr", {"type", "base_color", "metallic", "roughness", "ior", "ke", "normal_map", "alpha"}},
 };
@@ -56,10 +56,23 @@ void read_optional_ior(const SceneJson& s, const Json& v, std::string_view point
     }
 }
 
+// A rough dielectric (roughness > 0 or textured, spec §26) is glTF's rough
+// transmission through a volume: a pbr material of base colour kt, fully
+// transmissive, with GGX refraction (render/bsdf/bsdf_pbr.cpp). Roughness 0
+// keeps the smooth glass of §11.
 void read_dielectric(const SceneJson& s, const Json& v, std::string_view pointer, Material& m,
                      SceneTextures& textures) {
     read_optional_ior(s, v, pointer, m);
     read_texturable(s, v, pointer, "kt", false, m, textures);
+    read_texturable(s, v, pointer, "roughness", false, m, textures);
+    if (!(m.roughness > 0.0f) && !m.textures.roughness.is_set()) return;
+    m.type = MaterialType::Pbr;
+    m.base_color = m.kt;
+    m.textures.base_color = m.textures.kt;
+    m.textures.kt = TextureRef{};
+    m.metallic = 0.0f;
+    m.transmission = 1.0f;
+    m.thickness = 1.0f;  // bounds a volume: refraction rather than a thin wall
 }
 
 void read_conductor(const SceneJson& s, const Json& v, std::string_view pointer, Material& m, SceneTextures& textures) {
@@ -86,6 +99,8 @@ Material read_material(const SceneJson& s, const std::string& name, const Json& 
     if (!keys) json_fail(s, type_pointer, "unknown material type '" + type + "' (expected " + kTypeList + ")");
     reject_foreign_keys(s, v, pointer, *keys);
 
+    if (name == "interface")
+        json_fail(s, pointer, "'interface' is reserved: it names the boundary rays cross unchanged (spec §26)");
     Material m;
     m.name = name;
     if (type == "diffuse") {

@@ -1,11 +1,14 @@
 // The scene file's "media" (spec §26): named participating media, checked
-// key by key. Homogeneous media only in this version of sombra; a grid
+// key by key, the render's and the camera's medium, and the objects that
+// bound media. Homogeneous media only in this version of sombra; a grid
 // (OpenVDB) medium is refused in one line until it is built.
 #include <cmath>
 #include <string>
 #include <vector>
 
 #include "io/scene_json/scene_json.h"
+#include "scene/mesh_edges.h"
+#include "scene/scene_builder.h"
 
 namespace sombra {
 
@@ -41,6 +44,38 @@ Medium read_medium(const SceneJson& s, const Json& v, std::string_view pointer, 
     return m;
 }
 
+// The index of the medium `name` names, or an error at `pointer`.
+std::uint32_t find_medium(const SceneJson& s, const std::vector<Medium>& media, const Json& name,
+                          const std::string& pointer) {
+    const std::string& wanted = read_string(s, name, pointer);
+    for (std::size_t i = 0; i < media.size(); ++i)
+        if (media[i].name == wanted) return static_cast<std::uint32_t>(i);
+    json_fail(s, pointer, "no medium '" + wanted + "' in /media");
+}
+
+// True when light can enter through a surface of `m`.
+bool lets_light_in(const Material& m) {
+    return m.type == MaterialType::Dielectric || m.type == MaterialType::Interface ||
+           (m.type == MaterialType::Pbr && (m.transmission > 0.0f || m.textures.transmission.is_set()));
+}
+
+// The materials on an object's triangles, each index once.
+std::vector<std::uint32_t> object_materials(const Scene& scene, const SceneObject& object) {
+    const bool instanced = object.instance_count > 0;
+    const TriangleMesh& mesh =
+        instanced ? scene.instanced_meshes[scene.instances[object.first_instance].mesh] : scene.geometry;
+    const std::uint32_t first = instanced ? 0 : object.first_triangle;
+    const std::uint32_t count = instanced ? static_cast<std::uint32_t>(mesh.triangles.size()) : object.triangle_count;
+    std::vector<bool> seen(scene.materials.size());
+    std::vector<std::uint32_t> ids;
+    for (std::uint32_t t = first; t < first + count; ++t)
+        if (const std::uint32_t id = mesh.material_ids[t]; id < seen.size() && !seen[id]) {
+            seen[id] = true;
+            ids.push_back(id);
+        }
+    return ids;
+}
+
 }  // namespace
 
 std::vector<Medium> read_media(const SceneJson& s, const Json& v, std::string_view pointer) {
@@ -49,6 +84,86 @@ std::vector<Medium> read_media(const SceneJson& s, const Json& v, std::string_vi
     for (const auto& [name, medium] : v.items())
         media.push_back(read_medium(s, medium, json_child(pointer, name), name));
     return media;
+}
+
+}  // namespace sombra
+
+namespace sombra {
+
+void read_scene_media(const SceneJson& s, const Json& root, SceneBuilder& builder) {
+    std::vector<Medium> media;
+    if (const Json* v = find_member(root, "media")) media = read_media(s, *v, "/media");
+    std::uint32_t render_medium = kNoMedium;
+    const Json* render = find_member(root, "render");
+    if (const Json* name = render != nullptr ? find_member(*render, "medium") : nullptr) {
+        render_medium = find_medium(s, media, *name, "/render/medium");
+        // What lies infinitely far is hidden by a medium without end (spec §26, as in Cycles).
+        bool far = find_member(root, "environment") != nullptr;
+        if (const Json* background = find_member(root, "background"))
+            far = far || (background->is_array() && max_component(read_rgb(s, *background, "/background")) > 0.0f);
+        if (const Json* lights = find_member(root, "lights"); lights != nullptr && lights->is_array())
+            for (const Json& light : *lights)
+                if (const Json* type = light.is_object() ? find_member(light, "type") : nullptr)
+                    far = far || (type->is_string() && *type == "directional");
+        if (far && max_component(extinction(media[render_medium])) > 0.0f)
+            json_warn(s, "/render/medium",
+                      "the medium '" + media[render_medium].name +
+                          "' fills space without end: the environment, the background and directional lights, "
+                          "infinitely far, are hidden by it");
+    }
+    std::optional<std::uint32_t> camera_medium;
+    if (const Json* camera = find_member(root, "camera"); camera != nullptr && camera->is_object())
+        if (const Json* name = find_member(*camera, "medium"))
+            camera_medium = find_medium(s, media, *name, "/camera/medium");
+    builder.set_media(std::move(media), render_medium);
+    if (camera_medium) builder.set_camera_medium(*camera_medium);
+}
+
+std::optional<MediumBoundary> read_object_media(const SceneJson& s, const Json& v, std::string_view pointer,
+                                                const std::vector<Medium>& media, std::uint32_t render_medium) {
+    const Json* interior = find_member(v, "interior");
+    const Json* exterior = find_member(v, "exterior");
+    if (interior == nullptr) {
+        if (exterior != nullptr)
+            json_fail(s, json_child(pointer, "exterior"), "'exterior' needs 'interior' (the medium the object bounds)");
+        return std::nullopt;
+    }
+    MediumBoundary boundary;
+    boundary.interior = find_medium(s, media, *interior, json_child(pointer, "interior"));
+    boundary.exterior =
+        exterior != nullptr ? find_medium(s, media, *exterior, json_child(pointer, "exterior")) : render_medium;
+    return boundary;
+}
+
+void check_medium_objects(const SceneJson& s, const Scene& scene) {
+    for (const SceneObject& object : scene.objects) {
+        if (!object.bounds_medium) continue;
+        const std::vector<std::uint32_t> ids = object_materials(scene, object);
+        bool enters = false;
+        for (const std::uint32_t id : ids) {
+            const Material& m = scene.materials[id];
+            enters = enters || lets_light_in(m);
+            if (m.type == MaterialType::Pbr && std::isfinite(m.attenuation_distance))
+                json_warn(s, json_child(object.name, "interior"),
+                          "the interior replaces the attenuation of material '" + m.name +
+                              "' (KHR_materials_volume)");
+        }
+        if (!enters)
+            json_warn(s, json_child(object.name, "interior"),
+                      "the object's material is opaque: its interior medium is never entered (use a dielectric, "
+                      "a transmissive pbr or \"interface\")");
+        const bool instanced = object.instance_count > 0;
+        const TriangleMesh& mesh =
+            instanced ? scene.instanced_meshes[scene.instances[object.first_instance].mesh] : scene.geometry;
+        const std::size_t open = open_edge_count(
+            mesh, instanced ? 0 : object.first_triangle,
+            instanced ? static_cast<std::uint32_t>(mesh.triangles.size()) : object.triangle_count);
+        if (open > 0)
+            json_warn(s, json_child(object.name, "interior"),
+                      "the object's surface is not closed (" + std::to_string(open) +
+                          " edges belong to one triangle only): light leaks through its holes into and out of "
+                          "its medium");
+    }
 }
 
 }  // namespace sombra

@@ -182,7 +182,7 @@ RenderSettings read_render(const SceneJson& s, const Json& v, std::string_view p
 
 CameraSpec read_camera(const SceneJson& s, const Json& v, std::string_view pointer) {
     expect_keys(s, v, pointer,
-                {"origin", "left", "up", "forward", "look_at", "fov", "aperture_radius", "focus_distance"});
+                {"origin", "left", "up", "forward", "look_at", "fov", "aperture_radius", "focus_distance", "medium"});
     const bool basis_form = find_member(v, "left") || find_member(v, "forward");
     const bool look_at_form = find_member(v, "look_at") || find_member(v, "fov");
     if (basis_form && look_at_form)

@@ -112,7 +112,8 @@ BsdfPoint make_bsdf_point(Vec3 n_g, Vec3 n_s, bool outside, Vec3 n_c) {
 bool is_delta_bsdf(const Material& m) {
     switch (m.type) {
         case MaterialType::Mirror:
-        case MaterialType::Dielectric: return true;
+        case MaterialType::Dielectric:
+        case MaterialType::Interface: return true;
         case MaterialType::Conductor: return conductor_alpha(m) < kDeltaAlpha;
         case MaterialType::Pbr: return is_delta_pbr(m);
         case MaterialType::Diffuse:
@@ -149,7 +150,8 @@ Vec3 eval_bsdf_other(const Material& m, const BsdfPoint& p, Vec3 wo, Vec3 wi) {
         }
         case MaterialType::Pbr: return eval_pbr(m, p, wo, wi);
         case MaterialType::Mirror:
-        case MaterialType::Dielectric: return Vec3{0.0f};
+        case MaterialType::Dielectric:
+        case MaterialType::Interface: return Vec3{0.0f};
     }
     return Vec3{0.0f};
 }
@@ -163,7 +165,8 @@ BsdfTerms eval_bsdf_terms(const Material& m, const BsdfPoint& p, Vec3 wo, Vec3 w
         case MaterialType::Conductor: return {Vec3{0.0f}, eval_bsdf(m, p, wo, wi)};
         case MaterialType::Pbr: return eval_pbr_terms(m, p, wo, wi);
         case MaterialType::Mirror:
-        case MaterialType::Dielectric: return {Vec3{0.0f}, Vec3{0.0f}};
+        case MaterialType::Dielectric:
+        case MaterialType::Interface: return {Vec3{0.0f}, Vec3{0.0f}};
     }
     return {Vec3{0.0f}, Vec3{0.0f}};
 }
@@ -180,7 +183,8 @@ float pdf_bsdf(const Material& m, const BsdfPoint& p, Vec3 wo, Vec3 wi) {
         }
         case MaterialType::Pbr: return pdf_pbr(m, p, wo, wi);
         case MaterialType::Mirror:
-        case MaterialType::Dielectric: return 0.0f;
+        case MaterialType::Dielectric:
+        case MaterialType::Interface: return 0.0f;
     }
     return 0.0f;
 }
@@ -194,6 +198,7 @@ bool sample_bsdf(const Material& m, const BsdfPoint& p, Vec3 wo, float u_lobe, f
             return sample_specular_reflection(p, wo, m.kr, 1.0f, out);
         case MaterialType::Dielectric: return sample_dielectric(m, p, wo, u_lobe, out);
         case MaterialType::Pbr: return sample_pbr(m, p, wo, u_lobe, u1, u2, out);
+        case MaterialType::Interface: return false;  // the integrators cross it before any BSDF
         case MaterialType::Conductor: {
             const Vec3 wo_l = p.frame.to_local(wo);
             if (wo_l.z <= 0.0f) return false;
