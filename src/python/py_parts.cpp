@@ -111,6 +111,8 @@ py::object check_part(const std::string& kind, const std::string& text, const st
         (void)read_lights(s, v, pointer);
     } else if (kind == "transform") {
         (void)read_transform(s, v, pointer);
+    } else if (kind == "media") {
+        (void)read_media(s, v, pointer);
     } else if (kind == "background") {
         (void)read_rgb(s, v, pointer);
     } else if (kind == "environment") {

@@ -45,6 +45,7 @@ class Scene:
         self._environment = None
         self._meshes: list = []  # _sombra.Mesh, copies of the arrays given
         self._objects: list = []  # {"mesh": i, "material": …, "transform": …}
+        self._media: dict = {}
 
     @classmethod
     def _wrap(cls, impl: Any) -> "Scene":
@@ -89,7 +90,7 @@ class Scene:
     def _assembled(self) -> Any:
         if self._impl is None:
             d: dict = {"render": self._render, "materials": self._materials, "lights": self._lights,
-                       "objects": self._objects}
+                       "objects": self._objects, "media": self._media}
             if self._camera is not None:
                 d["camera"] = self._camera
             if self._background is not None:
@@ -114,6 +115,23 @@ class Scene:
         self._materials = materials
         self._changed()
 
+    def add_medium(self, name: str, medium: Mapping[str, Any]) -> None:
+        """Adds (or replaces) the participating medium ``name``, a dict as in
+        a scene file's "media" (spec §26): ``{"type": "homogeneous",
+        "sigma_a": [...], "sigma_s": [...], "g": 0, "emission": [...],
+        "scale": 1}``. A mesh bounds it with ``add_mesh(..., interior=name)``;
+        ``render_settings = {"medium": name}`` fills the space outside every
+        object with it; a camera dict's "medium" starts the camera in it."""
+        self._from_code("add_medium")
+        if not isinstance(name, str):
+            raise TypeError(f"add_medium: name must be str, not {type(name).__name__}")
+        if not isinstance(medium, Mapping):
+            raise TypeError(f"add_medium: medium must be a dict, not {type(medium).__name__}")
+        media = {**self._media, name: _plain(medium)}
+        _sombra.check_part("media", json.dumps(media), "/media")
+        self._media = media
+        self._changed()
+
     def add_light(self, light: Mapping[str, Any]) -> None:
         """Adds a light, a dict as in a scene file's "lights" (point, spot,
         directional, quad)."""
@@ -128,11 +146,16 @@ class Scene:
     def add_mesh(self, positions: np.ndarray, indices: np.ndarray, normals: Optional[np.ndarray] = None,
                  uvs: Optional[np.ndarray] = None, material: Optional[str] = None,
                  transform: Optional[Sequence[Mapping[str, Any]]] = None,
-                 instances: Optional[Sequence[Sequence[Mapping[str, Any]]]] = None) -> None:
+                 instances: Optional[Sequence[Sequence[Mapping[str, Any]]]] = None,
+                 interior: Optional[str] = None, exterior: Optional[str] = None) -> None:
         """Adds a triangle mesh from numpy arrays (copied): positions float
         (N, 3), indices integer (M, 3) into positions, optional per-vertex
         normals float (N, 3) and uvs float (N, 2). ``material`` names one
-        added with add_material (else the default diffuse grey);
+        added with add_material, or is "interface" (a boundary rays cross
+        unchanged, spec §26), else the default diffuse grey. ``interior``
+        and ``exterior`` name media added with add_medium: the mesh bounds
+        ``interior`` on the side its winding normals point away from
+        (``exterior``, default the render's medium, on the other);
         ``transform`` is a scene file's transform list
         (``[{"scale": 2}, {"translate": [0, 1, 0]}]``). It renders exactly
         as the same mesh read from an OBJ file. ``instances``, a list of
@@ -144,9 +167,19 @@ class Scene:
         if material is not None:
             if not isinstance(material, str):
                 raise TypeError(f"add_mesh: material must be str, not {type(material).__name__}")
-            if material not in self._materials:
+            if material not in self._materials and material != "interface":
                 raise Error(f"<scene>: /objects/{i}/material: unknown material '{material}'")
             obj["material"] = material
+        for key, name in (("interior", interior), ("exterior", exterior)):
+            if name is None:
+                continue
+            if not isinstance(name, str):
+                raise TypeError(f"add_mesh: {key} must be str, not {type(name).__name__}")
+            if name not in self._media:
+                raise Error(f"<scene>: /objects/{i}/{key}: no medium '{name}' in /media")
+            obj[key] = name
+        if exterior is not None and interior is None:
+            raise Error(f"<scene>: /objects/{i}/exterior: 'exterior' needs 'interior' (the medium the object bounds)")
         if transform is not None:
             if not isinstance(transform, (list, tuple)):
                 raise TypeError(f"add_mesh: transform must be a list of steps, not {type(transform).__name__}")
