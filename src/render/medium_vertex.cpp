@@ -8,13 +8,13 @@
 namespace sombra {
 
 Vec3 medium_direct_light(const IntegratorContext& ctx, std::uint32_t medium_index, Vec3 x, Vec3 d_in,
-                         float u_choice, float u1, float u2, RayCounters& counters) {
+                         float u_choice, float u1, float u2, RayCounters& counters, TrackingRng& rng) {
     const LightSet& lights = *ctx.lights;
     const Medium& medium = ctx.scene->media[medium_index];
     // What arrives along a shadow ray from x (0 where a surface blocks it).
     auto arriving = [&](const Ray& shadow) {
         ++counters.shadow_rays;
-        return shadow_transmittance(*ctx.accel, *ctx.scene, shadow, medium_index, true);
+        return shadow_transmittance(*ctx.accel, *ctx.scene, shadow, medium_index, true, &rng);
     };
     Vec3 total{0.0f};
     for (const PunctualLight& light : lights.delta) {

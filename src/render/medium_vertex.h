@@ -9,6 +9,7 @@
 #include <cstdint>
 
 #include "render/integrator.h"
+#include "render/media/grid_medium.h"
 #include "render/ray_counters.h"
 
 namespace sombra {
@@ -18,7 +19,8 @@ namespace sombra {
 // the scene's media, starting in `medium` (an index into Scene::media), and
 // across interface surfaces (render/shadow_ray.h). Out of line:
 // inlined, it made the path integrator's loop 3 % slower on scenes without media.
+// Grid media's transmittance draws from `rng`.
 Vec3 medium_direct_light(const IntegratorContext& ctx, std::uint32_t medium, Vec3 x, Vec3 d_in, float u_choice,
-                         float u1, float u2, RayCounters& counters);
+                         float u1, float u2, RayCounters& counters, TrackingRng& rng);
 
 }  // namespace sombra

@@ -13,6 +13,7 @@
 #include "render/first_hit.h"
 #include "render/integrator.h"
 #include "render/interaction.h"
+#include "render/media/grid_medium.h"
 #include "render/media/homogeneous_medium.h"
 #include "render/media/medium_boundary.h"
 #include "render/media/phase_function.h"
@@ -154,6 +155,8 @@ Vec3 trace_path_recorded(const IntegratorContext& ctx, const Ray& camera_ray, Sa
     // only where the scene has media or interface surfaces.
     const bool tracking = tracks_media(scene);
     std::uint32_t medium = starting_medium(scene);
+    // Grid media's tracking draws as many numbers as it needs from here.
+    TrackingRng rng{mix64(samples.pixel_key ^ (samples.index + 1ull) * 0xd1b54a32d192ed03ull)};
     int volume_events = 0;
     int crossings = 0;
     for (int depth = 0;;) {
@@ -171,11 +174,16 @@ Vec3 trace_path_recorded(const IntegratorContext& ctx, const Ray& camera_ray, Sa
                 if (found && depth + volume_events == 0 && !is_interface(scene, hit.triangle, hit.instance))
                     record_first_surface(scene, ray, hit, cone, recorder, beta);
             }
-            radiance += beta * homogeneous_emission(m, end);
             const SampleStream::Slot channel_slot = samples.take_1d();
             const SampleStream::Slot distance_slot = samples.take_1d();
-            const FreeFlight flight = sample_homogeneous_free_flight(m, end, samples.read_1d(channel_slot),
-                                                                     samples.read_1d(distance_slot));
+            FreeFlight flight;
+            if (m.density) {
+                flight = sample_grid_free_flight(m, ray.origin, ray.dir / dir_length, end, rng);
+            } else {
+                radiance += beta * homogeneous_emission(m, end);
+                flight = sample_homogeneous_free_flight(m, end, samples.read_1d(channel_slot),
+                                                        samples.read_1d(distance_slot));
+            }
             beta = beta * flight.weight;
             if (!(max_component(beta) > 0.0f)) {
                 recorder.end("the medium absorbed the path");
@@ -195,7 +203,7 @@ Vec3 trace_path_recorded(const IntegratorContext& ctx, const Ray& camera_ray, Sa
                 const SampleStream::Slot roulette_slot = samples.take_1d();
                 const SampleStream::Pair u_light = samples.read_2d(light_slot);
                 radiance += beta * medium_direct_light(ctx, medium, x, d_in, samples.read_1d(choice_slot), u_light.u1,
-                                                       u_light.u2, counters);
+                                                       u_light.u2, counters, rng);
                 // The phase function is sampled exactly: the throughput is unchanged.
                 const SampleStream::Pair u_phase = samples.read_2d(phase_slot);
                 const PhaseSample ps = sample_henyey_greenstein(m.g, d_in, u_phase.u1, u_phase.u2);
@@ -280,7 +288,7 @@ Vec3 trace_path_recorded(const IntegratorContext& ctx, const Ray& camera_ray, Sa
 
         const ShadingView view{si, material, bsdf_point, wo};
         if (!is_delta_bsdf(material)) {
-            const ShadowMedia shadow_media{&scene, sides, true};
+            const ShadowMedia shadow_media{&scene, sides, true, &rng};
             const ShadowMedia* media = tracking ? &shadow_media : nullptr;
             add_delta_lights(lights, *ctx.accel, si, material, bsdf_point, wo, beta, radiance, counters, recorder,
                              media);

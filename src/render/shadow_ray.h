@@ -6,6 +6,7 @@
 
 #include "accel/accel.h"
 #include "core/ray.h"
+#include "render/media/grid_medium.h"
 #include "render/media/medium_boundary.h"
 #include "scene/scene.h"
 
@@ -16,9 +17,10 @@ namespace sombra {
 // transmittance of the media it passes through, starting in `medium` and
 // changing where it crosses an "interface" surface, which never blocks.
 // With `media` off (the direct integrator) interfaces are crossed and media
-// ignored. The transmittance is exact for homogeneous media.
+// ignored. The transmittance is exact for homogeneous media, and ratio
+// tracked with numbers from `rng` through grid media.
 Vec3 shadow_transmittance(const Accel& accel, const Scene& scene, const Ray& shadow, std::uint32_t medium,
-                          bool media);
+                          bool media, TrackingRng* rng);
 
 // intersect() for a ray that crosses "interface" surfaces unchanged (the
 // direct integrator's camera rays, which ignore media): the first other
@@ -31,12 +33,13 @@ struct ShadowMedia {
     const Scene* scene = nullptr;
     MediumSides sides;
     bool media = true;
+    TrackingRng* rng = nullptr;  // for grid media
 };
 
 // shadow_transmittance for a shadow ray leaving a surface of geometric
 // normal n_g (facing the side sides.near is on).
 inline Vec3 shadow_transmittance(const Accel& accel, const ShadowMedia& m, Vec3 n_g, const Ray& shadow) {
-    return shadow_transmittance(accel, *m.scene, shadow, medium_toward(m.sides, n_g, shadow.dir), m.media);
+    return shadow_transmittance(accel, *m.scene, shadow, medium_toward(m.sides, n_g, shadow.dir), m.media, m.rng);
 }
 
 }  // namespace sombra
