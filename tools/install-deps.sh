@@ -18,6 +18,7 @@ packages=(
   libdraco-dev           # KHR_draco_mesh_compression
   libmeshoptimizer-dev   # EXT_meshopt_compression (decoders; the tests encode with it too)
   libwebp-dev            # WebP textures (EXT_texture_webp; the tests encode with it too)
+  libopenvdb-dev         # grid media from OpenVDB files (spec §26; the tests write VDB files with it too)
   assimp-testmodels      # tests: real and deliberately broken glTF 2.0 files (/usr/share/assimp/models/glTF2)
   libgtest-dev libgmock-dev  # tests
   libopenmpi-dev openmpi-bin  # mpirun -np K sombra render (optional: the build works without it)

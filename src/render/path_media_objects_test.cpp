@@ -7,6 +7,7 @@
 
 #include <cmath>
 #include <cstdint>
+#include <memory>
 #include <numbers>
 #include <optional>
 #include <string>
@@ -14,6 +15,7 @@
 #include "render/path_test_util.h"
 #include "render/test_meshes.h"
 #include "scene/light.h"
+#include "scene/transform.h"
 
 namespace sombra {
 namespace {
@@ -214,6 +216,58 @@ TEST(PathMediaObjects, AnAbsorbingInteriorDarkensGlassByBeersLaw) {
         const double expected = (1 - f0) * (1 - f0) * t / (1 - f0 * f0 * t * t);
         expect_agrees(run.estimate({0.0f, 0.0f, 3.0f}, {0.0f, 0.0f, 0.0f}, 20000, 70 + c, c), expected,
                       "absorbing glass");
+    }
+}
+
+// A grid medium of density 1 over world [−1, 1]³ (dense coordinates 1 … 10,
+// padded with zeros beyond), inside an interface box of that size.
+Medium constant_grid(Vec3 sigma_a, Vec3 sigma_s, float g) {
+    auto grid = std::make_shared<DensityGrid>();
+    grid->dims = {12, 12, 12};
+    for (int k = 0; k < 12; ++k)
+        for (int j = 0; j < 12; ++j)
+            for (int i = 0; i < 12; ++i)
+                grid->values.push_back(i > 0 && i < 11 && j > 0 && j < 11 && k > 0 && k < 11 ? 1.0f : 0.0f);
+    build_majorants(*grid);
+    Medium m = medium(sigma_a, sigma_s, g);
+    m.density = grid;
+    m.world_to_grid = compose(make_scale(Vec3{4.5f}), make_translate(Vec3{5.5f}));
+    return m;
+}
+
+TEST(PathMediaObjects, AGridMediumKeepsBeersLawAndItsFurnace) {
+    {
+        // An absorbing grid: 2 units of density 1 between the camera and the emitter.
+        const Vec3 sigma_a{0.3f, 0.6f, 1.2f};
+        SceneBuilder b;
+        b.set_media({constant_grid(sigma_a, Vec3{0.0f}, 0.0f)}, kNoMedium);
+        TriangleMesh floor;
+        add_quad(floor, {-50, -50, -3}, {50, -50, -3}, {50, 50, -3}, {-50, 50, -3}, 0);
+        add_world_mesh(b, floor, {emitter(1.0f)});
+        TriangleMesh box;
+        add_box(box, Vec3{-1.0f}, Vec3{1.0f}, 0);
+        add_object(b, box, b.interface_material(), MediumBoundary{0, kNoMedium});
+        const Scene scene = b.finish();
+        const PathRun run{scene, 8};
+        for (int c = 0; c < 3; ++c)
+            expect_agrees(run.estimate({0.1f, 0.2f, 3.0f}, {0.1f, 0.2f, 0.0f}, 4000, 80 + c, c),
+                          std::exp(-2.0 * static_cast<double>(sigma_a[c])), "through the grid");
+    }
+    std::uint64_t seed = 90;
+    for (const float g : {0.0f, 0.7f}) {
+        // A scattering grid under a white sky stays white.
+        SceneBuilder b;
+        b.set_background(Vec3{1.0f});
+        b.set_media({constant_grid(Vec3{0.0f}, {1.0f, 2.0f, 4.0f}, g)}, kNoMedium);
+        TriangleMesh box;
+        add_box(box, Vec3{-1.0f}, Vec3{1.0f}, 0);
+        add_object(b, box, b.interface_material(), MediumBoundary{0, kNoMedium});
+        const Scene scene = b.finish();
+        PathRun run{scene, 8};
+        run.max_volume_depth = 65536;
+        for (int c = 0; c < 3; ++c)
+            expect_agrees(run.estimate({0.0f, 0.0f, 3.0f}, {0.1f, 0.2f, 0.0f}, 4000, ++seed, c), 1.0,
+                          ("grid furnace, g " + std::to_string(g)).c_str());
     }
 }
 

@@ -29,8 +29,8 @@ struct DensityGrid {
     std::array<int, 3> dims{0, 0, 0};
     std::array<int, 3> origin{0, 0, 0};
     std::vector<float> values;  // finite, ≥ 0
-    // The file's index-to-world transform (affine): voxel centres at integer
-    // index coordinates.
+    // Dense coordinates → the file's world space: the box's origin, then the
+    // file's index-to-world transform (affine; voxel centres at integers).
     Transform index_to_world;
 
     // The majorant grid: for cell (a, b, c), the largest value interpolation

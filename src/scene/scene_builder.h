@@ -92,6 +92,11 @@ public:
         scene_.media = std::move(media);
         scene_.render_medium = render_medium;
     }
+    // Adds a medium after those set_media gave; returns its index.
+    std::uint32_t add_medium(Medium medium) {
+        scene_.media.push_back(std::move(medium));
+        return static_cast<std::uint32_t>(scene_.media.size() - 1);
+    }
     // The medium the camera sits in when it is not the render medium.
     void set_camera_medium(std::uint32_t medium) { scene_.camera_medium = medium; }
     // The index of the "interface" material (spec §26), added on first use.

@@ -5,6 +5,7 @@
 #include "io/scene_json/scene_file.h"
 
 #include <algorithm>
+#include <cmath>
 #include <fstream>
 #include <limits>
 #include <map>
@@ -238,6 +239,40 @@ void add_object(SceneBuilder& builder, const LoadedMesh& loaded, const ObjectSpe
     add_parts(builder, loaded, spec, s, animation);
 }
 
+// An object whose interior is a grid medium places its own copy of it
+// (spec §26): the grid's index-to-world transform, then the object's. A
+// camera inside a grid medium is in its first placement.
+void place_grid_media(const SceneJson& s, std::vector<ObjectSpec>& specs, SceneBuilder& builder) {
+    std::vector<std::uint32_t> first_placement(builder.scene().media.size(), kNoMedium);
+    for (ObjectSpec& spec : specs) {
+        if (!spec.media || spec.media->interior == kNoMedium) continue;
+        const std::uint32_t index = spec.media->interior;
+        if (!builder.scene().media[index].density) continue;
+        Medium placed = builder.scene().media[index];
+        const std::string where = json_child(spec.pointer, "interior");
+        if (spec.instances.size() > 1 || !spec.keys.empty())
+            json_fail(s, where,
+                      "a grid medium inside an object with several instances or a keyed transform is not supported "
+                      "yet");
+        const Transform object =
+            spec.instances.size() == 1 ? compose(spec.transform, spec.instances[0]) : spec.transform;
+        const Transform grid_to_world = compose(placed.density->index_to_world, object);
+        const float det = determinant3(grid_to_world);
+        if (!(det != 0.0f) || !std::isfinite(det))
+            json_fail(s, where, "the grid's and the object's transforms together are not invertible");
+        placed.world_to_grid = inverse_affine(grid_to_world);
+        spec.media->interior = builder.add_medium(std::move(placed));
+        if (first_placement[index] == kNoMedium) first_placement[index] = spec.media->interior;
+    }
+    const std::optional<std::uint32_t> camera = builder.scene().camera_medium;
+    if (camera && *camera < first_placement.size() && builder.scene().media[*camera].density) {
+        if (first_placement[*camera] == kNoMedium)
+            json_fail(s, "/camera/medium",
+                      "the grid medium '" + builder.scene().media[*camera].name + "' is no object's interior");
+        builder.set_camera_medium(first_placement[*camera]);
+    }
+}
+
 // A light a glTF file placed, carried by its object's transform.
 PunctualLight placed_light(PunctualLight light, const Transform& transform, const SceneJson& s,
                            const std::string& object_pointer) {
@@ -331,6 +366,7 @@ LoadedScene load_scene_text(const std::string& text, const fs::path& path, Diagn
                         builder.scene()));
     for (ObjectSpec& spec : specs)
         if (spec.interface) spec.material = builder.interface_material();
+    place_grid_media(s, specs, builder);
 
     // Quad lights join the geometry after the objects, through the same
     // assembly: each is a two-triangle mesh with its own material.

@@ -79,9 +79,12 @@ TEST_F(SceneMedia, BadValuesNameTheirKey) {
     expect_error(with_media(R"({"fog": {"type": "homogeneous", "colour": [1, 1, 1]}})"), ": /media/fog/colour",
                  "unknown key 'colour'");
     expect_error(with_media(R"({"fog": {"sigma_s": [1, 1, 1]}})"), ": /media/fog/type", "missing required key");
-    expect_error(with_media(R"({"fog": {"type": "smoke"}})"), ": /media/fog/type", "unknown medium type 'smoke'");
-    expect_error(with_media(R"({"fog": {"type": "grid", "file": "smoke.vdb"}})"), ": /media/fog/type",
-                 "not supported yet");
+    expect_error(with_media(R"({"fog": {"type": "smoke"}})"), ": /media/fog/type",
+                 "unknown medium type 'smoke' (expected 'homogeneous' or 'grid')");
+    expect_error(with_media(R"({"fog": {"type": "grid", "file": "smoke.vdb", "emission": [1, 1, 1]}})"),
+                 ": /media/fog/emission", "grid media emit nothing");
+    expect_error(with_media(R"({"fog": {"type": "grid", "file": "smoke.vdb"}})"), ": /media/fog/file",
+                 "'smoke.vdb': cannot open OpenVDB file: no such file");
     expect_error(with_media(R"([1, 2])"), ": /media", "expected an object");
     expect_error(with_media(R"({"fog": {"type": "homogeneous"}})", R"({"medium": "smoke"})"), ": /render/medium",
                  "no medium 'smoke' in /media");
@@ -146,6 +149,45 @@ TEST_F(SceneMedia, BadObjectMediaNameTheirKey) {
     expect_error(std::string("{") + kTwoMedia + R"(, "camera": {"origin": [0, 0, 5], "look_at": [0, 0, 0],
                      "medium": "milk"}, "objects": [{"file": "cube.obj"}]})",
                  ": /camera/medium", "no medium 'milk' in /media");
+}
+
+// The shared cloud (../shared/models/vdb/cloud.vdb) as a medium named "cloud".
+std::string cloud_media() {
+    return R"("media": {"cloud": {"type": "grid", "file": ")" +
+           (std::filesystem::path(SOMBRA_SHARED_DIR) / "models/vdb/cloud.vdb").string() +
+           R"(", "sigma_s": [10, 10, 10], "scale": 2}})";
+}
+
+TEST_F(SceneMedia, AGridMediumIsPlacedByTheObjectItFills) {
+    if (!std::filesystem::exists(std::filesystem::path(SOMBRA_SHARED_DIR) / "models/vdb/cloud.vdb"))
+        GTEST_SKIP() << "needs ../shared/models/vdb/cloud.vdb";
+    write_cubes();
+    const Scene s = load(scene(cloud_media(), R"([{"file": "cube.obj", "material": "interface", "interior": "cloud",
+                                                   "transform": [{"translate": [5, 0, 0]}]}])"));
+    ASSERT_EQ(s.media.size(), 2u);  // the medium as named, and the object's placement of it
+    const std::uint32_t placed = s.objects[0].interior;
+    ASSERT_EQ(placed, 1u);
+    const Medium& m = s.media[placed];
+    ASSERT_TRUE(m.density);
+    EXPECT_FLOAT_EQ(m.sigma_s.x, 20.0f);
+    // Voxel (1, 4, 1), dense (1, 1, 1), sits at −1 + (i + 0.5)/32, moved by +5 in x.
+    const Vec3 q = transform_point(m.world_to_grid, {5.0f - 1.0f + 1.5f / 32.0f, -1.0f + 4.5f / 32.0f, -1.0f + 1.5f / 32.0f});
+    EXPECT_NEAR(q.x, 1.0f, 1e-4f);
+    EXPECT_NEAR(q.y, 1.0f, 1e-4f);
+    EXPECT_NEAR(q.z, 1.0f, 1e-4f);
+
+    expect_error(scene(cloud_media() + R"(, "render": {"medium": "cloud"})"), ": /render/medium",
+                 "the grid medium 'cloud' cannot fill the scene");
+    expect_error(scene(cloud_media(), R"([{"file": "cube.obj", "material": "interface", "interior": "cloud",
+                                           "exterior": "cloud"}])"),
+                 ": /objects/0/exterior", "a grid medium fills only the interior");
+    expect_error(scene(cloud_media(), R"([{"file": "cube.obj", "material": "interface", "interior": "cloud",
+                                           "instances": [[], [{"translate": [3, 0, 0]}]]}])"),
+                 ": /objects/0/interior", "not supported yet");
+    const std::string missing_grid = R"("media": {"cloud": {"type": "grid", "grid": "smoke", "file": ")" +
+                                     (std::filesystem::path(SOMBRA_SHARED_DIR) / "models/vdb/cloud.vdb").string() +
+                                     R"("}})";
+    expect_error(scene(missing_grid), ": /media/cloud/grid", "no grid 'smoke' (the file has 'density')");
 }
 
 TEST_F(SceneMedia, ARoughDielectricIsGltfsRoughTransmission) {

@@ -3,10 +3,13 @@
 // bound media. Homogeneous media only in this version of sombra; a grid
 // (OpenVDB) medium is refused in one line until it is built.
 #include <cmath>
+#include <filesystem>
+#include <memory>
 #include <string>
 #include <vector>
 
 #include "io/scene_json/scene_json.h"
+#include "io/vdb/vdb_reader.h"
 #include "scene/mesh_edges.h"
 #include "scene/scene_builder.h"
 
@@ -14,16 +17,42 @@ namespace sombra {
 
 namespace {
 
+// A grid medium's density: "file" (relative to the scene's folder) and
+// "grid" (default "density"), the reader's problems naming the key.
+std::shared_ptr<const DensityGrid> read_density(const SceneJson& s, const Json& v, std::string_view pointer) {
+    const std::string file_pointer = json_child(pointer, "file");
+    const std::string& file = read_string(s, require_member(s, v, pointer, "file"), file_pointer);
+    if (file.empty() || file.find('\0') != std::string::npos)
+        json_fail(s, file_pointer, "expected a file name");
+    std::string grid = "density";
+    const std::string grid_pointer = json_child(pointer, "grid");
+    if (const Json* g = find_member(v, "grid")) grid = read_string(s, *g, grid_pointer);
+    const std::filesystem::path path = std::filesystem::path(s.name).parent_path() / file;
+    try {
+        return std::make_shared<const DensityGrid>(read_vdb_density(path, grid));
+    } catch (const Error& e) {
+        const bool about_grid = e.message().rfind("no grid", 0) == 0 || e.message().rfind("grid '", 0) == 0 ||
+                                e.message().rfind("voxel", 0) == 0;
+        json_fail(s, about_grid ? grid_pointer : file_pointer, "'" + file + "': " + e.message());
+    }
+}
+
 Medium read_medium(const SceneJson& s, const Json& v, std::string_view pointer, const std::string& name) {
     expect_object(s, v, pointer);
     const std::string type_pointer = json_child(pointer, "type");
     const std::string& type = read_string(s, require_member(s, v, pointer, "type"), type_pointer);
-    if (type == "grid") json_fail(s, type_pointer, "grid (OpenVDB) media are not supported yet: only 'homogeneous'");
-    if (type != "homogeneous")
-        json_fail(s, type_pointer, "unknown medium type '" + type + "' (expected 'homogeneous')");
-    expect_keys(s, v, pointer, {"type", "sigma_a", "sigma_s", "g", "emission", "scale"});
+    if (type != "homogeneous" && type != "grid")
+        json_fail(s, type_pointer, "unknown medium type '" + type + "' (expected 'homogeneous' or 'grid')");
     Medium m;
     m.name = name;
+    if (type == "grid") {
+        if (find_member(v, "emission"))
+            json_fail(s, json_child(pointer, "emission"), "grid media emit nothing in this version of sombra");
+        expect_keys(s, v, pointer, {"type", "file", "grid", "sigma_a", "sigma_s", "g", "scale"});
+        m.density = read_density(s, v, pointer);
+    } else {
+        expect_keys(s, v, pointer, {"type", "sigma_a", "sigma_s", "g", "emission", "scale"});
+    }
     // read_rgb refuses negative components, naming the key.
     if (const Json* a = find_member(v, "sigma_a")) m.sigma_a = read_rgb(s, *a, json_child(pointer, "sigma_a"));
     if (const Json* sc = find_member(v, "sigma_s")) m.sigma_s = read_rgb(s, *sc, json_child(pointer, "sigma_s"));
@@ -97,6 +126,10 @@ void read_scene_media(const SceneJson& s, const Json& root, SceneBuilder& builde
     const Json* render = find_member(root, "render");
     if (const Json* name = render != nullptr ? find_member(*render, "medium") : nullptr) {
         render_medium = find_medium(s, media, *name, "/render/medium");
+        if (media[render_medium].density)
+            json_fail(s, "/render/medium",
+                      "the grid medium '" + media[render_medium].name +
+                          "' cannot fill the scene: make it an object's \"interior\"");
         // What lies infinitely far is hidden by a medium without end (spec §26, as in Cycles).
         bool far = find_member(root, "environment") != nullptr;
         if (const Json* background = find_member(root, "background"))
@@ -132,6 +165,9 @@ std::optional<MediumBoundary> read_object_media(const SceneJson& s, const Json& 
     boundary.interior = find_medium(s, media, *interior, json_child(pointer, "interior"));
     boundary.exterior =
         exterior != nullptr ? find_medium(s, media, *exterior, json_child(pointer, "exterior")) : render_medium;
+    if (boundary.exterior != kNoMedium && media[boundary.exterior].density)
+        json_fail(s, json_child(pointer, "exterior"),
+                  "a grid medium fills only the interior of the object that places it");
     return boundary;
 }
 
