@@ -6,6 +6,7 @@
 // anything else escaping is a bug.
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -17,6 +18,7 @@
 #include "io/images/texture_image.h"
 #include "io/mesh_file.h"
 #include "io/scene_json/scene_file.h"
+#include "io/vdb/vdb_reader.h"
 #include "scene/scene.h"
 #include "scene/texture.h"
 #include "scene/transform.h"
@@ -30,7 +32,7 @@ namespace fs = std::filesystem;
 inline constexpr std::string_view kMtlSeparator = "\n#MTL\n";
 inline constexpr const char* kMtlName = "m.mtl";
 
-enum class Target { Obj, Ply, Scene, Gltf, Texture };
+enum class Target { Obj, Ply, Scene, Gltf, Texture, Vdb };
 
 // A 2×2 RGB PNG (red, green over blue, white) for the scenes and MTL
 // materials of fuzz_scene to name as "t.png".
@@ -102,7 +104,30 @@ inline fs::path stage_input(Target target, std::string_view bytes, const fs::pat
             write_file(path, bytes);
             return path;
         }
+        case Target::Vdb: write_file(folder / "fuzz.vdb", bytes); return folder / "fuzz.vdb";
     }
+    return {};
+}
+
+// "" when `g` is a density the renderer can track through, else what is wrong.
+inline std::string density_problem(const DensityGrid& g) {
+    std::uint64_t voxels = 1;
+    for (const int d : g.dims) {
+        if (d < 2) return "a dense box thinner than its padding";
+        voxels *= static_cast<std::uint64_t>(d);
+    }
+    if (voxels > kMaxDenseVoxels || g.values.size() != voxels) return "dense box and values differ";
+    float largest = 0;
+    for (const float v : g.values) {
+        if (!std::isfinite(v) || v < 0) return "a density not finite or negative";
+        largest = std::max(largest, v);
+    }
+    if (largest != g.max_value) return "max_value is not the largest density";
+    std::uint64_t cells = 1;
+    for (const int c : g.cells) cells *= static_cast<std::uint64_t>(c);
+    if (g.majorants.size() != cells) return "majorant grid of the wrong size";
+    for (const float v : g.index_to_world.m)
+        if (!std::isfinite(v)) return "non-finite transform";
     return {};
 }
 
@@ -321,6 +346,7 @@ inline std::string run_input(Target target, std::string_view bytes, const fs::pa
                 const bool deep = path.extension() != ".png";  // EXR and HDR values may exceed 1
                 return texture_problem(read_texture_file(path, texture_encoding(bytes)), !deep);
             }
+            case Target::Vdb: return density_problem(read_vdb_density(path, "density"));
         }
     } catch (const Error&) {
         return {};

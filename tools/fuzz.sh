@@ -2,11 +2,12 @@
 # Builds the libFuzzer targets (CMake preset "fuzz", clang) and runs each for
 # a given time, one after the other, with its seed corpus.
 #
-#   tools/fuzz.sh [SECONDS_PER_TARGET] [TARGET...]     (default: 60 s; obj ply scene gltf texture view shard)
+#   tools/fuzz.sh [SECONDS_PER_TARGET] [TARGET...]     (default: 60 s; obj ply scene gltf texture view shard vdb)
 #
 # Targets: obj (OBJ + MTL), ply, scene (scene JSON down to loaded meshes),
 # gltf (.gltf / .glb through tinygltf and Draco), texture (an image file
-# through sombra's texture loading); see fuzz/fuzz_harness.h. Corpora grow in
+# through sombra's texture loading), vdb (an OpenVDB file through the grid
+# medium reader); see fuzz/fuzz_harness.h. Corpora grow in
 # build/fuzz/corpus/TARGET (seeded from ../shared/objsuite, the small
 # ../shared/models, scenes/ and ../shared/scenes, fuzz/seeds/gltf,
 # ../shared/models/gltf and the assimp glTF2 test models, fuzz/seeds/texture
@@ -23,12 +24,12 @@ root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 seconds="${1:-60}"
 [ $# -gt 0 ] && shift
 targets=("$@")
-[ ${#targets[@]} -gt 0 ] || targets=(obj ply scene gltf texture view shard)
+[ ${#targets[@]} -gt 0 ] || targets=(obj ply scene gltf texture view shard vdb)
 case "$seconds" in
-  '' | *[!0-9]*) echo "usage: tools/fuzz.sh [SECONDS_PER_TARGET] [obj|ply|scene|gltf|texture|view|shard ...]" >&2; exit 2 ;;
+  '' | *[!0-9]*) echo "usage: tools/fuzz.sh [SECONDS_PER_TARGET] [obj|ply|scene|gltf|texture|view|shard|vdb ...]" >&2; exit 2 ;;
 esac
 for t in "${targets[@]}"; do
-  case "$t" in obj | ply | scene | gltf | texture | view | shard) ;; *) echo "fuzz.sh: unknown target '$t' (obj, ply, scene, gltf, texture, view, shard)" >&2; exit 2 ;; esac
+  case "$t" in obj | ply | scene | gltf | texture | view | shard | vdb) ;; *) echo "fuzz.sh: unknown target '$t' (obj, ply, scene, gltf, texture, view, shard, vdb)" >&2; exit 2 ;; esac
 done
 
 shared="${SOMBRA_SHARED_DIR:-$root/../shared}"
@@ -163,6 +164,13 @@ seed_view() {
 seed_shard() {
   local corpus="$1" f
   for f in "$root"/fuzz/seeds/shard/*.exr; do add_seed "$corpus" "$(basename "$f")" <"$f"; done
+}
+
+# VDB seeds: small OpenVDB files (fuzz/seeds/vdb: voxels, an active tile
+# with zip compression, a float grid beside a vec3 one).
+seed_vdb() {
+  local corpus="$1" f
+  for f in "$root"/fuzz/seeds/vdb/*.vdb; do add_seed "$corpus" "$(basename "$f")" <"$f"; done
 }
 
 status=0

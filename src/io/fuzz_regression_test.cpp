@@ -79,7 +79,8 @@ protected:
 TEST_F(FuzzRegression, EveryReproducerLoadsOrFailsCleanly) {
     const std::size_t replayed = replay_all(fuzz::Target::Obj, "obj") + replay_all(fuzz::Target::Ply, "ply") +
                                  replay_all(fuzz::Target::Scene, "scene") +
-                                 replay_all(fuzz::Target::Texture, "texture") + replay_all(fuzz::Target::Gltf, "gltf");
+                                 replay_all(fuzz::Target::Texture, "texture") + replay_all(fuzz::Target::Gltf, "gltf") +
+                                 replay_all(fuzz::Target::Vdb, "vdb");
     EXPECT_GE(replayed, 2u);  // at least those tested one by one below
 }
 
