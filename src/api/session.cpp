@@ -67,10 +67,6 @@ void check_explain_pixel(int x, int y, int sample, const RenderSettings& s) {
 }
 
 SampleRecord record_pixel_sample(const RenderJob& job, int x, int y, int sample) {
-    if (job.settings.integrator == IntegratorKind::Path &&
-        (uses_media(*job.scene) || job.scene->interface_material != kNoInterface))
-        throw Error("explain", "a path through media or interface surfaces (spec §26) cannot be told yet; render the "
-                               "scene instead");
     SampleRecord record;
     RayCounters counters;
     trace_pixel_sample(job, x, y, sample, counters, record);

@@ -3,6 +3,7 @@
 // samples and files are one-line errors.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstring>
 #include <nlohmann/json.hpp>
 
@@ -90,6 +91,60 @@ TEST_F(ExplainCli, TextTellsTheStoryAndSvgDrawsIt) {
     const std::string svg = read_text(dir_ / "story.svg");
     EXPECT_EQ(svg.rfind("<svg", 0), 0u);
     EXPECT_NE(svg.find("</svg>"), std::string::npos);
+    expect_no_temp_files();
+}
+
+TEST_F(ExplainCli, APathThroughMediaIsToldAndIsTheRenderedPixel) {
+    // Fog outside, a box of smoke behind interface surfaces, a point light:
+    // the story names the interfaces crossed, the media gone through and the
+    // scattering events, and its value is the rendered pixel to the last bit.
+    write_text(dir_ / "box.obj",
+               "v -1 -1 -1\nv 1 -1 -1\nv -1 1 -1\nv 1 1 -1\nv -1 -1 1\nv 1 -1 1\nv -1 1 1\nv 1 1 1\n"
+               "f 1 3 2\nf 2 3 4\nf 5 6 7\nf 6 8 7\nf 1 2 5\nf 2 6 5\nf 1 5 3\nf 3 5 7\nf 2 4 6\nf 4 8 6\n"
+               "f 3 7 4\nf 4 7 8\n");
+    write_text(dir_ / "smoke.json", R"({
+        "render": {"integrator": "path", "width": 16, "height": 16, "spp": 4},
+        "media": {"fog": {"type": "homogeneous", "sigma_s": [0.05, 0.05, 0.05]},
+                  "smoke": {"type": "homogeneous", "sigma_a": [0.2, 0.2, 0.2], "sigma_s": [2, 2, 2], "g": 0.4}},
+        "camera": {"origin": [0, 0, 6], "look_at": [0, 0, 0], "fov": 30, "medium": "fog"},
+        "lights": [{"type": "point", "position": [0, 4, 2], "intensity": [30, 30, 30]}],
+        "objects": [{"file": "box.obj", "material": "interface", "interior": "smoke"}]
+    })");
+    const std::string args = " --quiet";
+    ASSERT_EQ(run("render smoke.json -o out.pfm" + args).status, 0);
+    const Pfm image = read_pfm(dir_ / "out.pfm");
+    ASSERT_EQ(image.width, 16);
+    const RunResult text = run("explain smoke.json 8 8 --sample 0 --svg story.svg" + args);
+    ASSERT_EQ(text.status, 0) << text.err;
+    EXPECT_NE(text.out.find("through  medium \"fog\""), std::string::npos) << text.out;
+    EXPECT_NE(text.out.find("crosses  the interface"), std::string::npos) << text.out;
+    EXPECT_NE(text.out.find("into medium \"smoke\""), std::string::npos) << text.out;
+    EXPECT_NE(read_text(dir_ / "story.svg").find("</svg>"), std::string::npos);
+    bool scattered = false;
+    for (int sample = 0; sample < 4; ++sample) {
+        const RunResult r = run("explain smoke.json 8 8 --json --sample " + std::to_string(sample) + args);
+        ASSERT_EQ(r.status, 0) << r.err;
+        const nlohmann::json j = nlohmann::json::parse(r.out);
+        EXPECT_EQ(j["vertices"][0]["media"]["segments"][0]["medium"].get<std::string>(), "fog");
+        for (const nlohmann::json& v : j["vertices"])
+            if (v.contains("scatter")) {
+                const std::string medium = v["scatter"]["medium"].get<std::string>();
+                scattered = scattered || medium == "smoke";
+                EXPECT_TRUE(medium == "smoke" || medium == "fog") << medium;
+                EXPECT_TRUE(v["lights"][0].contains("phase")) << v.dump();
+                EXPECT_TRUE(v["lights"][0].contains("transmittance")) << v.dump();
+            }
+    }
+    EXPECT_TRUE(scattered) << "a sample through 2 units of smoke of σ_s 2 scatters in it";
+    // Every sample's value sums to the pixel the render wrote.
+    float sum[3] = {0, 0, 0};
+    for (int sample = 0; sample < 4; ++sample) {
+        const nlohmann::json j = nlohmann::json::parse(
+            run("explain smoke.json 8 8 --json --sample " + std::to_string(sample) + args).out);
+        for (int c = 0; c < 3; ++c) sum[c] += static_cast<float>(j["value"][c].get<double>());
+    }
+    const float* pixel = &image.rgb[(static_cast<std::size_t>(15 - 8) * 16 + 8) * 3];
+    for (int c = 0; c < 3; ++c) EXPECT_NEAR(sum[c] / 4.0f, pixel[c], 1e-6f * std::max(1.0f, pixel[c]));
     expect_no_temp_files();
 }
 

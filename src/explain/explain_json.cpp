@@ -131,12 +131,14 @@ private:
     }
 
     Json blocker(const BlockerRecord& b) const {
+        // No surface: the media on the way took all the light (spec §26).
+        if (b.triangle == kNoTriangle) return {{"object", nullptr}, {"media", true}};
         Json j = where(b.triangle, b.instance);
         j["distance"] = number(b.distance);
         return j;
     }
 
-    Json delta_light(const DeltaLightRecord& l) const {
+    Json delta_light(const DeltaLightRecord& l, bool medium_vertex) const {
         const PunctualLight& light = c_.job.lights.delta[l.light];
         const LightTypeTraits type = light_type_traits(light.type);
         Json j = {{"type", type.name}, {"index", l.light}};
@@ -156,7 +158,11 @@ private:
             j["cos_s"] = number(l.cos_s);
             if (type.coned) j["spot_factor"] = number(l.spot_factor);
             j["incident"] = vec(l.incident);
-            j["f_r"] = f_terms(l.f_terms, l.f);
+            if (medium_vertex)
+                j["phase"] = number(l.f.x);
+            else
+                j["f_r"] = f_terms(l.f_terms, l.f);
+            j["transmittance"] = vec(l.transmittance);
         }
         if (l.outcome == LightOutcome::Blocked) j["blocker"] = blocker(l.blocker);
         if (l.outcome == LightOutcome::Visible) {
@@ -167,7 +173,7 @@ private:
         return j;
     }
 
-    Json sampled_light(const SampledLightRecord& l) const {
+    Json sampled_light(const SampledLightRecord& l, bool medium_vertex) const {
         if (!l.sampled) return {{"type", "sampled"}, {"outcome", "none"}, {"contribution", vec(l.contribution)}};
         Json j = {{"type", l.environment ? "environment" : "emitter"}, {"light", l.light}};
         if (!l.environment) {
@@ -179,11 +185,15 @@ private:
         j["distance"] = number(l.distance);
         j["radiance"] = vec(l.radiance);
         j["light_pdf"] = number(l.light_pdf);
-        j["bsdf_pdf"] = number(l.bsdf_pdf);
+        j[medium_vertex ? "phase_pdf" : "bsdf_pdf"] = number(l.bsdf_pdf);
         j["mis_weight"] = number(l.mis_weight);
-        j["cos_s"] = number(l.cos_s);
+        if (!medium_vertex) j["cos_s"] = number(l.cos_s);
         if (!l.environment) j["cos_light"] = number(l.cos_light);
-        j["f_r"] = f_terms(l.f_terms, l.f);
+        if (medium_vertex)
+            j["phase"] = number(l.f.x);
+        else
+            j["f_r"] = f_terms(l.f_terms, l.f);
+        j["transmittance"] = vec(l.transmittance);
         if (l.outcome == LightOutcome::Blocked) j["blocker"] = blocker(l.blocker);
         if (l.outcome == LightOutcome::Visible) {
             j["holes"] = holes(l.holes);
@@ -195,10 +205,30 @@ private:
 
     Json lights(const VertexRecord& v) const {
         Json list = Json::array();
-        for (const DeltaLightRecord& l : v.delta_lights) list.push_back(delta_light(l));
-        if (r_.path && v.hit && !v.delta_material && c_.job.lights.has_sampled_lights())
-            list.push_back(sampled_light(v.sampled_light));
+        for (const DeltaLightRecord& l : v.delta_lights) list.push_back(delta_light(l, v.medium_event));
+        if (r_.path && (v.hit || v.medium_event) && !v.delta_material && c_.job.lights.has_sampled_lights())
+            list.push_back(sampled_light(v.sampled_light, v.medium_event));
         return list;
+    }
+
+    // Spec §26: the media the arriving ray went through and the interfaces it crossed.
+    Json media(const VertexRecord& v) const {
+        Json segments = Json::array();
+        for (const MediumSegmentRecord& m : v.segments)
+            segments.push_back({{"medium", c_.scene.media[m.medium].name},
+                                {"distance", std::isfinite(m.distance) ? number(m.distance) : Json(nullptr)},
+                                {"scattered", m.scattered},
+                                {"weight", vec(m.weight)},
+                                {"emission", vec(m.emission)}});
+        Json crossings = Json::array();
+        for (const CrossingRecord& c : v.crossings) {
+            Json j = where(c.triangle, c.instance);
+            j["distance"] = number(c.distance);
+            j["medium_after"] = c.medium_after == kNoMedium ? Json(nullptr) : Json(c_.scene.media[c.medium_after].name);
+            j["after_segments"] = c.after_segments;
+            crossings.push_back(j);
+        }
+        return {{"segments", segments}, {"interfaces", crossings}};
     }
 
     static Json emission(const EmissionRecord& e) {
@@ -216,8 +246,15 @@ private:
         j["hit"] = v.hit ? hit(v.surface) : Json(nullptr);
         j["holes"] = holes(v.holes);
         j["holes_crossed"] = v.holes_crossed;
-        j["emission"] = emission(v.emission);
-        if (!v.hit) return j;
+        if (!v.segments.empty() || !v.crossings.empty()) j["media"] = media(v);
+        if (v.medium_event) {
+            j["scatter"] = {{"medium", c_.scene.media[v.medium].name},
+                            {"x", vec(v.position)},
+                            {"g", number(c_.scene.media[v.medium].g)}};
+        } else {
+            j["emission"] = emission(v.emission);
+        }
+        if (!v.hit && !v.medium_event) return j;
         j["delta_material"] = v.delta_material;
         j["lights"] = lights(v);
         const BounceRecord& b = v.bounce;

@@ -83,7 +83,7 @@ private:
         };
         add(r_.origin);
         for (const VertexRecord& v : r_.vertices)
-            if (v.hit) add(v.surface.position);
+            if (v.hit || v.medium_event) add(v.medium_event ? v.position : v.surface.position);
         for (const PunctualLight& l : c_.job.lights.delta)
             if (light_type_traits(l.type).positioned) add(l.position);  // a light at infinity has no place
         const Point2 interest_lo = lo, interest_hi = hi;
@@ -214,6 +214,7 @@ private:
     }
 
     std::string object_name(std::uint32_t triangle, std::uint32_t instance = kNoInstance) const {
+        if (triangle == kNoTriangle) return "the media on the way (transmittance 0)";
         const TriangleOrigin o = triangle_origin(c_.scene, triangle, instance);
         std::string name = o.file.empty() ? o.object : o.file.substr(o.file.find_last_of('/') + 1);
         return name + instance_words(o) + " triangle " + std::to_string(o.triangle) + " (" + o.material + ")";
@@ -241,12 +242,12 @@ private:
     void path() {
         Vec3 from = r_.origin;
         for (const VertexRecord& v : r_.vertices) {
-            if (!v.hit) {
+            if (!v.hit && !v.medium_event) {
                 line(from, from + 0.3f * view_.extent() * v.ray_dir, kPathColour, 2.2f, "8 4");
                 label(from + 0.3f * view_.extent() * v.ray_dir, "leaves the scene", kPathColour);
                 break;
             }
-            const Vec3 x = v.surface.position;
+            const Vec3 x = v.medium_event ? v.position : v.surface.position;
             line(from, x, kPathColour, 2.2f);
             for (const DeltaLightRecord& l : v.delta_lights) {
                 // Toward a light at infinity the ray has no end: drawn as far as the environment's.
@@ -261,7 +262,7 @@ private:
                 shadow_ray(x, target, s.outcome, s.blocker);
                 dot_at(target, "#e0a000", 3);
             }
-            line(x, x + 0.06f * view_.extent() * v.surface.n_s, kNormalColour, 1.5f);
+            if (!v.medium_event) line(x, x + 0.06f * view_.extent() * v.surface.n_s, kNormalColour, 1.5f);
             dot_at(x, kPathColour, 4);
             // append, not "x" + to_string(), here and below: GCC 12's
             // -Wrestrict misfires on operator+(const char*, string&&) (its bug 105329).
@@ -323,17 +324,21 @@ private:
                          "#222"});
         for (const VertexRecord& v : r_.vertices) {
             const std::string at = r_.path ? std::string("x").append(std::to_string(v.depth)).append(" ") : "";
-            if (!v.hit) {
+            if (v.medium_event) {
+                lines.push_back({at + "scatters in medium \"" + c_.scene.media[v.medium].name + "\", throughput " +
+                                     readable(v.throughput),
+                                 kPathColour});
+            } else if (!v.hit) {
                 lines.push_back({at + "leaves the scene: environment L_e = " + readable(v.emission.radiance) +
                                      ", adds " + readable(v.emission.contribution),
                                  kPathColour});
                 continue;
-            }
-            if (r_.path)
+            } else if (r_.path) {
                 lines.push_back({at + "on " + object_name(v.surface.triangle, v.surface.instance) + ", throughput " +
                                      readable(v.throughput) +
                                      (v.emission.present ? ", emission adds " + readable(v.emission.contribution) : ""),
                                  kPathColour});
+            }
             for (const DeltaLightRecord& l : v.delta_lights)
                 lines.push_back(
                     light_line("  " + at + "light " + std::to_string(l.light), l.outcome, l.blocker, l.contribution));

@@ -1,6 +1,7 @@
 // The story as text: written for a student who has just read the
 // assignment, so each number comes with the name of the term it is.
 #include <algorithm>
+#include <cmath>
 #include <sstream>
 
 #include "explain/describe.h"
@@ -118,7 +119,11 @@ private:
     void vertex(const VertexRecord& v) {
         const bool first = v.depth == 0;
         if (r_.path) {
-            out_ << "\nVertex " << v.depth << (first ? " (what the camera ray meets)" : "") << "\n";
+            out_ << "\nVertex " << v.depth
+                 << (v.medium_event ? " (a scattering event in a medium)"
+                     : first        ? " (what the camera ray meets)"
+                                    : "")
+                 << "\n";
             if (!first)
                 out_ << "  ray      from " << readable(v.ray_origin) << " along " << readable(v.ray_dir) << "\n";
             out_ << "  throughput β = " << readable(v.throughput)
@@ -127,6 +132,11 @@ private:
             out_ << "\nHit\n";
         }
         holes(v.holes, v.holes_crossed, "  through  ", "           ");
+        media(v);
+        if (v.medium_event) {
+            medium_event(v);
+            return;
+        }
         if (!v.hit) {
             out_ << "  nothing: the ray leaves the scene and sees the "
                  << (c_.scene.environment ? "environment map" : "background") << "\n";
@@ -173,6 +183,50 @@ private:
         if (r_.path) bounce(v);
     }
 
+    std::string medium_name(std::uint32_t medium) const {
+        return medium == kNoMedium ? std::string("vacuum") : "medium \"" + c_.scene.media[medium].name + "\"";
+    }
+
+    // Spec §26: the interfaces the arriving ray crossed and the media it went through.
+    void media(const VertexRecord& v) {
+        std::size_t next_crossing = 0;
+        auto crossings_before = [&](std::size_t segment) {
+            for (; next_crossing < v.crossings.size() && v.crossings[next_crossing].after_segments <= segment;
+                 ++next_crossing) {
+                const CrossingRecord& c = v.crossings[next_crossing];
+                out_ << "  crosses  the interface " << where(c.triangle, c.instance) << " at distance "
+                     << readable(c.distance) << ", into " << medium_name(c.medium_after) << "\n";
+            }
+        };
+        for (std::size_t i = 0; i < v.segments.size(); ++i) {
+            crossings_before(i);
+            const MediumSegmentRecord& m = v.segments[i];
+            out_ << "  through  " << medium_name(m.medium) << " for "
+                 << (std::isfinite(m.distance) ? readable(m.distance) : std::string("ever (nothing ahead)"))
+                 << (m.scattered ? ", where the path scatters" : "") << "\n";
+            out_ << "    free-flight weight " << readable(m.weight)
+                 << (m.scattered ? "  (T·σ_s/p(t): transmittance to the event, scattering, over its density)"
+                                 : "  (T/P(no event): transmittance over the chance of passing)")
+                 << "\n";
+            if (m.emission != Vec3{0.0f})
+                out_ << "    the medium's own light adds β·∫T·ε = " << readable(m.emission) << "\n";
+        }
+        crossings_before(v.segments.size());
+    }
+
+    // A scattering event: the phase function in the BSDF's place.
+    void medium_event(const VertexRecord& v) {
+        const Medium& m = c_.scene.media[v.medium];
+        out_ << "  scatters in " << medium_name(v.medium) << " at x = " << readable(v.position) << "\n";
+        out_ << "  phase    Henyey–Greenstein, g = " << readable(m.g)
+             << "  (it plays f_r, with no cosine: p(ω_o, ω_i) integrates to 1)\n";
+        if (v.delta_lights.empty() && c_.job.lights.delta.empty())
+            out_ << "  point, spot and directional lights: none in the scene\n";
+        for (const DeltaLightRecord& l : v.delta_lights) delta_light(l, v.throughput, true);
+        sampled_light(v.sampled_light, true);
+        bounce(v);
+    }
+
     // The cut-outs a ray went through (spec §12): surfaces that are not
     // there. `lead` starts the first line, `indent` the others.
     void holes(const std::vector<HoleRecord>& listed, std::size_t crossed, const char* lead, const char* indent) {
@@ -198,11 +252,16 @@ private:
     }
 
     void blocked(const BlockerRecord& b, const char* tail) {
+        if (b.triangle == kNoTriangle) {
+            out_ << "    BLOCKED: the media on the shadow ray's way take all of its light (transmittance 0)\n";
+            return;
+        }
         out_ << "    BLOCKED: the shadow ray meets " << where(b.triangle, b.instance) << " at distance "
              << readable(b.distance) << tail << "\n";
     }
 
-    void delta_light(const DeltaLightRecord& l, Vec3 beta) {
+    // At a medium vertex (`medium`) the phase function stands for f_r and there is no cosine.
+    void delta_light(const DeltaLightRecord& l, Vec3 beta, bool medium = false) {
         const PunctualLight& light = c_.job.lights.delta[l.light];
         const LightTypeTraits type = light_type_traits(light.type);
         // What arrives, named as its factor in the equation; the column of
@@ -224,9 +283,8 @@ private:
             out_ << "    sits exactly on x: it lights nothing\n";
             return;
         }
-        out_ << "    ω_i = " << readable(l.wi)
-             << ", |c − x| = " << (type.positioned ? readable(l.distance) : "unbounded")
-             << ", n_g·ω_i = " << readable(l.cos_g) << "\n";
+        out_ << "    ω_i = " << readable(l.wi) << ", |c − x| = " << (type.positioned ? readable(l.distance) : "unbounded")
+             << (medium ? std::string() : ", n_g·ω_i = " + readable(l.cos_g)) << "\n";
         if (l.outcome == LightOutcome::Behind) {
             out_ << "    BEHIND the surface (n_g·ω_i ≤ 0): no contribution\n";
             return;
@@ -239,19 +297,28 @@ private:
         if (l.outcome == LightOutcome::Blocked) {
             blocked(l.blocker, type.positioned ? ", before the light" : "");
             out_ << "    (unblocked it would give " << incident << " = " << readable(l.incident)
-                 << ", f_r = " << readable(l.f) << ", |n_s·ω_i| = " << readable(l.cos_s) << ")\n";
+                 << (medium ? ", phase p = " + readable(l.f.x)
+                            : ", f_r = " + readable(l.f) + ", |n_s·ω_i| = " + readable(l.cos_s))
+                 << ")\n";
             return;
         }
         out_ << "    visible\n";
         holes(l.holes, l.holes_crossed, "    the shadow ray went through ", "      ");
         out_ << "    " << incident << pad << "= " << readable(l.incident) << "\n";
-        out_ << "    f_r        " << wide << "= " << readable(l.f) << " = " << lobe_sum(l.f_terms) << "\n";
-        out_ << "    |n_s·ω_i|  " << wide << "= " << readable(l.cos_s) << "\n";
+        if (medium) {
+            out_ << "    phase p    " << wide << "= " << readable(l.f.x) << "\n";
+        } else {
+            out_ << "    f_r        " << wide << "= " << readable(l.f) << " = " << lobe_sum(l.f_terms) << "\n";
+            out_ << "    |n_s·ω_i|  " << wide << "= " << readable(l.cos_s) << "\n";
+        }
+        if (l.transmittance != Vec3{1.0f})
+            out_ << "    T          " << wide << "= " << readable(l.transmittance)
+                 << "  (transmittance of the media on the way)\n";
         if (r_.path) out_ << "    β          " << wide << "= " << readable(beta) << "\n";
         out_ << "    product    " << wide << "= " << readable(l.contribution) << "\n";
     }
 
-    void sampled_light(const SampledLightRecord& l) {
+    void sampled_light(const SampledLightRecord& l, bool medium = false) {
         if (!l.sampled) {
             if (!c_.job.lights.has_sampled_lights()) return;
             out_ << "  sampled light: none this time (the sample fell on a light's dark side or carries nothing)\n";
@@ -263,8 +330,8 @@ private:
         if (!l.environment)
             out_ << ", point " << readable(l.target) << ", distance " << readable(l.distance)
                  << ", |n_light·ω_i| = " << readable(l.cos_light);
-        out_ << "\n    L_e = " << readable(l.radiance) << ", light pdf = " << readable(l.light_pdf)
-             << " /sr, BSDF pdf = " << readable(l.bsdf_pdf) << " /sr\n";
+        out_ << "\n    L_e = " << readable(l.radiance) << ", light pdf = " << readable(l.light_pdf) << " /sr, "
+             << (medium ? "phase pdf = " : "BSDF pdf = ") << readable(l.bsdf_pdf) << " /sr\n";
         if (l.outcome == LightOutcome::Behind) {
             out_ << "    BEHIND the surface (n_g·ω_i ≤ 0): f_r = 0, no shadow ray, no contribution\n";
             return;
@@ -278,10 +345,16 @@ private:
             return;
         }
         holes(l.holes, l.holes_crossed, "    the shadow ray went through ", "      ");
-        out_ << "    f_r = " << readable(l.f) << " = " << lobe_sum(l.f_terms) << ", |n_s·ω_i| = " << readable(l.cos_s)
-             << "\n";
+        if (medium)
+            out_ << "    phase p = " << readable(l.f.x) << "\n";
+        else
+            out_ << "    f_r = " << readable(l.f) << " = " << lobe_sum(l.f_terms)
+                 << ", |n_s·ω_i| = " << readable(l.cos_s) << "\n";
+        if (l.transmittance != Vec3{1.0f})
+            out_ << "    T = " << readable(l.transmittance) << "  (transmittance of the media on the way)\n";
         out_ << "    MIS weight w = " << readable(l.mis_weight) << " (power heuristic)\n";
-        out_ << "    adds β·f_r·|n_s·ω_i|·L_e·w/pdf = " << readable(l.contribution) << "\n";
+        out_ << (medium ? "    adds β·p·L_e·w/pdf" : "    adds β·f_r·|n_s·ω_i|·L_e·w/pdf")
+             << (l.transmittance != Vec3{1.0f} ? "·T" : "") << " = " << readable(l.contribution) << "\n";
     }
 
     void bounce(const VertexRecord& v) {
@@ -292,8 +365,11 @@ private:
             return;
         }
         out_ << "  bounce: ω_i = " << readable(b.wi) << (b.delta ? " (specular)" : "")
-             << (b.transmission ? " (refracted)" : "") << "\n";
-        if (b.delta)
+             << (b.transmission ? " (refracted)" : "") << (v.medium_event ? " (from the phase function)" : "")
+             << "\n";
+        if (v.medium_event)
+            out_ << "    p = pdf = " << readable(b.pdf) << " /sr: sampled exactly, weight 1\n";
+        else if (b.delta)
             out_ << "    lobe chosen with probability " << readable(b.pdf) << ", weight " << readable(b.weight) << "\n";
         else
             out_ << "    f_r = " << readable(b.f) << ", pdf = " << readable(b.pdf)

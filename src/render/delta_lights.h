@@ -84,7 +84,7 @@ void add_delta_lights(const LightSet& lights, const Accel& accel, const SurfaceI
                                     (std::fabs(dot(si.n_s, a.wi)) / inverse_square_divisor(light, a)) * f_r);
         if (media != nullptr) contribution = contribution * transmittance;
         radiance += contribution;
-        recorder.delta_light(index, LightOutcome::Visible, view, a, &shadow, contribution);
+        recorder.delta_light(index, LightOutcome::Visible, view, a, &shadow, contribution, transmittance);
     }
 }
 

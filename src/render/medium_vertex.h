@@ -19,8 +19,11 @@ namespace sombra {
 // the scene's media, starting in `medium` (an index into Scene::media), and
 // across interface surfaces (render/shadow_ray.h). Out of line:
 // inlined, it made the path integrator's loop 3 % slower on scenes without media.
-// Grid media's transmittance draws from `rng`.
+// Grid media's transmittance draws from `rng`; `recorder` (NoRecorder,
+// FirstHitRecorder or SampleRecorder, instantiated in the .cpp) hears each
+// light's term.
+template <class Recorder>
 Vec3 medium_direct_light(const IntegratorContext& ctx, std::uint32_t medium, Vec3 x, Vec3 d_in, float u_choice,
-                         float u1, float u2, RayCounters& counters, TrackingRng& rng);
+                         float u1, float u2, RayCounters& counters, TrackingRng& rng, Recorder& recorder);
 
 }  // namespace sombra

@@ -83,7 +83,7 @@ Vec3 sample_one_light(const IntegratorContext& ctx, const ShadingView& view, flo
     const float weight = ctx.strategy == LightStrategy::Mis ? power_heuristic(ls.pdf, bsdf_pdf) : 1.0f;
     Vec3 contribution = f * ls.radiance * (weight / ls.pdf);
     if (media != nullptr) contribution = contribution * transmittance;
-    recorder.sampled_light(&ls, view, &shadow, false, bsdf_pdf, weight, contribution);
+    recorder.sampled_light(&ls, view, &shadow, false, bsdf_pdf, weight, contribution, transmittance);
     return contribution;
 }
 
@@ -177,13 +177,16 @@ Vec3 trace_path_recorded(const IntegratorContext& ctx, const Ray& camera_ray, Sa
             const SampleStream::Slot channel_slot = samples.take_1d();
             const SampleStream::Slot distance_slot = samples.take_1d();
             FreeFlight flight;
+            Vec3 emitted{0.0f};
             if (m.density) {
                 flight = sample_grid_free_flight(m, ray.origin, ray.dir / dir_length, end, rng);
             } else {
-                radiance += beta * homogeneous_emission(m, end);
+                emitted = beta * homogeneous_emission(m, end);
+                radiance += emitted;
                 flight = sample_homogeneous_free_flight(m, end, samples.read_1d(channel_slot),
                                                         samples.read_1d(distance_slot));
             }
+            recorder.segment(medium, flight.scattered ? flight.t : end, flight.scattered, flight.weight, emitted);
             beta = beta * flight.weight;
             if (!(max_component(beta) > 0.0f)) {
                 recorder.end("the medium absorbed the path");
@@ -202,11 +205,13 @@ Vec3 trace_path_recorded(const IntegratorContext& ctx, const Ray& camera_ray, Sa
                 const SampleStream::Slot phase_slot = samples.take_2d();
                 const SampleStream::Slot roulette_slot = samples.take_1d();
                 const SampleStream::Pair u_light = samples.read_2d(light_slot);
+                recorder.medium_event(medium, x, ray, beta);
                 radiance += beta * medium_direct_light(ctx, medium, x, d_in, samples.read_1d(choice_slot), u_light.u1,
-                                                       u_light.u2, counters, rng);
+                                                       u_light.u2, counters, rng, recorder);
                 // The phase function is sampled exactly: the throughput is unchanged.
                 const SampleStream::Pair u_phase = samples.read_2d(phase_slot);
                 const PhaseSample ps = sample_henyey_greenstein(m.g, d_in, u_phase.u1, u_phase.u2);
+                recorder.phase_bounce(ps.out, ps.pdf, beta);
                 previous_delta = false;
                 previous_pdf = ps.pdf;
                 previous_position = x;
@@ -227,6 +232,7 @@ Vec3 trace_path_recorded(const IntegratorContext& ctx, const Ray& camera_ray, Sa
             }
             const SurfaceInteraction si = make_surface_interaction(scene, ray, hit);
             medium = medium_sides(scene, si, medium).far;
+            recorder.crossed(ray, hit, medium);
             cone = scattered_cone(cone, cone.active() ? hit.t * length(ray.dir) : 0.0f, true);
             ray = Ray{offset_ray_origin(si.position, si.position_error, -si.n_g), ray.dir};
             continue;

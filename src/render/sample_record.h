@@ -82,6 +82,7 @@ struct DeltaLightRecord {
     BlockerRecord blocker;          // when Blocked
     std::vector<HoleRecord> holes;  // when Visible: the cut-outs the shadow ray went through
     std::size_t holes_crossed = 0;  // how many in all (holes lists at most kMaxHolesListed)
+    Vec3 transmittance{1.0f};       // of the media the shadow ray crossed (spec §26); 1 in vacuum
     Vec3 contribution;              // what was added to the sample's value (0 unless Visible)
 };
 
@@ -108,7 +109,8 @@ struct SampledLightRecord {
     BlockerRecord blocker;
     std::vector<HoleRecord> holes;  // when Visible: the cut-outs the shadow ray went through
     std::size_t holes_crossed = 0;  // how many in all
-    Vec3 contribution;              // β · f·|cos| · L_e · w / pdf
+    Vec3 transmittance{1.0f};       // of the media the shadow ray crossed (spec §26); 1 in vacuum
+    Vec3 contribution;              // β · f·|cos| · L_e · w / pdf (· transmittance)
 };
 
 // Light reached by following the path: emission of a hit surface, or the
@@ -138,7 +140,29 @@ struct BounceRecord {
     Vec3 throughput_after;  // β after roulette (÷ q for survivors)
 };
 
-// One vertex of the path: a surface hit (or the ray's escape when !hit).
+// A stretch of participating medium (spec §26) the ray travelled through on
+// its way to a vertex.
+struct MediumSegmentRecord {
+    std::uint32_t medium = 0;  // index into Scene::media
+    float distance = 0;        // travelled in it (+∞: an unbounded medium with no surface ahead)
+    bool scattered = false;    // the path scattered where it ends: a medium vertex
+    // What β was multiplied by: T/P(passing) through it, or T·σ_s/p(t) to
+    // the scattering point (1 per channel for a grey medium's free flight).
+    Vec3 weight{1.0f};
+    Vec3 emission;  // the medium's own light reaching the ray's origin, β·∫T·ε, added to the value
+};
+
+// An "interface" surface the ray crossed unchanged (spec §26).
+struct CrossingRecord {
+    std::uint32_t triangle = kNoTriangle;
+    std::uint32_t instance = kNoInstance;
+    float distance = 0;                    // from the ray's origin
+    std::uint32_t medium_after = 0;        // the medium beyond it (kNoMedium: vacuum)
+    std::size_t after_segments = 0;        // how many of the vertex's segments come before it
+};
+
+// One vertex of the path: a surface hit, a scattering event in a medium
+// (medium_event), or the ray's escape (neither).
 struct VertexRecord {
     int depth = 0;             // scattering events before this vertex
     Vec3 ray_origin, ray_dir;  // the ray that arrived here (direction unit length)
@@ -152,6 +176,15 @@ struct VertexRecord {
     SampledLightRecord sampled_light;
     bool delta_material = false;  // no next-event estimation at a delta BSDF
     BounceRecord bounce;
+    // Spec §26: the media and interfaces the arriving ray crossed, in order.
+    std::vector<MediumSegmentRecord> segments;
+    std::vector<CrossingRecord> crossings;
+    // A scattering event in a medium: the phase function plays the BSDF
+    // (its value for the delta and sampled lights' f, cos 1), and the
+    // bounce is its sample (pdf = value, weight 1).
+    bool medium_event = false;
+    std::uint32_t medium = 0;  // index into Scene::media
+    Vec3 position;             // where it scattered
 };
 
 // One sample of one pixel, from camera ray to value.

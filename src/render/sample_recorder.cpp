@@ -1,6 +1,7 @@
 #include "render/sample_recorder.h"
 
 #include "render/lights/delta_light_types.h"
+#include "render/shadow_ray.h"
 
 #include "accel/triangle.h"
 
@@ -17,10 +18,11 @@ VertexRecord& SampleRecorder::vertex() {
 
 BlockerRecord SampleRecorder::find_blocker(const Ray& shadow) const {
     // The integrator asked only "is anything in the way" (any hit); a learner
-    // wants the first thing in the way, so the recorder asks again.
+    // wants the first thing in the way, so the recorder asks again. Interface
+    // surfaces block nothing; with none found, media took all the light.
     Hit hit;
     BlockerRecord blocker;
-    if (intersect(accel_, shadow, hit)) {
+    if (intersect_past_interfaces(accel_, scene_, shadow, hit)) {
         blocker.triangle = hit.triangle;
         blocker.instance = hit.instance;
         blocker.distance = hit.t * length(shadow.dir);
@@ -59,6 +61,7 @@ void SampleRecorder::escaped(const Ray& ray, Vec3 beta, Vec3 le, float w, float 
     find_holes(ray, ray.tmax, v.holes, v.holes_crossed);
     v.throughput = beta;
     v.emission = EmissionRecord{max_component(le) > 0.0f, le, w, bsdf_pdf, light_pdf, beta * le * w};
+    attach_pending(v);
     record_.vertices.push_back(v);
 }
 
@@ -87,6 +90,7 @@ void SampleRecorder::surface(const Ray& ray, const Hit& hit, const SurfaceIntera
     v.surface.shaded = material;
     find_holes(ray, hit.t, v.holes, v.holes_crossed);
     v.throughput = beta;
+    attach_pending(v);
     record_.vertices.push_back(v);
 }
 
@@ -97,8 +101,10 @@ void SampleRecorder::emission(Vec3 le, float w, float bsdf_pdf, float light_pdf,
 void SampleRecorder::delta_material() { vertex().delta_material = true; }
 
 void SampleRecorder::delta_light(std::uint32_t light, LightOutcome outcome, const ShadingView& view,
-                                 const DeltaArrival& arrival, const Ray* shadow, Vec3 contribution) {
+                                 const DeltaArrival& arrival, const Ray* shadow, Vec3 contribution,
+                                 Vec3 transmittance) {
     DeltaLightRecord r;
+    r.transmittance = transmittance;
     r.light = light;
     r.outcome = outcome;
     const Vec3 wi = arrival.wi;
@@ -120,8 +126,9 @@ void SampleRecorder::delta_light(std::uint32_t light, LightOutcome outcome, cons
 }
 
 void SampleRecorder::sampled_light(const LightSample* ls, const ShadingView& view, const Ray* shadow, bool blocked,
-                                   float bsdf_pdf, float w, Vec3 contribution) {
+                                   float bsdf_pdf, float w, Vec3 contribution, Vec3 transmittance) {
     SampledLightRecord r;
+    r.transmittance = transmittance;
     r.sampled = ls != nullptr;
     if (ls) {
         r.environment = ls->at_infinity;
@@ -180,6 +187,94 @@ void SampleRecorder::roulette(float q, float u, bool survived, Vec3 beta) {
 }
 
 void SampleRecorder::end(const char* why) { record_.end = why; }
+
+void SampleRecorder::attach_pending(VertexRecord& v) {
+    v.segments = std::move(pending_segments_);
+    v.crossings = std::move(pending_crossings_);
+    pending_segments_.clear();
+    pending_crossings_.clear();
+}
+
+void SampleRecorder::segment(std::uint32_t medium, float distance, bool scattered, Vec3 weight, Vec3 emission) {
+    pending_segments_.push_back({medium, distance, scattered, weight, emission});
+}
+
+void SampleRecorder::crossed(const Ray& ray, const Hit& hit, std::uint32_t medium_after) {
+    pending_crossings_.push_back(
+        {hit.triangle, hit.instance, hit.t * length(ray.dir), medium_after, pending_segments_.size()});
+}
+
+void SampleRecorder::medium_event(std::uint32_t medium, Vec3 x, const Ray& ray, Vec3 beta) {
+    VertexRecord v;
+    v.depth = static_cast<int>(record_.vertices.size());
+    v.ray_origin = ray.origin;
+    v.ray_dir = normalize(ray.dir);
+    v.medium_event = true;
+    v.medium = medium;
+    v.position = x;
+    v.throughput = beta;
+    attach_pending(v);
+    record_.vertices.push_back(v);
+}
+
+void SampleRecorder::medium_delta_light(std::uint32_t light, LightOutcome outcome, const DeltaArrival& arrival,
+                                        float phase, const Ray* shadow, Vec3 transmittance, Vec3 contribution) {
+    DeltaLightRecord r;
+    r.light = light;
+    r.outcome = outcome;
+    r.wi = arrival.wi;
+    r.distance = std::sqrt(arrival.distance_squared);
+    r.cos_g = 1;
+    r.cos_s = 1;
+    if (outcome != LightOutcome::OnSurface) {
+        const PunctualLight& l = lights_.delta[light];
+        r.spot_factor = delta_factor(l, arrival.wi);
+        r.incident = incident_radiance_factor(l, arrival, r.spot_factor);
+    }
+    r.f = Vec3{phase};
+    if (outcome == LightOutcome::Blocked && shadow) r.blocker = find_blocker(*shadow);
+    r.transmittance = transmittance;
+    r.contribution = vertex().throughput * contribution;
+    vertex().delta_lights.push_back(r);
+}
+
+void SampleRecorder::medium_sampled_light(const LightSample* ls, Vec3 x, float phase, const Ray* shadow,
+                                          Vec3 transmittance, float w, Vec3 contribution) {
+    SampledLightRecord r;
+    r.sampled = ls != nullptr;
+    if (ls) {
+        r.environment = ls->at_infinity;
+        r.light = ls->light;
+        r.triangle = ls->triangle;
+        r.instance = ls->instance;
+        r.wi = ls->wi;
+        r.target = ls->target;
+        r.distance = ls->at_infinity ? std::numeric_limits<float>::infinity() : length(ls->target - x);
+        r.radiance = ls->radiance;
+        r.light_pdf = ls->pdf;
+        r.cos_s = 1;
+        r.f = Vec3{phase};
+        r.bsdf_pdf = phase;  // the phase function samples itself exactly
+        r.mis_weight = w;
+        const bool blocked = !(max_component(transmittance) > 0.0f);
+        r.outcome = blocked ? LightOutcome::Blocked : LightOutcome::Visible;
+        if (blocked && shadow) r.blocker = find_blocker(*shadow);
+        r.transmittance = transmittance;
+    }
+    r.contribution = vertex().throughput * contribution;
+    vertex().sampled_light = r;
+}
+
+void SampleRecorder::phase_bounce(Vec3 wi, float pdf, Vec3 beta) {
+    BounceRecord& b = vertex().bounce;
+    b.sampled = true;
+    b.wi = wi;
+    b.f = Vec3{pdf};
+    b.pdf = pdf;
+    b.weight = Vec3{1.0f};
+    b.throughput = beta;
+    b.throughput_after = beta;
+}
 
 void SampleRecorder::value(Vec3 value, bool nonfinite) {
     record_.value = value;

@@ -43,6 +43,18 @@ struct NoRecorder {
     void end(const Args&...) {}
     template <class... Args>
     void value(const Args&...) {}
+    template <class... Args>
+    void segment(const Args&...) {}
+    template <class... Args>
+    void crossed(const Args&...) {}
+    template <class... Args>
+    void medium_event(const Args&...) {}
+    template <class... Args>
+    void medium_delta_light(const Args&...) {}
+    template <class... Args>
+    void medium_sampled_light(const Args&...) {}
+    template <class... Args>
+    void phase_bounce(const Args&...) {}
 };
 
 // Fills a SampleRecord. The recorder also looks up what blocked a shadow ray
@@ -63,18 +75,37 @@ public:
     // One delta light's term; `shadow` is the shadow ray traced (Blocked,
     // Visible), else null; distance_squared is +∞ for a directional light.
     void delta_light(std::uint32_t light, LightOutcome outcome, const ShadingView& view, const DeltaArrival& arrival,
-                     const Ray* shadow, Vec3 contribution);
+                     const Ray* shadow, Vec3 contribution, Vec3 transmittance = Vec3{1.0f});
     // Next-event estimation of one sampled emitter or environment point: `ls`
     // null when nothing was sampled; `shadow` null when no ray was traced.
     void sampled_light(const LightSample* ls, const ShadingView& view, const Ray* shadow, bool blocked, float bsdf_pdf,
-                       float w, Vec3 contribution);
+                       float w, Vec3 contribution, Vec3 transmittance = Vec3{1.0f});
     // The BSDF's sample (null when it produced none) and the throughput after it.
     void bounce(const BsdfSample* bs, const ShadingView& view, Vec3 beta);
     void roulette(float q, float u, bool survived, Vec3 beta);
     void end(const char* why);
     void value(Vec3 value, bool nonfinite);
 
+    // Spec §26. The ray travelled `distance` through medium `medium`, its
+    // throughput multiplied by `weight`, the medium's light `emission`
+    // (with β) added; it scattered at the end when `scattered`.
+    void segment(std::uint32_t medium, float distance, bool scattered, Vec3 weight, Vec3 emission);
+    // The ray crossed the interface surface `hit` into `medium_after`.
+    void crossed(const Ray& ray, const Hit& hit, std::uint32_t medium_after);
+    // The path scattered in `medium` at x, arriving along `ray` with throughput beta: a new vertex.
+    void medium_event(std::uint32_t medium, Vec3 x, const Ray& ray, Vec3 beta);
+    // Next-event estimation at the medium vertex: `phase` is the phase
+    // function's value toward the light; contributions are without β.
+    void medium_delta_light(std::uint32_t light, LightOutcome outcome, const DeltaArrival& arrival, float phase,
+                            const Ray* shadow, Vec3 transmittance, Vec3 contribution);
+    void medium_sampled_light(const LightSample* ls, Vec3 x, float phase, const Ray* shadow, Vec3 transmittance,
+                              float w, Vec3 contribution);
+    // The phase function's sample: direction and density (= its value).
+    void phase_bounce(Vec3 wi, float pdf, Vec3 beta);
+
 private:
+    // Gives `v` the segments and crossings heard since the last vertex.
+    void attach_pending(VertexRecord& v);
     VertexRecord& vertex();  // the current vertex (one is made if none exists yet)
     BlockerRecord find_blocker(const Ray& shadow) const;
     // The cut-out crossings of `ray` before t_end, nearest first, at most
@@ -86,6 +117,8 @@ private:
     const LightSet& lights_;
     const Accel& accel_;
     SampleRecord& record_;
+    std::vector<MediumSegmentRecord> pending_segments_;
+    std::vector<CrossingRecord> pending_crossings_;
 };
 
 }  // namespace sombra
