@@ -2,11 +2,13 @@
 
 #include <cmath>
 #include <mutex>
+#include <new>
 #include <openvdb/openvdb.h>
 #include <sstream>
 #include <system_error>
 
 #include "core/error.h"
+#include "io/vdb/isolated_read.h"
 
 namespace sombra {
 
@@ -67,22 +69,14 @@ Transform affine_transform(const openvdb::math::Transform& t, const std::string&
         for (int c = 0; c < 4; ++c) {
             const double v = m(c, r);
             if (!std::isfinite(v)) throw Error(where, "the grid's transform is not finite");
-            out.m[static_cast<std::size_t>(r * 4 + c)] = static_cast<float>(v);
+            out.m[static_cast<std::size_t>(r) * 4 + static_cast<std::size_t>(c)] = static_cast<float>(v);
         }
     return out;
 }
 
-}  // namespace
-
-DensityGrid read_vdb_density(const fs::path& path, const std::string& grid_name) {
+// The grid read and made dense in this process (the child, read_vdb_density).
+DensityGrid read_here(const fs::path& path, const std::string& grid_name) {
     const std::string name = path.string();
-    std::error_code ec;
-    const fs::file_status status = fs::status(path, ec);
-    if (!fs::exists(status)) throw Error(name, "cannot open OpenVDB file: no such file");
-    if (!fs::is_regular_file(status)) throw Error(name, "cannot open OpenVDB file: not a regular file");
-    const std::uintmax_t size = fs::file_size(path, ec);
-    if (!ec && size > kMaxVdbFileBytes)
-        throw Error(name, "OpenVDB file is larger than " + std::to_string(kMaxVdbFileBytes >> 30) + " GiB");
     initialize_openvdb();
 
     DensityGrid out;
@@ -107,6 +101,8 @@ DensityGrid read_vdb_density(const fs::path& path, const std::string& grid_name)
         file.close();
     } catch (const Error&) {
         throw;
+    } catch (const std::bad_alloc&) {
+        throw Error(name, "not a readable OpenVDB file (it asks for more memory than sombra lets it have)");
     } catch (const std::exception& e) {
         std::string what = e.what();
         if (what.size() > 200) what.resize(200);
@@ -114,9 +110,15 @@ DensityGrid read_vdb_density(const fs::path& path, const std::string& grid_name)
     }
     if (!grid) throw Error(name, "grid '" + grid_name + "' is not a float grid");
 
-    out.source = path.filename().string() + ": " + grid_name;
     out.index_to_world = affine_transform(grid->transform(), name);
-    const openvdb::CoordBBox box = grid->evalActiveVoxelBoundingBox();
+    // The active box, walked in one thread (OpenVDB's own evaluation may use
+    // TBB, which a forked process must not).
+    openvdb::CoordBBox box;
+    for (auto it = grid->cbeginValueOn(); it; ++it)
+        if (it.isVoxelValue())
+            box.expand(it.getCoord());
+        else
+            box.expand(it.getBoundingBox());
     const openvdb::Coord lo = box.empty() ? openvdb::Coord(0) : box.min();
     const openvdb::Coord extent = box.empty() ? openvdb::Coord(0) : box.dim();
     if (padded_voxels(extent) > kMaxDenseVoxels) throw Error(name, too_large(extent));
@@ -150,6 +152,22 @@ DensityGrid read_vdb_density(const fs::path& path, const std::string& grid_name)
     out.index_to_world = compose(make_translate(Vec3{static_cast<float>(out.origin[0]), static_cast<float>(out.origin[1]),
                                                      static_cast<float>(out.origin[2])}),
                                  out.index_to_world);
+    return out;
+}
+
+}  // namespace
+
+DensityGrid read_vdb_density(const fs::path& path, const std::string& grid_name) {
+    const std::string name = path.string();
+    std::error_code ec;
+    const fs::file_status status = fs::status(path, ec);
+    if (!fs::exists(status)) throw Error(name, "cannot open OpenVDB file: no such file");
+    if (!fs::is_regular_file(status)) throw Error(name, "cannot open OpenVDB file: not a regular file");
+    const std::uintmax_t size = fs::file_size(path, ec);
+    if (!ec && size > kMaxVdbFileBytes)
+        throw Error(name, "OpenVDB file is larger than " + std::to_string(kMaxVdbFileBytes >> 30) + " GiB");
+    DensityGrid out = read_isolated(name, ec ? 0 : size, [&] { return read_here(path, grid_name); });
+    out.source = path.filename().string() + ": " + grid_name;
     build_majorants(out);
     return out;
 }

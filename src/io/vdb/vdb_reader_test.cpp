@@ -26,8 +26,8 @@ protected:
         std::error_code ec;
         fs::remove_all(dir, ec);
     }
-    static fs::path write(const std::string& file, openvdb::GridPtrVec grids) {
-        const fs::path path = dir / file;
+    static fs::path write(const std::string& file, const openvdb::GridPtrVec& grids) {
+        fs::path path = dir / file;
         openvdb::io::File(path.string()).write(grids);
         return path;
     }

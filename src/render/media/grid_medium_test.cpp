@@ -37,7 +37,7 @@ Medium grid_medium(std::array<int, 3> dims, const std::function<float(int, int, 
 
 // A ramp along x on the row y = z = 1: voxel i holds 0.1·i inside, 0 on the padding.
 constexpr int kLength = 40;
-float ramp(int i, int j, int k) { return j == 1 && k == 1 && i > 0 && i < kLength - 1 ? 0.1f * i : 0.0f; }
+float ramp(int i, int j, int k) { return j == 1 && k == 1 && i > 0 && i < kLength - 1 ? 0.1f * static_cast<float>(i) : 0.0f; }
 // ∫ from x = a to b of 0.1·x dx.
 double ramp_integral(double a, double b) { return 0.05 * (b * b - a * a); }
 
@@ -85,7 +85,10 @@ TEST(GridMedium, TheMajorantsBoundEveryInterpolatedDensity) {
         const int a = std::min(static_cast<int>(q.x) / kMajorantBlock, g.cells[0] - 1);
         const int b = std::min(static_cast<int>(q.y) / kMajorantBlock, g.cells[1] - 1);
         const int c = std::min(static_cast<int>(q.z) / kMajorantBlock, g.cells[2] - 1);
-        const float majorant = g.majorants[static_cast<std::size_t>(a + g.cells[0] * (b + g.cells[1] * c))];
+        const std::size_t cell = static_cast<std::size_t>(a) +
+                                 static_cast<std::size_t>(g.cells[0]) *
+                                     (static_cast<std::size_t>(b) + static_cast<std::size_t>(g.cells[1]) * static_cast<std::size_t>(c));
+        const float majorant = g.majorants[cell];
         ASSERT_LE(density_at(g, q), majorant) << q.x << " " << q.y << " " << q.z;
     }
     EXPECT_EQ(g.max_value, 4.0f);
