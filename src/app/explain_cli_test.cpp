@@ -139,8 +139,8 @@ TEST_F(ExplainCli, APathThroughMediaIsToldAndIsTheRenderedPixel) {
     // Every sample's value sums to the pixel the render wrote.
     float sum[3] = {0, 0, 0};
     for (int sample = 0; sample < 4; ++sample) {
-        const nlohmann::json j = nlohmann::json::parse(
-            run("explain smoke.json 8 8 --json --sample " + std::to_string(sample) + args).out);
+        const nlohmann::json j =
+            nlohmann::json::parse(run("explain smoke.json 8 8 --json --sample " + std::to_string(sample) + args).out);
         for (int c = 0; c < 3; ++c) sum[c] += static_cast<float>(j["value"][c].get<double>());
     }
     const float* pixel = &image.rgb[(static_cast<std::size_t>(15 - 8) * 16 + 8) * 3];

@@ -283,7 +283,8 @@ private:
             out_ << "    sits exactly on x: it lights nothing\n";
             return;
         }
-        out_ << "    ω_i = " << readable(l.wi) << ", |c − x| = " << (type.positioned ? readable(l.distance) : "unbounded")
+        out_ << "    ω_i = " << readable(l.wi)
+             << ", |c − x| = " << (type.positioned ? readable(l.distance) : "unbounded")
              << (medium ? std::string() : ", n_g·ω_i = " + readable(l.cos_g)) << "\n";
         if (l.outcome == LightOutcome::Behind) {
             out_ << "    BEHIND the surface (n_g·ω_i ≤ 0): no contribution\n";
@@ -365,8 +366,7 @@ private:
             return;
         }
         out_ << "  bounce: ω_i = " << readable(b.wi) << (b.delta ? " (specular)" : "")
-             << (b.transmission ? " (refracted)" : "") << (v.medium_event ? " (from the phase function)" : "")
-             << "\n";
+             << (b.transmission ? " (refracted)" : "") << (v.medium_event ? " (from the phase function)" : "") << "\n";
         if (v.medium_event)
             out_ << "    p = pdf = " << readable(b.pdf) << " /sr: sampled exactly, weight 1\n";
         else if (b.delta)

@@ -71,8 +71,7 @@ void add_delta_lights(const LightSet& lights, const Accel& accel, const SurfaceI
         const Vec3 origin = behind ? offset_ray_origin(si.position, si.position_error, -si.n_g) : shadow_origin;
         const Ray shadow = delta_shadow_ray(light, a, origin);
         ++counters.shadow_rays;
-        const Vec3 transmittance =
-            media != nullptr ? shadow_transmittance(accel, *media, si.n_g, shadow) : Vec3{1.0f};
+        const Vec3 transmittance = media != nullptr ? shadow_transmittance(accel, *media, si.n_g, shadow) : Vec3{1.0f};
         if (media != nullptr ? !(max_component(transmittance) > 0.0f) : occluded(accel, shadow)) {
             recorder.delta_light(index, LightOutcome::Blocked, view, a, &shadow, Vec3{0.0f});
             continue;

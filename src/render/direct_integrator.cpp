@@ -37,8 +37,7 @@ Vec3 shade_direct(const IntegratorContext& ctx, const Ray& ray, const Hit& hit, 
         const ShadowMedia interfaces{ctx.scene, MediumSides{}, false};
         add_delta_lights(*ctx.lights, *ctx.accel, si, material,
                          make_eval_bsdf_point(material, si.n_g, si.n_s, si.outside, si.n_c), wo, Vec3{1.0f}, radiance,
-                         counters, recorder,
-                         ctx.scene->interface_material != kNoInterface ? &interfaces : nullptr);
+                         counters, recorder, ctx.scene->interface_material != kNoInterface ? &interfaces : nullptr);
     } else {
         recorder.delta_material();
     }

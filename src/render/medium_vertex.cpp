@@ -10,9 +10,8 @@
 namespace sombra {
 
 template <class Recorder>
-Vec3 medium_direct_light(const IntegratorContext& ctx, std::uint32_t medium_index, Vec3 x, Vec3 d_in,
-                         float u_choice, float u1, float u2, RayCounters& counters, TrackingRng& rng,
-                         Recorder& recorder) {
+Vec3 medium_direct_light(const IntegratorContext& ctx, std::uint32_t medium_index, Vec3 x, Vec3 d_in, float u_choice,
+                         float u1, float u2, RayCounters& counters, TrackingRng& rng, Recorder& recorder) {
     const LightSet& lights = *ctx.lights;
     const Medium& medium = ctx.scene->media[medium_index];
     // What arrives along a shadow ray from x (0 where a surface blocks it).

@@ -156,9 +156,9 @@ struct MediumSegmentRecord {
 struct CrossingRecord {
     std::uint32_t triangle = kNoTriangle;
     std::uint32_t instance = kNoInstance;
-    float distance = 0;                    // from the ray's origin
-    std::uint32_t medium_after = 0;        // the medium beyond it (kNoMedium: vacuum)
-    std::size_t after_segments = 0;        // how many of the vertex's segments come before it
+    float distance = 0;              // from the ray's origin
+    std::uint32_t medium_after = 0;  // the medium beyond it (kNoMedium: vacuum)
+    std::size_t after_segments = 0;  // how many of the vertex's segments come before it
 };
 
 // One vertex of the path: a surface hit, a scattering event in a medium

@@ -25,8 +25,8 @@ Vec3 segment_transmittance(const Scene& scene, std::uint32_t medium, Vec3 origin
 
 }  // namespace
 
-Vec3 shadow_transmittance(const Accel& accel, const Scene& scene, const Ray& shadow, std::uint32_t medium,
-                          bool media, TrackingRng* rng) {
+Vec3 shadow_transmittance(const Accel& accel, const Scene& scene, const Ray& shadow, std::uint32_t medium, bool media,
+                          TrackingRng* rng) {
     if (!media) medium = kNoMedium;
     const float dir_length = length(shadow.dir);
     const Vec3 dir = shadow.dir / dir_length;

@@ -19,8 +19,8 @@ namespace sombra {
 // With `media` off (the direct integrator) interfaces are crossed and media
 // ignored. The transmittance is exact for homogeneous media, and ratio
 // tracked with numbers from `rng` through grid media.
-Vec3 shadow_transmittance(const Accel& accel, const Scene& scene, const Ray& shadow, std::uint32_t medium,
-                          bool media, TrackingRng* rng);
+Vec3 shadow_transmittance(const Accel& accel, const Scene& scene, const Ray& shadow, std::uint32_t medium, bool media,
+                          TrackingRng* rng);
 
 // intersect() for a ray that crosses "interface" surfaces unchanged (the
 // direct integrator's camera rays, which ignore media): the first other

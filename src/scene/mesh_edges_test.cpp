@@ -9,8 +9,8 @@ namespace {
 TriangleMesh cube() {
     TriangleMesh m;
     for (int i = 0; i < 8; ++i)
-        m.positions.push_back(Vec3{static_cast<float>(i & 1), static_cast<float>(i >> 1 & 1),
-                                   static_cast<float>(i >> 2 & 1)});
+        m.positions.push_back(
+            Vec3{static_cast<float>(i & 1), static_cast<float>(i >> 1 & 1), static_cast<float>(i >> 2 & 1)});
     const Index3 faces[12] = {{0, 2, 1}, {1, 2, 3}, {4, 5, 6}, {5, 7, 6}, {0, 1, 4}, {1, 5, 4},
                               {2, 6, 3}, {3, 6, 7}, {0, 4, 2}, {2, 4, 6}, {1, 3, 5}, {3, 7, 5}};
     m.triangles.assign(std::begin(faces), std::end(faces));

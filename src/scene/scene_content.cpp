@@ -34,12 +34,14 @@ const SceneObject* object_of_triangle(const Scene& scene, std::uint32_t triangle
 
 bool uses_media(const Scene& scene) {
     if (starting_medium(scene) != kNoMedium) return true;
-    return std::any_of(scene.objects.begin(), scene.objects.end(),
-                       [](const SceneObject& o) { return o.bounds_medium && (o.interior != kNoMedium || o.exterior != kNoMedium); });
+    return std::any_of(scene.objects.begin(), scene.objects.end(), [](const SceneObject& o) {
+        return o.bounds_medium && (o.interior != kNoMedium || o.exterior != kNoMedium);
+    });
 }
 
 const SceneObject* object_of_surface(const Scene& scene, std::uint32_t triangle, std::uint32_t instance) {
-    return instance == kNoInstance ? object_of_triangle(scene, triangle) : &scene.objects[scene.instances[instance].object];
+    return instance == kNoInstance ? object_of_triangle(scene, triangle)
+                                   : &scene.objects[scene.instances[instance].object];
 }
 
 bool place_instance(Instance& instance, const Transform& object_to_world) {

@@ -37,9 +37,9 @@ struct ObjectSpec {
     std::vector<TransformKey> keys;         // spec §22; empty when the transform is fixed
     // Spec §23: each entry applied after `transform`; empty: drawn once.
     std::vector<Transform> instances;
-    bool is_quad_light = false;         // a quad light: no file behind it
-    const LoadedMesh* given = nullptr;  // a mesh made from arrays ("mesh": i), no file behind it
-    bool interface = false;             // "material": "interface" (spec §26)
+    bool is_quad_light = false;           // a quad light: no file behind it
+    const LoadedMesh* given = nullptr;    // a mesh made from arrays ("mesh": i), no file behind it
+    bool interface = false;               // "material": "interface" (spec §26)
     std::optional<MediumBoundary> media;  // "interior" and "exterior" (spec §26)
 };
 
@@ -134,8 +134,8 @@ void add_whole(SceneBuilder& builder, const LoadedMesh& loaded, ObjectSpec spec,
     }
     const bool instanced = spec.instances.size() > 1 || !spec.keys.empty();
     const std::string mesh_name = spec.path.string();
-    MeshPlacement placement{spec.pointer, spec.is_quad_light ? std::string{} : mesh_name, spec.transform,
-                            spec.material, spec.media};
+    MeshPlacement placement{spec.pointer, spec.is_quad_light ? std::string{} : mesh_name, spec.transform, spec.material,
+                            spec.media};
     std::size_t bad = 0;
     MeshProblem problem = MeshProblem::None;
     if (!instanced && spec.instances.size() == 1) placement.transform = compose(spec.transform, spec.instances[0]);
@@ -361,9 +361,8 @@ LoadedScene load_scene_text(const std::string& text, const fs::path& path, Diagn
     std::vector<ObjectSpec> specs;
     specs.reserve(objects.size());
     for (std::size_t i = 0; i < objects.size(); ++i)
-        specs.push_back(
-            read_object(s, objects[i], json_child("/objects", i), path, material_index, given_meshes, start_time,
-                        builder.scene()));
+        specs.push_back(read_object(s, objects[i], json_child("/objects", i), path, material_index, given_meshes,
+                                    start_time, builder.scene()));
     for (ObjectSpec& spec : specs)
         if (spec.interface) spec.material = builder.interface_material();
     place_grid_media(s, specs, builder);

@@ -28,8 +28,7 @@ protected:
     }
     // A closed cube of side 1 (12 triangles) and the same cube without its top.
     static void write_cubes() {
-        const std::string corners =
-            "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nv 0 0 1\nv 1 0 1\nv 0 1 1\nv 1 1 1\n";
+        const std::string corners = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nv 0 0 1\nv 1 0 1\nv 0 1 1\nv 1 1 1\n";
         const std::string sides =
             "f 1 3 2\nf 2 3 4\nf 5 6 7\nf 6 8 7\nf 1 2 5\nf 2 6 5\nf 1 5 3\nf 3 5 7\nf 2 4 6\nf 4 8 6\n";
         write(dir / "cube.obj", corners + sides + "f 3 7 4\nf 4 7 8\n");
@@ -171,7 +170,8 @@ TEST_F(SceneMedia, AGridMediumIsPlacedByTheObjectItFills) {
     ASSERT_TRUE(m.density);
     EXPECT_FLOAT_EQ(m.sigma_s.x, 20.0f);
     // Voxel (1, 4, 1), dense (1, 1, 1), sits at −1 + (i + 0.5)/32, moved by +5 in x.
-    const Vec3 q = transform_point(m.world_to_grid, {5.0f - 1.0f + 1.5f / 32.0f, -1.0f + 4.5f / 32.0f, -1.0f + 1.5f / 32.0f});
+    const Vec3 q =
+        transform_point(m.world_to_grid, {5.0f - 1.0f + 1.5f / 32.0f, -1.0f + 4.5f / 32.0f, -1.0f + 1.5f / 32.0f});
     EXPECT_NEAR(q.x, 1.0f, 1e-4f);
     EXPECT_NEAR(q.y, 1.0f, 1e-4f);
     EXPECT_NEAR(q.z, 1.0f, 1e-4f);
@@ -191,7 +191,8 @@ TEST_F(SceneMedia, AGridMediumIsPlacedByTheObjectItFills) {
 }
 
 TEST_F(SceneMedia, ARoughDielectricIsGltfsRoughTransmission) {
-    const Scene s = load(with_material(R"({"type": "dielectric", "ior": 1.4, "kt": [0.5, 0.6, 0.7], "roughness": 0.3})"));
+    const Scene s =
+        load(with_material(R"({"type": "dielectric", "ior": 1.4, "kt": [0.5, 0.6, 0.7], "roughness": 0.3})"));
     const Material& m = s.materials[s.geometry.material_ids[0]];
     EXPECT_EQ(m.type, MaterialType::Pbr);
     EXPECT_FLOAT_EQ(m.roughness, 0.3f);

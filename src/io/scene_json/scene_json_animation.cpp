@@ -89,22 +89,25 @@ std::vector<TransformKey> read_transform_keys(const SceneJson& s, const Json& v,
 
 std::vector<CameraKey> read_camera_keys(const SceneJson& s, const Json& v, std::string_view pointer) {
     // The camera's own reader checks its members (read_camera).
-    return read_keyed<CameraKey>(s, v, pointer, {}, [&](const Json& key, const std::string& p, double time) {
-        // The rest of the key is a camera object of the look-at form (spec §22).
-        Json camera = key;
-        camera.erase("time");
-        if (camera.contains("medium"))
-            json_fail(s, json_child(p, "medium"), "the camera's medium goes beside 'keys': no key changes it");
-        const CameraSpec spec = read_camera(s, camera, p);
-        if (!spec.look_at) json_fail(s, p, "a camera key is a look-at camera: 'origin', 'look_at', 'up', 'fov'");
-        return CameraKey{time,
-                         spec.look_at->origin,
-                         spec.look_at->look_at,
-                         spec.look_at->up,
-                         spec.look_at->fov_degrees,
-                         spec.aperture_radius,
-                         spec.focus_distance};
-    }, true);
+    return read_keyed<CameraKey>(
+        s, v, pointer, {},
+        [&](const Json& key, const std::string& p, double time) {
+            // The rest of the key is a camera object of the look-at form (spec §22).
+            Json camera = key;
+            camera.erase("time");
+            if (camera.contains("medium"))
+                json_fail(s, json_child(p, "medium"), "the camera's medium goes beside 'keys': no key changes it");
+            const CameraSpec spec = read_camera(s, camera, p);
+            if (!spec.look_at) json_fail(s, p, "a camera key is a look-at camera: 'origin', 'look_at', 'up', 'fov'");
+            return CameraKey{time,
+                             spec.look_at->origin,
+                             spec.look_at->look_at,
+                             spec.look_at->up,
+                             spec.look_at->fov_degrees,
+                             spec.aperture_radius,
+                             spec.focus_distance};
+        },
+        true);
 }
 
 }  // namespace sombra

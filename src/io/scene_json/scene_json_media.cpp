@@ -22,8 +22,7 @@ namespace {
 std::shared_ptr<const DensityGrid> read_density(const SceneJson& s, const Json& v, std::string_view pointer) {
     const std::string file_pointer = json_child(pointer, "file");
     const std::string& file = read_string(s, require_member(s, v, pointer, "file"), file_pointer);
-    if (file.empty() || file.find('\0') != std::string::npos)
-        json_fail(s, file_pointer, "expected a file name");
+    if (file.empty() || file.find('\0') != std::string::npos) json_fail(s, file_pointer, "expected a file name");
     std::string grid = "density";
     const std::string grid_pointer = json_child(pointer, "grid");
     if (const Json* g = find_member(v, "grid")) grid = read_string(s, *g, grid_pointer);
@@ -181,8 +180,7 @@ void check_medium_objects(const SceneJson& s, const Scene& scene) {
             enters = enters || lets_light_in(m);
             if (m.type == MaterialType::Pbr && std::isfinite(m.attenuation_distance))
                 json_warn(s, json_child(object.name, "interior"),
-                          "the interior replaces the attenuation of material '" + m.name +
-                              "' (KHR_materials_volume)");
+                          "the interior replaces the attenuation of material '" + m.name + "' (KHR_materials_volume)");
         }
         if (!enters)
             json_warn(s, json_child(object.name, "interior"),
@@ -191,9 +189,9 @@ void check_medium_objects(const SceneJson& s, const Scene& scene) {
         const bool instanced = object.instance_count > 0;
         const TriangleMesh& mesh =
             instanced ? scene.instanced_meshes[scene.instances[object.first_instance].mesh] : scene.geometry;
-        const std::size_t open = open_edge_count(
-            mesh, instanced ? 0 : object.first_triangle,
-            instanced ? static_cast<std::uint32_t>(mesh.triangles.size()) : object.triangle_count);
+        const std::size_t open =
+            open_edge_count(mesh, instanced ? 0 : object.first_triangle,
+                            instanced ? static_cast<std::uint32_t>(mesh.triangles.size()) : object.triangle_count);
         if (open > 0)
             json_warn(s, json_child(object.name, "interior"),
                       "the object's surface is not closed (" + std::to_string(open) +

@@ -7,8 +7,8 @@
 
 #include <array>
 #include <cerrno>
-#include <csignal>
 #include <chrono>
+#include <csignal>
 #include <cstring>
 #include <exception>
 
@@ -54,8 +54,8 @@ bool write_all(int fd, const void* data, std::size_t bytes) {
 bool read_all(int fd, void* data, std::size_t bytes, std::chrono::steady_clock::time_point deadline) {
     char* p = static_cast<char*>(data);
     while (bytes > 0) {
-        const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(deadline -
-                                                                                std::chrono::steady_clock::now());
+        const auto left =
+            std::chrono::duration_cast<std::chrono::milliseconds>(deadline - std::chrono::steady_clock::now());
         if (left.count() <= 0) return false;
         pollfd pfd{fd, POLLIN, 0};
         const int ready = ::poll(&pfd, 1, static_cast<int>(std::min<std::int64_t>(left.count(), 1000)));
@@ -142,8 +142,8 @@ DensityGrid read_isolated(const std::string& name, std::uintmax_t file_bytes,
     }
     ::close(fds[1]);
     // Ten seconds, and one more for every 20 MB: far more than reading takes.
-    const auto deadline =
-        std::chrono::steady_clock::now() + std::chrono::seconds(10 + static_cast<std::int64_t>(file_bytes / 20'000'000));
+    const auto deadline = std::chrono::steady_clock::now() +
+                          std::chrono::seconds(10 + static_cast<std::int64_t>(file_bytes / 20'000'000));
     Header h;
     std::string failure;
     DensityGrid grid;

@@ -18,7 +18,6 @@ namespace sombra {
 // sizes the child's memory limit and the time allowed. The result has no
 // majorants (the parent builds them). Where fork is impossible, `read` runs
 // here.
-DensityGrid read_isolated(const std::string& name, std::uintmax_t file_bytes,
-                          const std::function<DensityGrid()>& read);
+DensityGrid read_isolated(const std::string& name, std::uintmax_t file_bytes, const std::function<DensityGrid()>& read);
 
 }  // namespace sombra

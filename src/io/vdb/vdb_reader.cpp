@@ -1,9 +1,9 @@
 #include "io/vdb/vdb_reader.h"
 
+#include <openvdb/openvdb.h>
 #include <cmath>
 #include <mutex>
 #include <new>
-#include <openvdb/openvdb.h>
 #include <sstream>
 #include <system_error>
 
@@ -88,8 +88,7 @@ DensityGrid read_here(const fs::path& path, const std::string& grid_name) {
             throw Error(name, "no grid '" + grid_name + "' (the file has " + grid_names(file) + ")");
         const openvdb::GridBase::Ptr meta = file.readGridMetadata(grid_name);
         if (meta->valueType() != "float")
-            throw Error(name, "grid '" + grid_name + "' holds " + meta->valueType() +
-                                  " values, not float densities");
+            throw Error(name, "grid '" + grid_name + "' holds " + meta->valueType() + " values, not float densities");
         // What the file says of the grid's size, checked before its tree is read.
         openvdb::Vec3i lo, hi;
         if (claimed(*meta, openvdb::GridBase::META_FILE_BBOX_MIN, lo) &&
@@ -136,7 +135,8 @@ DensityGrid read_here(const fs::path& path, const std::string& grid_name) {
                     << value << ": a density must be finite and >= 0";
             throw Error(name, message.str());
         }
-        out.values[static_cast<std::size_t>(c[0] - out.origin[0]) + static_cast<std::size_t>(c[1] - out.origin[1]) * nx +
+        out.values[static_cast<std::size_t>(c[0] - out.origin[0]) +
+                   static_cast<std::size_t>(c[1] - out.origin[1]) * nx +
                    static_cast<std::size_t>(c[2] - out.origin[2]) * nxy] = value;
     };
     for (auto it = grid->cbeginValueOn(); it; ++it) {
@@ -149,9 +149,10 @@ DensityGrid read_here(const fs::path& path, const std::string& grid_name) {
         for (auto c = tile.begin(); c; ++c) put(*c, *it);
     }
     // The dense box's index coordinates, then the file's transform.
-    out.index_to_world = compose(make_translate(Vec3{static_cast<float>(out.origin[0]), static_cast<float>(out.origin[1]),
-                                                     static_cast<float>(out.origin[2])}),
-                                 out.index_to_world);
+    out.index_to_world =
+        compose(make_translate(Vec3{static_cast<float>(out.origin[0]), static_cast<float>(out.origin[1]),
+                                    static_cast<float>(out.origin[2])}),
+                out.index_to_world);
     return out;
 }
 

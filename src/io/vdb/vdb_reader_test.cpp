@@ -4,9 +4,9 @@
 
 #include <gtest/gtest.h>
 
+#include <openvdb/openvdb.h>
 #include <filesystem>
 #include <fstream>
-#include <openvdb/openvdb.h>
 
 #include "core/error.h"
 
@@ -104,8 +104,9 @@ TEST_F(VdbReader, AGridTooLargeOnceDenseIsRefusedBeforeItIsRead) {
     grid->getAccessor().setValue(openvdb::Coord(0, 0, 0), 1.0f);
     grid->getAccessor().setValue(openvdb::Coord(2000, 2000, 2000), 1.0f);
     const fs::path path = write("far.vdb", {grid});
-    EXPECT_NE(error_of(path, "density").find("the grid's active voxels span 2001 x 2001 x 2001, more than sombra reads"),
-              std::string::npos);
+    EXPECT_NE(
+        error_of(path, "density").find("the grid's active voxels span 2001 x 2001 x 2001, more than sombra reads"),
+        std::string::npos);
 }
 
 TEST_F(VdbReader, TheSharedCloud) {

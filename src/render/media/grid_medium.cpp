@@ -62,8 +62,9 @@ void march_majorants(const Medium& medium, Vec3 origin, Vec3 dir, float end, Vis
     while (t < t_out) {
         const int a = t_next[0] < t_next[1] ? (t_next[0] < t_next[2] ? 0 : 2) : (t_next[1] < t_next[2] ? 1 : 2);
         const float t1 = std::min(t_next[a], t_out);
-        const float majorant = grid.majorants[static_cast<std::size_t>(cell[0]) + static_cast<std::size_t>(cell[1]) * cx +
-                                              static_cast<std::size_t>(cell[2]) * cx * cy];
+        const float majorant =
+            grid.majorants[static_cast<std::size_t>(cell[0]) + static_cast<std::size_t>(cell[1]) * cx +
+                           static_cast<std::size_t>(cell[2]) * cx * cy];
         if (t1 > t && !visit(t, t1, majorant * sigma_t_max, q0, dq)) return;
         t = std::max(t, t1);
         cell[a] += step[a];

@@ -19,8 +19,8 @@ namespace {
 float channel(Vec3 v, int c) { return c == 0 ? v.x : c == 1 ? v.y : v.z; }
 
 // A dense grid of dims voxels, value f(i, j, k), world = dense coordinates.
-Medium grid_medium(std::array<int, 3> dims, const std::function<float(int, int, int)>& f, Vec3 sigma_a,
-                   Vec3 sigma_s, float majorant_factor = 1.0f) {
+Medium grid_medium(std::array<int, 3> dims, const std::function<float(int, int, int)>& f, Vec3 sigma_a, Vec3 sigma_s,
+                   float majorant_factor = 1.0f) {
     auto grid = std::make_shared<DensityGrid>();
     grid->dims = dims;
     for (int k = 0; k < dims[2]; ++k)
@@ -37,7 +37,9 @@ Medium grid_medium(std::array<int, 3> dims, const std::function<float(int, int, 
 
 // A ramp along x on the row y = z = 1: voxel i holds 0.1·i inside, 0 on the padding.
 constexpr int kLength = 40;
-float ramp(int i, int j, int k) { return j == 1 && k == 1 && i > 0 && i < kLength - 1 ? 0.1f * static_cast<float>(i) : 0.0f; }
+float ramp(int i, int j, int k) {
+    return j == 1 && k == 1 && i > 0 && i < kLength - 1 ? 0.1f * static_cast<float>(i) : 0.0f;
+}
 // ∫ from x = a to b of 0.1·x dx.
 double ramp_integral(double a, double b) { return 0.05 * (b * b - a * a); }
 
@@ -76,8 +78,9 @@ Vec3 expected_transmittance(double tau) {
 }
 
 TEST(GridMedium, TheMajorantsBoundEveryInterpolatedDensity) {
-    const Medium m = grid_medium({20, 13, 9}, [](int i, int j, int k) { return static_cast<float>((i * 7 + j * 3 + k) % 5); },
-                                 Vec3{1.0f}, Vec3{0.0f});
+    const Medium m = grid_medium(
+        {20, 13, 9}, [](int i, int j, int k) { return static_cast<float>((i * 7 + j * 3 + k) % 5); }, Vec3{1.0f},
+        Vec3{0.0f});
     const DensityGrid& g = *m.density;
     TrackingRng rng{1};
     for (int n = 0; n < 20000; ++n) {
@@ -85,9 +88,10 @@ TEST(GridMedium, TheMajorantsBoundEveryInterpolatedDensity) {
         const int a = std::min(static_cast<int>(q.x) / kMajorantBlock, g.cells[0] - 1);
         const int b = std::min(static_cast<int>(q.y) / kMajorantBlock, g.cells[1] - 1);
         const int c = std::min(static_cast<int>(q.z) / kMajorantBlock, g.cells[2] - 1);
-        const std::size_t cell = static_cast<std::size_t>(a) +
-                                 static_cast<std::size_t>(g.cells[0]) *
-                                     (static_cast<std::size_t>(b) + static_cast<std::size_t>(g.cells[1]) * static_cast<std::size_t>(c));
+        const std::size_t cell =
+            static_cast<std::size_t>(a) +
+            static_cast<std::size_t>(g.cells[0]) *
+                (static_cast<std::size_t>(b) + static_cast<std::size_t>(g.cells[1]) * static_cast<std::size_t>(c));
         const float majorant = g.majorants[cell];
         ASSERT_LE(density_at(g, q), majorant) << q.x << " " << q.y << " " << q.z;
     }
@@ -95,8 +99,8 @@ TEST(GridMedium, TheMajorantsBoundEveryInterpolatedDensity) {
 }
 
 TEST(GridMedium, InterpolationIsTrilinearAndZeroOutside) {
-    const Medium m = grid_medium({4, 4, 4}, [](int i, int j, int k) { return static_cast<float>(i + 2 * j + 4 * k); },
-                                 Vec3{1.0f}, Vec3{0.0f});
+    const Medium m = grid_medium(
+        {4, 4, 4}, [](int i, int j, int k) { return static_cast<float>(i + 2 * j + 4 * k); }, Vec3{1.0f}, Vec3{0.0f});
     EXPECT_FLOAT_EQ(density_at(*m.density, {1.25f, 1.5f, 2.75f}), 1.25f + 3.0f + 11.0f);
     EXPECT_EQ(density_at(*m.density, {-0.5f, 1.0f, 1.0f}), 0.0f);
     EXPECT_EQ(density_at(*m.density, {1.0f, 3.5f, 1.0f}), 0.0f);
@@ -106,8 +110,11 @@ TEST(GridMedium, RatioTrackingIsUnbiasedForARamp) {
     for (const float factor : {1.0f, 2.0f}) {
         const Medium m = grid_medium({kLength, 3, 3}, ramp, kSigmaA, kSigmaS, factor);
         // From x = 3 to x = 30 along the ramp's row, and from outside the grid through all of it.
-        expect_mean([&](TrackingRng& r) { return grid_transmittance(m, {3, 1, 1}, {1, 0, 0}, 27.0f, r); }, 20000,
-                    11, expected_transmittance(ramp_integral(3, 30)), "ratio tracking, part");
+        expect_mean(
+            [&](TrackingRng& r) {
+                return grid_transmittance(m, {3, 1, 1}, {1, 0, 0}, 27.0f, r);
+            },
+            20000, 11, expected_transmittance(ramp_integral(3, 30)), "ratio tracking, part");
         expect_mean(
             [&](TrackingRng& r) {
                 return grid_transmittance(m, {-5, 1, 1}, {1, 0, 0}, std::numeric_limits<float>::infinity(), r);
@@ -129,8 +136,9 @@ TEST(GridMedium, DeltaTrackingIsUnbiasedForWhatPassesAndWhatScatters) {
             const double x = a + (i + 0.5) * length / steps;
             sum += std::exp(-st * ramp_integral(a, x)) * ss * 0.1 * x * (length / steps);
         }
-        (c == 0 ? scattered_expected.x : c == 1 ? scattered_expected.y : scattered_expected.z) =
-            static_cast<float>(sum);
+        (c == 0   ? scattered_expected.x
+         : c == 1 ? scattered_expected.y
+                  : scattered_expected.z) = static_cast<float>(sum);
     }
     for (const float factor : {1.0f, 2.0f}) {
         const Medium m = grid_medium({kLength, 3, 3}, ramp, kSigmaA, kSigmaS, factor);
