@@ -18,7 +18,8 @@
 // A sanitizer runtime's hook (weak: absent from plain builds). The child
 // clears it so that a fuzzer's crash handler, inherited through fork, does
 // not take the child's death for the fuzzer's own.
-extern "C" void __sanitizer_set_death_callback(void (*callback)()) __attribute__((weak));
+extern "C" void __sanitizer_set_death_callback(  // NOLINT(bugprone-reserved-identifier): its name
+    void (*callback)()) __attribute__((weak));
 
 namespace sombra {
 
