@@ -30,11 +30,6 @@ namespace {
 // Russian roulette may end a path only after this many scattering events.
 constexpr int kRouletteStart = 3;
 
-// A path crossing more interface surfaces than this ends: it bounds the work
-// of a ray caught between coincident interfaces. Crossings are no
-// scattering events and count against no depth (spec §26).
-constexpr int kMaxInterfaceCrossings = 1024;
-
 // Russian roulette's survival probability for a path of throughput β (with
 // refraction's (η_i/η_t)² undone): the cube root of max(β), where the usual
 // max(β) ends paths whose later bounces still matter; a survivor's

@@ -11,6 +11,23 @@
 
 namespace sombra {
 
+namespace {
+
+// What a light sample says of itself, seen from x (a surface or medium vertex).
+void copy_light_sample(const LightSample& ls, Vec3 x, SampledLightRecord& r) {
+    r.environment = ls.at_infinity;
+    r.light = ls.light;
+    r.triangle = ls.triangle;
+    r.instance = ls.instance;
+    r.wi = ls.wi;
+    r.target = ls.target;
+    r.distance = ls.at_infinity ? std::numeric_limits<float>::infinity() : length(ls.target - x);
+    r.radiance = ls.radiance;
+    r.light_pdf = ls.pdf;
+}
+
+}  // namespace
+
 VertexRecord& SampleRecorder::vertex() {
     if (record_.vertices.empty()) record_.vertices.emplace_back();
     return record_.vertices.back();
@@ -131,15 +148,7 @@ void SampleRecorder::sampled_light(const LightSample* ls, const ShadingView& vie
     r.transmittance = transmittance;
     r.sampled = ls != nullptr;
     if (ls) {
-        r.environment = ls->at_infinity;
-        r.light = ls->light;
-        r.triangle = ls->triangle;
-        r.instance = ls->instance;
-        r.wi = ls->wi;
-        r.target = ls->target;
-        r.distance = ls->at_infinity ? std::numeric_limits<float>::infinity() : length(ls->target - view.si.position);
-        r.radiance = ls->radiance;
-        r.light_pdf = ls->pdf;
+        copy_light_sample(*ls, view.si.position, r);
         r.cos_s = std::fabs(dot(view.si.n_s, ls->wi));
         if (!ls->at_infinity && (ls->instance == kNoInstance || ls->instance < scene_.instances.size()) &&
             ls->triangle < surface_mesh(scene_, ls->instance).triangles.size()) {
@@ -243,15 +252,7 @@ void SampleRecorder::medium_sampled_light(const LightSample* ls, Vec3 x, float p
     SampledLightRecord r;
     r.sampled = ls != nullptr;
     if (ls) {
-        r.environment = ls->at_infinity;
-        r.light = ls->light;
-        r.triangle = ls->triangle;
-        r.instance = ls->instance;
-        r.wi = ls->wi;
-        r.target = ls->target;
-        r.distance = ls->at_infinity ? std::numeric_limits<float>::infinity() : length(ls->target - x);
-        r.radiance = ls->radiance;
-        r.light_pdf = ls->pdf;
+        copy_light_sample(*ls, x, r);
         r.cos_s = 1;
         r.f = Vec3{phase};
         r.bsdf_pdf = phase;  // the phase function samples itself exactly

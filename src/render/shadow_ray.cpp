@@ -10,10 +10,6 @@ namespace sombra {
 
 namespace {
 
-// A shadow ray crossing more interfaces than this is taken as blocked: it
-// bounds the work of a ray caught between coincident interface surfaces.
-constexpr int kMaxInterfaceCrossings = 1024;
-
 // The transmittance of `medium` from `origin` along the unit direction `dir`
 // over `distance` (vacuum: 1).
 Vec3 segment_transmittance(const Scene& scene, std::uint32_t medium, Vec3 origin, Vec3 dir, float distance,

@@ -87,17 +87,24 @@ bool lets_light_in(const Material& m) {
            (m.type == MaterialType::Pbr && (m.transmission > 0.0f || m.textures.transmission.is_set()));
 }
 
+// An object's triangles: triangles first … first + count − 1 of `mesh`
+// (its instanced mesh, or its range of the world geometry).
+struct ObjectTriangles {
+    const TriangleMesh& mesh;
+    std::uint32_t first, count;
+};
+ObjectTriangles object_triangles(const Scene& scene, const SceneObject& object) {
+    if (object.instance_count == 0) return {scene.geometry, object.first_triangle, object.triangle_count};
+    const TriangleMesh& mesh = scene.instanced_meshes[scene.instances[object.first_instance].mesh];
+    return {mesh, 0, static_cast<std::uint32_t>(mesh.triangles.size())};
+}
+
 // The materials on an object's triangles, each index once.
-std::vector<std::uint32_t> object_materials(const Scene& scene, const SceneObject& object) {
-    const bool instanced = object.instance_count > 0;
-    const TriangleMesh& mesh =
-        instanced ? scene.instanced_meshes[scene.instances[object.first_instance].mesh] : scene.geometry;
-    const std::uint32_t first = instanced ? 0 : object.first_triangle;
-    const std::uint32_t count = instanced ? static_cast<std::uint32_t>(mesh.triangles.size()) : object.triangle_count;
+std::vector<std::uint32_t> object_materials(const Scene& scene, const ObjectTriangles& triangles) {
     std::vector<bool> seen(scene.materials.size());
     std::vector<std::uint32_t> ids;
-    for (std::uint32_t t = first; t < first + count; ++t)
-        if (const std::uint32_t id = mesh.material_ids[t]; id < seen.size() && !seen[id]) {
+    for (std::uint32_t t = triangles.first; t < triangles.first + triangles.count; ++t)
+        if (const std::uint32_t id = triangles.mesh.material_ids[t]; id < seen.size() && !seen[id]) {
             seen[id] = true;
             ids.push_back(id);
         }
@@ -173,7 +180,8 @@ std::optional<MediumBoundary> read_object_media(const SceneJson& s, const Json& 
 void check_medium_objects(const SceneJson& s, const Scene& scene) {
     for (const SceneObject& object : scene.objects) {
         if (!object.bounds_medium) continue;
-        const std::vector<std::uint32_t> ids = object_materials(scene, object);
+        const ObjectTriangles triangles = object_triangles(scene, object);
+        const std::vector<std::uint32_t> ids = object_materials(scene, triangles);
         bool enters = false;
         for (const std::uint32_t id : ids) {
             const Material& m = scene.materials[id];
@@ -186,12 +194,7 @@ void check_medium_objects(const SceneJson& s, const Scene& scene) {
             json_warn(s, json_child(object.name, "interior"),
                       "the object's material is opaque: its interior medium is never entered (use a dielectric, "
                       "a transmissive pbr or \"interface\")");
-        const bool instanced = object.instance_count > 0;
-        const TriangleMesh& mesh =
-            instanced ? scene.instanced_meshes[scene.instances[object.first_instance].mesh] : scene.geometry;
-        const std::size_t open =
-            open_edge_count(mesh, instanced ? 0 : object.first_triangle,
-                            instanced ? static_cast<std::uint32_t>(mesh.triangles.size()) : object.triangle_count);
+        const std::size_t open = open_edge_count(triangles.mesh, triangles.first, triangles.count);
         if (open > 0)
             json_warn(s, json_child(object.name, "interior"),
                       "the object's surface is not closed (" + std::to_string(open) +

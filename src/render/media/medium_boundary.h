@@ -18,6 +18,11 @@ inline bool tracks_media(const Scene& scene) {
     return !scene.media.empty() || scene.interface_material != kNoInterface;
 }
 
+// A ray crossing more interface surfaces than this ends (a path) or is taken
+// as blocked (a shadow ray): it bounds the work of a ray caught between
+// coincident interfaces. Crossings count against no depth (spec §26).
+inline constexpr int kMaxInterfaceCrossings = 1024;
+
 // True when `triangle` of surface_mesh(scene, instance) is an "interface".
 inline bool is_interface(const Scene& scene, std::uint32_t triangle, std::uint32_t instance) {
     return scene.interface_material != kNoInterface &&
