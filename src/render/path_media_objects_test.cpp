@@ -23,25 +23,10 @@ namespace {
 using testing::add_box;
 using testing::add_quad;
 using testing::add_world_mesh;
+using testing::emitter;
 using testing::Estimate;
 using testing::expect_agrees;
 using testing::PathRun;
-
-Medium medium(Vec3 sigma_a, Vec3 sigma_s, float g = 0.0f) {
-    Medium m;
-    m.name = "medium";
-    m.sigma_a = sigma_a;
-    m.sigma_s = sigma_s;
-    m.g = g;
-    return m;
-}
-
-Material emitter(float radiance) {
-    Material m;
-    m.kd = Vec3{0.0f};
-    m.ke = Vec3{radiance};
-    return m;
-}
 
 // Adds `mesh` as one object of material `material` (a scene index) bounding
 // `boundary` when given.
@@ -63,7 +48,7 @@ TEST(PathMediaObjects, AnInterfaceBoxKeepsBeersLawAlongWhatItEncloses) {
     // onto the emitter: exp(−σ_a·1.2); the box's surfaces themselves are invisible.
     const Vec3 sigma_a{0.5f, 1.0f, 2.0f};
     SceneBuilder b;
-    b.set_media({medium(sigma_a, Vec3{0.0f})}, kNoMedium);
+    b.set_media({testing::homogeneous(sigma_a, Vec3{0.0f})}, kNoMedium);
     add_emitting_floor(b);
     TriangleMesh box;
     add_box(box, {-1, -1, 0.5f}, {1, 1, 1.7f}, 0);
@@ -79,7 +64,7 @@ TEST(PathMediaObjects, TheCameraStartsInItsMedium) {
     // From inside the box (camera medium set), 0.6 units of it to the floor.
     const Vec3 sigma_a{0.5f, 1.0f, 2.0f};
     SceneBuilder b;
-    b.set_media({medium(sigma_a, Vec3{0.0f})}, kNoMedium);
+    b.set_media({testing::homogeneous(sigma_a, Vec3{0.0f})}, kNoMedium);
     b.set_camera_medium(0);
     add_emitting_floor(b);
     TriangleMesh box;
@@ -97,7 +82,7 @@ TEST(PathMediaObjects, AnInterfaceWithoutInteriorKeepsTheCurrentMedium) {
     // changes nothing: Beer's law over the whole 3 units.
     const Vec3 sigma_a{0.2f, 0.4f, 0.6f};
     SceneBuilder b;
-    b.set_media({medium(sigma_a, Vec3{0.0f})}, 0);
+    b.set_media({testing::homogeneous(sigma_a, Vec3{0.0f})}, 0);
     add_emitting_floor(b);
     TriangleMesh box;
     add_box(box, {-1, -1, 0.5f}, {1, 1, 1.7f}, 0);
@@ -117,7 +102,7 @@ TEST(PathMediaObjects, ShadowRaysCrossInterfacesWithTheirTransmittance) {
     const Vec3 sigma_a{0.5f, 1.0f, 2.0f};
     const float intensity = 9.0f;
     SceneBuilder b;
-    b.set_media({medium(sigma_a, Vec3{0.0f})}, kNoMedium);
+    b.set_media({testing::homogeneous(sigma_a, Vec3{0.0f})}, kNoMedium);
     b.add_light(make_point_light({0, 0, 3}, Vec3{intensity}));
     TriangleMesh floor;
     add_quad(floor, {-50, -50, 0}, {50, -50, 0}, {50, 50, 0}, {-50, 50, 0}, 0);
@@ -153,7 +138,7 @@ TEST(PathMediaObjects, AScatteringSphereUnderAWhiteSkyStaysWhite) {
     for (const float g : {0.0f, 0.8f, -0.6f}) {
         SceneBuilder b;
         b.set_background(Vec3{1.0f});
-        b.set_media({medium(Vec3{0.0f}, {0.5f, 1.5f, 3.0f}, g)}, kNoMedium);
+        b.set_media({testing::homogeneous(Vec3{0.0f}, {0.5f, 1.5f, 3.0f}, g)}, kNoMedium);
         TriangleMesh sphere;
         testing::add_sphere(sphere, Vec3{0.0f}, 1.0f, 3, 0);
         add_object(b, sphere, b.interface_material(), MediumBoundary{0, kNoMedium});
@@ -175,7 +160,7 @@ TEST(PathMediaObjects, GlassAroundAScatteringMediumStaysWhiteUnderAWhiteSky) {
     for (const float g : {0.0f, 0.8f}) {
         SceneBuilder b;
         b.set_background(Vec3{1.0f});
-        b.set_media({medium(Vec3{0.0f}, {2.0f, 4.0f, 8.0f}, g)}, kNoMedium);
+        b.set_media({testing::homogeneous(Vec3{0.0f}, {2.0f, 4.0f, 8.0f}, g)}, kNoMedium);
         Material glass;
         glass.type = MaterialType::Dielectric;
         glass.ior = 1.33f;
@@ -199,7 +184,7 @@ TEST(PathMediaObjects, AnAbsorbingInteriorDarkensGlassByBeersLaw) {
     // light reflected back and forth inside (a geometric series in F₀²·T²).
     const Vec3 sigma_a{0.5f, 1.0f, 2.0f};
     SceneBuilder b;
-    b.set_media({medium(sigma_a, Vec3{0.0f})}, kNoMedium);
+    b.set_media({testing::homogeneous(sigma_a, Vec3{0.0f})}, kNoMedium);
     add_emitting_floor(b);
     Material glass;
     glass.type = MaterialType::Dielectric;
@@ -229,7 +214,7 @@ Medium constant_grid(Vec3 sigma_a, Vec3 sigma_s, float g) {
             for (int i = 0; i < 12; ++i)
                 grid->values.push_back(i > 0 && i < 11 && j > 0 && j < 11 && k > 0 && k < 11 ? 1.0f : 0.0f);
     build_majorants(*grid);
-    Medium m = medium(sigma_a, sigma_s, g);
+    Medium m = testing::homogeneous(sigma_a, sigma_s, g);
     m.density = grid;
     m.world_to_grid = compose(make_scale(Vec3{4.5f}), make_translate(Vec3{5.5f}));
     return m;

@@ -21,26 +21,10 @@ namespace {
 
 using testing::add_quad;
 using testing::add_world_mesh;
+using testing::emitter;
 using testing::Estimate;
 using testing::expect_agrees;
 using testing::PathRun;
-
-Medium fog(Vec3 sigma_a, Vec3 sigma_s, float g = 0.0f) {
-    Medium m;
-    m.name = "fog";
-    m.sigma_a = sigma_a;
-    m.sigma_s = sigma_s;
-    m.g = g;
-    return m;
-}
-
-Material emitter(float radiance) {
-    Material m;
-    m.type = MaterialType::Diffuse;
-    m.kd = Vec3{0.0f};
-    m.ke = Vec3{radiance};
-    return m;
-}
 
 TEST(PathMedia, AnAbsorbingMediumKeepsBeersLawOfAnEmitter) {
     // An emitter of radiance 1 seen through distance d of a medium that only
@@ -52,7 +36,7 @@ TEST(PathMedia, AnAbsorbingMediumKeepsBeersLawOfAnEmitter) {
     TriangleMesh mesh;
     add_quad(mesh, {-50, -50, 0}, {50, -50, 0}, {50, 50, 0}, {-50, 50, 0}, 0);
     add_world_mesh(b, mesh, {emitter(1.0f)});
-    b.set_media({fog(sigma_a, Vec3{0.0f})}, 0);
+    b.set_media({testing::homogeneous(sigma_a, Vec3{0.0f})}, 0);
     const Scene scene = b.finish();
     const PathRun run{scene, 8};
     for (int c = 0; c < 3; ++c) {
@@ -72,7 +56,7 @@ TEST(PathMedia, AMediumFurnaceStaysWhiteAtAnyG) {
         TriangleMesh mesh;
         testing::add_box(mesh, Vec3{-1.0f}, Vec3{1.0f}, 0);
         add_world_mesh(b, mesh, {emitter(1.0f)});
-        b.set_media({fog(Vec3{0.0f}, {0.5f, 1.5f, 3.0f}, g)}, 0);
+        b.set_media({testing::homogeneous(Vec3{0.0f}, {0.5f, 1.5f, 3.0f}, g)}, 0);
         const Scene scene = b.finish();
         const PathRun run{scene, 8};
         for (int c = 0; c < 3; ++c) {
@@ -97,7 +81,7 @@ TEST(PathMedia, SingleScatteringFromAPointLightMatchesItsIntegral) {
     TriangleMesh mesh;  // a speck far away: the scene needs a surface
     testing::add_triangle(mesh, {900, 900, 900}, {901, 900, 900}, {900, 901, 900}, 0);
     add_world_mesh(b, mesh, {emitter(0.0f)});
-    b.set_media({fog(sigma_a, sigma_s, g)}, 0);
+    b.set_media({testing::homogeneous(sigma_a, sigma_s, g)}, 0);
     const Scene scene = b.finish();
     PathRun run{scene, 8};
     run.max_volume_depth = 1;

@@ -108,4 +108,23 @@ struct PathRun {
     }
 };
 
+// A homogeneous medium (spec §26) named "medium".
+inline Medium homogeneous(Vec3 sigma_a, Vec3 sigma_s, float g = 0.0f) {
+    Medium m;
+    m.name = "medium";
+    m.sigma_a = sigma_a;
+    m.sigma_s = sigma_s;
+    m.g = g;
+    return m;
+}
+
+// A black diffuse material emitting `radiance` (from both sides).
+inline Material emitter(float radiance) {
+    Material m;
+    m.type = MaterialType::Diffuse;
+    m.kd = Vec3{0.0f};
+    m.ke = Vec3{radiance};
+    return m;
+}
+
 }  // namespace sombra::testing
