@@ -11,6 +11,7 @@
 #include <numbers>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "render/path_test_util.h"
 #include "render/test_meshes.h"
@@ -217,6 +218,7 @@ Medium constant_grid(Vec3 sigma_a, Vec3 sigma_s, float g) {
     Medium m = testing::homogeneous(sigma_a, sigma_s, g);
     m.density = grid;
     m.world_to_grid = compose(make_scale(Vec3{4.5f}), make_translate(Vec3{5.5f}));
+    grid->index_to_world = inverse_affine(m.world_to_grid);
     return m;
 }
 
@@ -254,6 +256,33 @@ TEST(PathMediaObjects, AGridMediumKeepsBeersLawAndItsFurnace) {
             expect_agrees(run.estimate({0.0f, 0.0f, 3.0f}, {0.1f, 0.2f, 0.0f}, 4000, ++seed, c), 1.0,
                           ("grid furnace, g " + std::to_string(g)).c_str());
     }
+}
+
+TEST(PathMediaObjects, EachInstanceOfAnObjectHoldsItsOwnPlacementOfAGrid) {
+    // Two drawings of one interface box, the second 4 units along x, each
+    // with its grid placed by its own transform: 2 units of density 1 seen
+    // through either (the second would be empty with the first's placement).
+    const Vec3 sigma_a{0.3f, 0.6f, 1.2f};
+    const Transform moved = make_translate({4, 0, 0});
+    Medium here = constant_grid(sigma_a, Vec3{0.0f}, 0.0f);
+    Medium there = here;
+    ASSERT_TRUE(place_grid_medium(there, moved));
+    SceneBuilder b;
+    b.set_media({here, there}, kNoMedium);
+    TriangleMesh floor;
+    add_quad(floor, {-50, -50, -3}, {50, -50, -3}, {50, 50, -3}, {-50, 50, -3}, 0);
+    add_world_mesh(b, floor, {emitter(1.0f)});
+    TriangleMesh box;
+    add_box(box, Vec3{-1.0f}, Vec3{1.0f}, 0);
+    MeshPlacement placement{"boxes", "", std::nullopt, b.interface_material(), MediumBoundary{0, kNoMedium, {0, 1}}};
+    ASSERT_EQ(b.add_instanced_mesh(box, {}, {}, placement, std::vector<Transform>{Transform{}, moved}),
+              MeshProblem::None);
+    const Scene scene = b.finish();
+    const PathRun run{scene, 8};
+    for (const float x : {0.1f, 4.1f})
+        for (int c = 0; c < 3; ++c)
+            expect_agrees(run.estimate({x, 0.2f, 3.0f}, {x, 0.2f, 0.0f}, 4000, 100 + c, c),
+                          std::exp(-2.0 * static_cast<double>(sigma_a[c])), "through each drawing's grid");
 }
 
 }  // namespace

@@ -208,7 +208,13 @@ void set_scene_time(Scene& scene, double time, const std::string& scene_name) {
         for (std::size_t k = 0; k < object.after.size(); ++k) {
             Instance& instance = scene.instances[object.first_instance + k];
             const Transform node = object.gltf ? compose(object.before[k], worlds[object.nodes[k]]) : object.before[k];
-            if (place_instance(instance, compose(compose(node, keyed), object.after[k]))) continue;
+            if (place_instance(instance, compose(compose(node, keyed), object.after[k]))) {
+                // A grid inside the object moves with its transform, not with a node of its file (spec §26).
+                if (instance.interior == kNoMedium || !scene.media[instance.interior].density) continue;
+                if (place_grid_medium(scene.media[instance.interior], compose(keyed, object.after[k]))) continue;
+                throw Error(scene_name, object.name + "/interior: at " + std::to_string(time) +
+                                            " s the grid's and the object's transforms together are not invertible");
+            }
             if (object.gltf)
                 throw Error(scene_name, object.name + ": " + object.file + ": node " + std::to_string(object.nodes[k]) +
                                             ": at " + std::to_string(time) +

@@ -96,6 +96,9 @@ struct Instance {
     // A negative determinant: the winding flips (spec §11), as the builder's
     // flattened copies swap two corners.
     bool mirrored = false;
+    // The medium inside this drawing when its object bounds one (spec §26):
+    // the object's interior, or for a grid, this drawing's own placement of it.
+    std::uint32_t interior = kNoMedium;
 };
 
 struct Scene {
@@ -137,6 +140,11 @@ inline std::uint32_t starting_medium(const Scene& scene) { return scene.camera_m
 // matrix and mirroring; false (the instance untouched) when the matrix is
 // not invertible in float.
 bool place_instance(Instance& instance, const Transform& object_to_world);
+
+// Places a grid medium (spec §26) by its grid's index-to-world transform,
+// then `object_to_world`; false (the medium untouched) when together they
+// are not invertible in float.
+bool place_grid_medium(Medium& medium, const Transform& object_to_world);
 
 // The mesh a triangle index belongs to: Scene::geometry for kNoInstance,
 // else the instance's mesh.

@@ -220,6 +220,10 @@ MeshProblem SceneBuilder::add_instanced_mesh(const TriangleMesh& in, std::span<c
         Instance placed;
         placed.mesh = mesh_index;
         placed.object = object_index;
+        if (placement.media) {
+            const std::vector<std::uint32_t>& own = placement.media->instance_interiors;
+            placed.interior = k < own.size() ? own[k] : placement.media->interior;
+        }
         if (!place_instance(placed, to_world)) return fail(MeshProblem::SingularInstance);
         scene_.instances.push_back(placed);
     }

@@ -40,6 +40,9 @@ namespace sombra {
 struct MediumBoundary {
     std::uint32_t interior = kNoMedium;
     std::uint32_t exterior = kNoMedium;
+    // For add_instanced_mesh: each instance's own interior (Instance::
+    // interior, a grid placed per drawing), one per instance; empty: `interior`.
+    std::vector<std::uint32_t> instance_interiors{};
 };
 
 struct MeshPlacement {

@@ -57,6 +57,17 @@ bool place_instance(Instance& instance, const Transform& object_to_world) {
     return true;
 }
 
+bool place_grid_medium(Medium& medium, const Transform& object_to_world) {
+    const Transform grid_to_world = compose(medium.density->index_to_world, object_to_world);
+    const float det = determinant3(grid_to_world);
+    if (!(det != 0.0f) || !std::isfinite(det)) return false;
+    const Transform to_grid = inverse_affine(grid_to_world);
+    for (const float v : to_grid.m)
+        if (!std::isfinite(v)) return false;
+    medium.world_to_grid = to_grid;
+    return true;
+}
+
 std::uint64_t stored_triangle_count(const Scene& scene) {
     std::uint64_t count = scene.geometry.triangle_count();
     for (const TriangleMesh& mesh : scene.instanced_meshes) count += mesh.triangle_count();

@@ -41,6 +41,9 @@ struct ObjectSpec {
     const LoadedMesh* given = nullptr;    // a mesh made from arrays ("mesh": i), no file behind it
     bool interface = false;               // "material": "interface" (spec §26)
     std::optional<MediumBoundary> media;  // "interior" and "exterior" (spec §26)
+    // A grid interior placed once per drawing of the object (its transform,
+    // then each instance): Scene::media indices, one per instance (or one).
+    std::vector<std::uint32_t> grid_interiors;
 };
 
 // The object's file, checked to be one before any mesh is read.
@@ -136,6 +139,7 @@ void add_whole(SceneBuilder& builder, const LoadedMesh& loaded, ObjectSpec spec,
     const std::string mesh_name = spec.path.string();
     MeshPlacement placement{spec.pointer, spec.is_quad_light ? std::string{} : mesh_name, spec.transform, spec.material,
                             spec.media};
+    if (placement.media) placement.media->instance_interiors = spec.grid_interiors;
     std::size_t bad = 0;
     MeshProblem problem = MeshProblem::None;
     if (!instanced && spec.instances.size() == 1) placement.transform = compose(spec.transform, spec.instances[0]);
@@ -170,7 +174,7 @@ void add_whole(SceneBuilder& builder, const LoadedMesh& loaded, ObjectSpec spec,
 void add_parts(SceneBuilder& builder, const LoadedMesh& loaded, const ObjectSpec& spec, const SceneJson& s,
                SceneAnimation& animation) {
     const std::string mesh_name = spec.path.string();
-    const MeshPlacement placement{spec.pointer, mesh_name, std::nullopt, spec.material, spec.media};
+    MeshPlacement placement{spec.pointer, mesh_name, std::nullopt, spec.material, spec.media};
     const std::size_t copies = std::max<std::size_t>(1, spec.instances.size());
     const std::string list = json_child(spec.pointer, spec.instances.empty() ? "transform" : "instances");
     const std::string too_many = "the scene would hold more than " + std::to_string(kMaxInstances) + " instances";
@@ -180,6 +184,12 @@ void add_parts(SceneBuilder& builder, const LoadedMesh& loaded, const ObjectSpec
         if (n > kMaxInstances / copies) json_fail(s, list, too_many);
         world.clear();
         world.reserve(n * copies);
+        if (placement.media && !spec.grid_interiors.empty()) {
+            // Each drawing's grid is its object copy's (place_grid_media).
+            std::vector<std::uint32_t>& own = placement.media->instance_interiors;
+            own.clear();
+            for (const std::uint32_t grid : spec.grid_interiors) own.insert(own.end(), n, grid);
+        }
         for (std::size_t j = 0; j < copies; ++j) {
             const Transform object =
                 spec.instances.empty() ? spec.transform : compose(spec.transform, spec.instances[j]);
@@ -239,29 +249,28 @@ void add_object(SceneBuilder& builder, const LoadedMesh& loaded, const ObjectSpe
     add_parts(builder, loaded, spec, s, animation);
 }
 
-// An object whose interior is a grid medium places its own copy of it
-// (spec §26): the grid's index-to-world transform, then the object's. A
-// camera inside a grid medium is in its first placement.
+// An object whose interior is a grid medium places its own copy of it per
+// drawing (spec §26): the grid's index-to-world transform, then the object's,
+// then the instance's. A camera inside a grid medium is in its first placement.
 void place_grid_media(const SceneJson& s, std::vector<ObjectSpec>& specs, SceneBuilder& builder) {
     std::vector<std::uint32_t> first_placement(builder.scene().media.size(), kNoMedium);
     for (ObjectSpec& spec : specs) {
         if (!spec.media || spec.media->interior == kNoMedium) continue;
         const std::uint32_t index = spec.media->interior;
         if (!builder.scene().media[index].density) continue;
-        Medium placed = builder.scene().media[index];
-        const std::string where = json_child(spec.pointer, "interior");
-        if (spec.instances.size() > 1 || !spec.keys.empty())
-            json_fail(s, where,
-                      "a grid medium inside an object with several instances or a keyed transform is not supported "
-                      "yet");
-        const Transform object =
-            spec.instances.size() == 1 ? compose(spec.transform, spec.instances[0]) : spec.transform;
-        const Transform grid_to_world = compose(placed.density->index_to_world, object);
-        const float det = determinant3(grid_to_world);
-        if (!(det != 0.0f) || !std::isfinite(det))
-            json_fail(s, where, "the grid's and the object's transforms together are not invertible");
-        placed.world_to_grid = inverse_affine(grid_to_world);
-        spec.media->interior = builder.add_medium(std::move(placed));
+        const std::size_t copies = std::max<std::size_t>(1, spec.instances.size());
+        for (std::size_t j = 0; j < copies; ++j) {
+            Medium placed = builder.scene().media[index];
+            const Transform object =
+                spec.instances.empty() ? spec.transform : compose(spec.transform, spec.instances[j]);
+            if (!place_grid_medium(placed, object))
+                json_fail(s,
+                          spec.instances.empty() ? json_child(spec.pointer, "interior")
+                                                 : json_child(json_child(spec.pointer, "instances"), j),
+                          "the grid's and the object's transforms together are not invertible");
+            spec.grid_interiors.push_back(builder.add_medium(std::move(placed)));
+        }
+        spec.media->interior = spec.grid_interiors.front();
         if (first_placement[index] == kNoMedium) first_placement[index] = spec.media->interior;
     }
     const std::optional<std::uint32_t> camera = builder.scene().camera_medium;

@@ -181,13 +181,53 @@ TEST_F(SceneMedia, AGridMediumIsPlacedByTheObjectItFills) {
     expect_error(scene(cloud_media(), R"([{"file": "cube.obj", "material": "interface", "interior": "cloud",
                                            "exterior": "cloud"}])"),
                  ": /objects/0/exterior", "a grid medium fills only the interior");
-    expect_error(scene(cloud_media(), R"([{"file": "cube.obj", "material": "interface", "interior": "cloud",
-                                           "instances": [[], [{"translate": [3, 0, 0]}]]}])"),
-                 ": /objects/0/interior", "not supported yet");
     const std::string missing_grid = R"("media": {"cloud": {"type": "grid", "grid": "smoke", "file": ")" +
                                      (std::filesystem::path(SOMBRA_SHARED_DIR) / "models/vdb/cloud.vdb").string() +
                                      R"("}})";
     expect_error(scene(missing_grid), ": /media/cloud/grid", "no grid 'smoke' (the file has 'density')");
+}
+
+// Where the grid placed as `m` puts the shared cloud's voxel (1, 4, 1), whose
+// dense coordinates are (1, 1, 1), when the object moves it by `offset`.
+void expect_cloud_at(const Medium& m, Vec3 offset) {
+    ASSERT_TRUE(m.density);
+    const Vec3 q = transform_point(m.world_to_grid,
+                                   offset + Vec3{-1.0f + 1.5f / 32.0f, -1.0f + 4.5f / 32.0f, -1.0f + 1.5f / 32.0f});
+    EXPECT_NEAR(q.x, 1.0f, 1e-4f);
+    EXPECT_NEAR(q.y, 1.0f, 1e-4f);
+    EXPECT_NEAR(q.z, 1.0f, 1e-4f);
+}
+
+TEST_F(SceneMedia, EachInstanceAndEachMomentPlacesItsOwnGrid) {
+    if (!std::filesystem::exists(std::filesystem::path(SOMBRA_SHARED_DIR) / "models/vdb/cloud.vdb"))
+        GTEST_SKIP() << "needs ../shared/models/vdb/cloud.vdb";
+    write_cubes();
+    const Scene drawn = load(scene(cloud_media(), R"([{"file": "cube.obj", "material": "interface",
+        "interior": "cloud", "transform": [{"translate": [0, 2, 0]}],
+        "instances": [[], [{"translate": [3, 0, 0]}]]}])"));
+    ASSERT_EQ(drawn.instances.size(), 2u);
+    ASSERT_EQ(drawn.media.size(), 3u);  // the medium as named, and one placement a drawing
+    EXPECT_EQ(drawn.instances[0].interior, 1u);
+    EXPECT_EQ(drawn.instances[1].interior, 2u);
+    expect_cloud_at(drawn.media[1], {0, 2, 0});
+    expect_cloud_at(drawn.media[2], {3, 2, 0});
+
+    Scene moving = load(scene(cloud_media() + R"(, "animation": {"fps": 1, "frames": [0, 1]})",
+                              R"([{"file": "cube.obj", "material": "interface", "interior": "cloud",
+        "transform": {"keys": [{"time": 0, "transform": []}, {"time": 1, "transform": [{"translate": [0, 0, 4]}]}]},
+        "instances": [[{"translate": [-2, 0, 0]}]]}])"));
+    ASSERT_EQ(moving.instances.size(), 1u);
+    const std::uint32_t placed = moving.instances[0].interior;
+    ASSERT_EQ(placed, 1u);
+    expect_cloud_at(moving.media[placed], {-2, 0, 0});
+    set_scene_time(moving, 0.5, "s.json");
+    expect_cloud_at(moving.media[placed], {-2, 0, 2});
+    set_scene_time(moving, 1.0, "s.json");
+    expect_cloud_at(moving.media[placed], {-2, 0, 4});
+
+    expect_error(scene(cloud_media(), R"([{"file": "cube.obj", "material": "interface", "interior": "cloud",
+                                           "instances": [[], [{"scale": 2e-15}]]}])"),
+                 ": /objects/0/instances/1", "transforms together are not invertible");
 }
 
 TEST_F(SceneMedia, ARoughDielectricIsGltfsRoughTransmission) {

@@ -41,9 +41,10 @@ struct MediumSides {
 inline MediumSides medium_sides(const Scene& scene, const SurfaceInteraction& si, std::uint32_t current) {
     const SceneObject* object = object_of_surface(scene, si.triangle, si.instance);
     if (object == nullptr || !object->bounds_medium) return {current, current, false};
+    const std::uint32_t interior =
+        si.instance == kNoInstance ? object->interior : scene.instances[si.instance].interior;
     // `outside`: the ray arrived from the winding normal's side, the exterior.
-    return si.outside ? MediumSides{object->exterior, object->interior, true}
-                      : MediumSides{object->interior, object->exterior, true};
+    return si.outside ? MediumSides{object->exterior, interior, true} : MediumSides{interior, object->exterior, true};
 }
 
 // The medium a ray leaving the surface in direction w travels in.
