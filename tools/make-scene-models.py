@@ -17,6 +17,10 @@ running again after a change here.
   reaching it becomes a firefly.
 - sphere.obj: a unit UV sphere (64 x 32) with exact vertex normals.
 - cube.obj: a unit cube centred at the origin, flat faces.
+- grid-box.obj: the cube [-1, 1]^3, the bounds of an OpenVDB grid made in
+  that box (../shared/models/vdb/cloud.vdb): an object's transform places
+  the grid and its boundary alike (spec §26), so the boundary must enclose
+  the grid in the same coordinates.
 """
 import math
 import os
@@ -123,17 +127,17 @@ def write_sphere(rings=32, segments=64):
         f.write("\n".join(lines) + "\n")
 
 
-def write_cube():
-    lines = ["# Unit cube centred at the origin, flat faces. Made by tools/make-scene-models.py."]
-    for x in (-0.5, 0.5):
-        for y in (-0.5, 0.5):
-            for z in (-0.5, 0.5):
+def write_cube(name="cube.obj", half=0.5, title="Unit cube centred at the origin"):
+    lines = ["# %s, flat faces. Made by tools/make-scene-models.py." % title]
+    for x in (-half, half):
+        for y in (-half, half):
+            for z in (-half, half):
                 lines.append("v %g %g %g" % (x, y, z))
     # Vertex k has bits (x, y, z) = (k>>2, k>>1, k) & 1; faces wound outwards.
     faces = [(1, 2, 4, 3), (5, 7, 8, 6), (1, 5, 6, 2), (3, 4, 8, 7), (1, 3, 7, 5), (2, 6, 8, 4)]
     for f in faces:
         lines.append("f %d %d %d %d" % f)
-    with open(os.path.join(OUT, "cube.obj"), "w") as f:
+    with open(os.path.join(OUT, name), "w") as f:
         f.write("\n".join(lines) + "\n")
 
 
@@ -143,3 +147,4 @@ if __name__ == "__main__":
     write_cornell("cornell-box-empty.obj", with_light=False)
     write_sphere()
     write_cube()
+    write_cube("grid-box.obj", 1.0, "The cube [-1, 1]^3 around an OpenVDB grid")
