@@ -16,8 +16,10 @@ that both renderers converge to the same image, and turns off what would
 make Cycles biased or differ from it: no clamping, no light threshold, no
 denoiser, no adaptive sampling, a box pixel filter one pixel wide, the
 Standard view transform. Cycles' bounces are max_depth − 1 (spec §10).
-Supported: the look-at and basis cameras without lens, quad and emissive
-OBJ/MTL lights, `background`, `environment` (equirect map,
+Supported: the look-at and basis cameras without lens, quad, point, spot
+and emissive OBJ/MTL lights, media (tools/cycles/media.py: the render's
+medium, homogeneous interiors, grid interiors of interface objects),
+`background`, `environment` (equirect map,
 scale, rotate_y, clamp_negative), and the materials diffuse, mirror,
 dielectric (exact Fresnel, kt on transmission only) and conductor (GGX,
 α = r², Schlick with ks). Anything else is refused with a message.
@@ -27,6 +29,9 @@ import argparse, json, math, os, sys, time
 import bpy
 import numpy as np
 from mathutils import Matrix, Vector
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import media  # noqa: E402
 
 # sombra is y-up; Blender is z-up. (x, y, z) → (x, −z, y), as the OBJ importer's
 # default axes (forward −Z, up Y) do for the vertices.
@@ -54,7 +59,7 @@ def transform_matrix(steps):
             t = Matrix.Translation(step["translate"])
         elif "rotate" in step:
             r = step["rotate"]
-            t = Matrix.Rotation(math.radians(r["angle"]), 4, Vector(r["axis"]))
+            t = Matrix.Rotation(math.radians(r.get("degrees", r.get("angle", 0))), 4, Vector(r["axis"]))
         elif "matrix" in step:
             t = Matrix(step["matrix"])
         else:
@@ -191,6 +196,32 @@ def add_quad(index, light):
     bpy.context.scene.collection.objects.link(bpy.data.objects.new(f"quad-{index}", mesh))
 
 
+def add_point_or_spot(index, light):
+    """A point or spot light of radius 0. Cycles' light of power P has
+    radiant intensity P/(4π) W/sr; its spot is a cone of half-angle `outer`
+    with a smoothstep blend (and a cosine: sombra's falloff s² is not
+    matched exactly)."""
+    kind = "POINT" if light["type"] == "point" else "SPOT"
+    data = bpy.data.lights.new(f"light-{index}", kind)
+    intensity = light["intensity"]
+    intensity = [intensity] * 3 if isinstance(intensity, (int, float)) else intensity
+    power = max(intensity)
+    data.energy = 4 * math.pi * power
+    data.color = [c / power for c in intensity] if power > 0 else (0, 0, 0)
+    data.shadow_soft_size = 0.0
+    obj = bpy.data.objects.new(f"light-{index}", data)
+    obj.location = vec(light["position"])
+    if kind == "SPOT":
+        outer = math.radians(light.get("outer_angle", 45))
+        inner = math.radians(light.get("inner_angle", 0))
+        data.spot_size = 2 * outer
+        data.spot_blend = (math.cos(inner) - math.cos(outer)) / (1 - math.cos(outer))
+        # A spot shines down its −z.
+        obj.rotation_mode = "QUATERNION"
+        obj.rotation_quaternion = vec(light["direction"]).normalized().to_track_quat("-Z", "Y")
+    bpy.context.scene.collection.objects.link(obj)
+
+
 def set_world(scene, spec, base):
     world = bpy.data.worlds.new("world")
     scene.world = world
@@ -298,7 +329,10 @@ def main():
     bounces = max(a.max_depth - 1, 0)
     c.max_bounces = bounces
     c.diffuse_bounces = c.glossy_bounces = c.transmission_bounces = bounces
-    c.volume_bounces = c.transparent_max_bounces = bounces
+    c.transparent_max_bounces = bounces
+    # sombra counts medium events against max_volume_depth only; Cycles
+    # counts them against max_bounces as well.
+    c.volume_bounces = spec.get("render", {}).get("max_volume_depth", 256)
     c.filter_type = "BOX"
     c.filter_width = 1.0
     scene.render.resolution_x, scene.render.resolution_y = a.width, a.height
@@ -313,19 +347,39 @@ def main():
     scene.render.image_settings.exr_codec = "NONE"
 
     materials = {name: make_material(name, m) for name, m in spec.get("materials", {}).items()}
-    for obj in spec.get("objects", []):
+    for index, obj in enumerate(spec.get("objects", [])):
         if "file" not in obj or not obj["file"].endswith(".obj"):
             refuse(f"object {obj} is not an OBJ file")
         if "instances" in obj:
             refuse("instances are not supported")
-        material = materials[obj["material"]] if "material" in obj else None
-        import_obj(os.path.normpath(os.path.join(base, obj["file"])), transform_matrix(obj.get("transform")), material)
+        path = os.path.normpath(os.path.join(base, obj["file"]))
+        matrix = transform_matrix(obj.get("transform"))
+        name = obj.get("material")
+        surface = None if name in (None, "interface") else materials[name]
+        if "interior" in obj:
+            medium = spec["media"][obj["interior"]]
+            if medium.get("type") == "grid":
+                if name != "interface":
+                    refuse("a grid medium is supported inside an interface only")
+                media.import_grid(os.path.normpath(os.path.join(base, medium["file"])),
+                                  medium.get("grid", "density"), matrix, medium, TO_BLENDER)
+                continue
+            surface = media.interior_material(f"interior-{index}", medium, surface)
+        elif name == "interface":
+            continue  # crossed unchanged: nothing to draw
+        import_obj(path, matrix, surface)
     for i, light in enumerate(spec.get("lights", [])):
         if light["type"] == "quad":
             add_quad(i, light)
+        elif light["type"] in ("point", "spot"):
+            add_point_or_spot(i, light)
         else:
             refuse(f"light type {light['type']} is not supported")
     set_world(scene, spec, base)
+    if "medium" in spec.get("render", {}):
+        media.fill_world(scene.world, spec["media"][spec["render"]["medium"]])
+    if "medium" in spec["camera"]:
+        refuse("a camera medium is not supported")
     set_camera(scene, spec["camera"], a.width, a.height)
     if a.blend:
         bpy.ops.wm.save_as_mainfile(filepath=os.path.abspath(a.blend))
