@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Builds the libFuzzer targets (CMake preset "fuzz", clang) and runs each for
-# a given time, one after the other, with its seed corpus.
+# a given time with its seed corpus, side by side: one per core
+# (SOMBRA_FUZZ_JOBS sets how many at once).
 #
 #   tools/fuzz.sh [SECONDS_PER_TARGET] [TARGET...]     (default: 60 s; obj ply scene gltf texture view shard vdb)
 #
@@ -173,39 +174,42 @@ seed_vdb() {
   for f in "$root"/fuzz/seeds/vdb/*.vdb; do add_seed "$corpus" "$(basename "$f")" <"$f"; done
 }
 
-status=0
-for t in "${targets[@]}"; do
-  corpus="$build/corpus/$t"
-  artifacts="$build/artifacts/$t"
-  mkdir -p "$corpus" "$artifacts"
+# Runs one target for $seconds; its verdict goes to $build/verdict_TARGET
+# (the targets run side by side, one per core).
+fuzz_one() {
+  local t="$1" corpus="$build/corpus/$1" artifacts="$build/artifacts/$1" log="$build/fuzz_$1.log"
+  local before result=clean started=$SECONDS elapsed runs found extra=() asan_options="${ASAN_OPTIONS:-}"
+  mkdir -p "$corpus" "$artifacts" "$scratch/$t"
   "seed_$t" "$corpus"
-  log="$build/fuzz_$t.log"
   echo "fuzz.sh: fuzz_$t for $seconds s ($(find "$corpus" -type f | wc -l) inputs in $corpus; log $log)" >&2
   before="$(find "$artifacts" -type f | sort)"
-  result=clean
-  started=$SECONDS
-  # fuzz_vdb reads each file in a child process (src/io/vdb/isolated_read.h),
-  # which may die of what the file asks OpenVDB to allocate: libFuzzer's own
-  # malloc limit must not take that for the target's, and the parent waits
-  # up to 10 s for a child.
-  extra=()
-  asan_options="${ASAN_OPTIONS:-}"
   [ "$t" = vdb ] && extra=(-malloc_limit_mb=1048576 -timeout=30) &&
     asan_options="${asan_options:+$asan_options:}max_allocation_size_mb=1024"
-  TMPDIR="$scratch" LSAN_OPTIONS="suppressions=$root/fuzz/lsan.supp:print_suppressions=0" ASAN_OPTIONS="$asan_options" \
+  TMPDIR="$scratch/$t" LSAN_OPTIONS="suppressions=$root/fuzz/lsan.supp:print_suppressions=0" ASAN_OPTIONS="$asan_options" \
     "$build/fuzz/fuzz_$t" "$corpus" -dict="$root/fuzz/$t.dict" \
     -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 -max_len=65536 "${extra[@]}" \
     -artifact_prefix="$artifacts/" -print_final_stats=1 >"$log" 2>&1 || result=failed
   elapsed=$((SECONDS - started))
   runs="$(sed -n 's/^stat::number_of_executed_units:[[:space:]]*//p' "$log" | tail -1)"
   printf '%s\t%s\t%s\t%s\t%s\n' "$(date -u +%FT%TZ)" "$t" "$elapsed" "$result" "${runs:-?}" >>"$build/runs.tsv"
+  echo "$result" >"$build/verdict_$t"
   if [ "$result" = clean ]; then
     echo "fuzz.sh: fuzz_$t clean: ${runs:-?} inputs in $elapsed s" >&2
-    continue
+    return
   fi
-  status=1
-  tail -n 40 "$log" >&2
   found="$(comm -13 <(echo "$before") <(find "$artifacts" -type f | sort) | sed '/^$/d')"
-  echo "fuzz.sh: fuzz_$t FAILED; reproducer: ${found:-(none written; see $log)}" >&2
+  { tail -n 40 "$log"; echo "fuzz.sh: fuzz_$t FAILED; reproducer: ${found:-(none written; see $log)}"; } >&2
+}
+
+parallel="${SOMBRA_FUZZ_JOBS:-$(nproc)}"
+for t in "${targets[@]}"; do
+  rm -f "$build/verdict_$t"
+  while [ "$(jobs -rp | wc -l)" -ge "$parallel" ]; do wait -n || true; done
+  fuzz_one "$t" &
+done
+wait
+status=0
+for t in "${targets[@]}"; do
+  [ "$(cat "$build/verdict_$t" 2>/dev/null)" = clean ] || status=1
 done
 exit "$status"
