@@ -46,7 +46,7 @@ struct RenderOptions {
 inline constexpr int kMaxThreads = 4096;           // more workers is a typo, not a machine
 inline constexpr double kMaxTimeBudget = 1e7;      // 116 days; more would overflow the clock's deadline
 inline constexpr double kMaxNoiseThreshold = 1e6;  // a relative error; far above any useful one
-inline constexpr std::int64_t kMaxFrame = std::int64_t{1} << 31;
+inline constexpr std::int64_t kMaxFrame = (std::int64_t{1} << 31) - 1;  // spec §27: 0 ≤ F ≤ 2³¹ − 1
 
 // Throws Error(option, what) for a value outside its range, the option named
 // as the command line spells it ("--threads"); width, height and spp are

@@ -42,7 +42,9 @@ TEST(RenderOptions, EachRangeIsCheckedAtBothEnds) {
               "--threads: must be between 0 and 4096, not 4097");
     EXPECT_EQ(with([](RenderOptions& o) { o.threads = -1; }), "--threads: must be between 0 and 4096, not -1");
     EXPECT_EQ(with([](RenderOptions& o) { o.frame = kMaxFrame; }), "");
-    EXPECT_EQ(with([](RenderOptions& o) { o.frame = -1; }), "--frame: must be between 0 and 2147483648, not -1");
+    EXPECT_EQ(with([](RenderOptions& o) { o.frame = kMaxFrame + 1; }),
+              "--frame: must be between 0 and 2147483647, not 2147483648");
+    EXPECT_EQ(with([](RenderOptions& o) { o.frame = -1; }), "--frame: must be between 0 and 2147483647, not -1");
     EXPECT_EQ(with([](RenderOptions& o) { o.overrides.max_depth = kMaxDepth + 1; }),
               "--max-depth: must be between 0 and 1024, not 1025");
     EXPECT_EQ(with([](RenderOptions& o) { o.overrides.max_depth = 0; }), "");

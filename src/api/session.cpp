@@ -54,6 +54,26 @@ Film denoise_render(RenderOutput& rendered, int threads, const std::atomic<bool>
     return noisy;
 }
 
+std::vector<std::string> render_warnings(const Scene& scene, const RenderSettings& settings,
+                                         const RenderOptions& options) {
+    std::vector<std::string> warnings;
+    if (settings.integrator == IntegratorKind::Direct && needs_path_integrator(scene))
+        warnings.emplace_back(
+            "the direct integrator lights with point, spot and directional lights only: quad lights and the "
+            "environment are only seen, mirror and glass reflect nothing from them; use --integrator path");
+    if (settings.integrator == IntegratorKind::Direct && uses_media(scene))
+        warnings.emplace_back("the direct integrator ignores media (spec §26); use --integrator path");
+    if (!emits_light(scene))
+        warnings.emplace_back(
+            "nothing in the scene emits light (no light, no emitting material or medium, a black background): "
+            "the image is black");
+    if (options.noise_threshold && options.min_spp >= settings.spp)
+        warnings.emplace_back("--noise-threshold cannot stop any pixel early: --min-spp " +
+                              std::to_string(options.min_spp) + " is not below the " + std::to_string(settings.spp) +
+                              " samples per pixel asked, so every pixel takes them all");
+    return warnings;
+}
+
 void check_explain_pixel(int x, int y, int sample, const RenderSettings& s) {
     const std::string where = "pixel (" + std::to_string(x) + ", " + std::to_string(y) + ")";
     if (x < 0 || x >= s.width || y < 0 || y >= s.height)

@@ -9,6 +9,7 @@
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "accel/accel.h"
 #include "api/render_options.h"
@@ -48,6 +49,13 @@ RenderJob make_job(const Scene& scene, const Accel& accel, const RenderSettings&
 // before it: the noisy AOV. Once `*cancel` is true the denoiser gives up:
 // `rendered` keeps its film, and the Film returned is empty.
 Film denoise_render(RenderOutput& rendered, int threads, const std::atomic<bool>* cancel = nullptr);
+
+// What a render of `scene` at `settings` as `options` ask should warn of,
+// each one line without its place (the front end names the scene): the
+// direct integrator's limits (spec §10, §26), nothing that emits light, and
+// adaptive sampling that cannot stop any pixel early (spec §27).
+std::vector<std::string> render_warnings(const Scene& scene, const RenderSettings& settings,
+                                         const RenderOptions& options);
 
 // Pixel (x, y) (column, row) and its sample `sample` checked against the
 // image `settings` describe. Throws Error naming the pixel, or "--sample".

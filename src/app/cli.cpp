@@ -183,8 +183,7 @@ void add_output_options(CLI::App* render_command, CliOptions& o) {
                                 std::from_chars(text.data(), text.data() + dash, first).ptr == text.data() + dash &&
                                 std::from_chars(text.data() + dash + 1, text.data() + text.size(), last).ptr ==
                                     text.data() + text.size();
-            if (!parsed || first < 0 || last < first || last > (std::int64_t{1} << 31) ||
-                last - first >= kMaxFrameCount)
+            if (!parsed || first < 0 || last < first || last > kMaxFrame || last - first >= kMaxFrameCount)
                 throw CLI::ValidationError("--frames", "expected A-B with 0 <= A <= B and at most " +
                                                            std::to_string(kMaxFrameCount) + " frames, not '" + text +
                                                            "'");

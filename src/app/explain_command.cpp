@@ -63,7 +63,7 @@ int run_explain(const CliOptions& o) {
         Scene& scene = input.scene;
         // As `render` resolves them: under --denoise a scene of 1 spp is a command-line error.
         const RenderSettings settings = resolve_render_settings(input.settings, o.render);
-        print_warnings(diag, scene, settings, o.input);
+        print_warnings(diag, scene, settings, o.render, o.input);
         check_explain_pixel(o.pixel_x, o.pixel_y, o.sample, settings);
         prepare_scene(scene, settings, o.render, o.input);
 

@@ -2,6 +2,7 @@
 
 #include <iostream>
 
+#include "api/session.h"
 #include "core/error.h"
 
 namespace sombra {
@@ -15,17 +16,11 @@ void check_side_file_path(const std::filesystem::path& path) {
 }
 
 void print_warnings(const Diagnostics& diag, const Scene& scene, const RenderSettings& settings,
-                    const std::string& input) {
+                    const RenderOptions& options, const std::string& input) {
     for (const std::string& w : diag.warnings) std::cerr << "sombra: warning: " << one_line_message(w) << '\n';
-    // After the overrides: --integrator path silences it, --integrator direct may cause it.
-    if (settings.integrator == IntegratorKind::Direct && needs_path_integrator(scene))
-        std::cerr << "sombra: warning: " << one_line_message(input)
-                  << ": the direct integrator lights with point, spot and directional lights only: quad lights "
-                     "and the environment are only seen, mirror and glass reflect nothing from them; use "
-                     "--integrator path\n";
-    if (settings.integrator == IntegratorKind::Direct && uses_media(scene))
-        std::cerr << "sombra: warning: " << one_line_message(input)
-                  << ": the direct integrator ignores media (spec §26); use --integrator path\n";
+    // After the overrides: --integrator path silences some, --integrator direct may cause them.
+    for (const std::string& w : render_warnings(scene, settings, options))
+        std::cerr << "sombra: warning: " << one_line_message(input) << ": " << w << '\n';
 }
 
 }  // namespace sombra

@@ -8,6 +8,7 @@
 #include <new>
 #include <string>
 
+#include "api/render_options.h"
 #include "core/error.h"
 #include "render/render_settings.h"
 #include "scene/scene.h"
@@ -18,10 +19,11 @@ namespace sombra {
 // be written: its folder exists and the path is not a folder. Throws Error.
 void check_side_file_path(const std::filesystem::path& path);
 
-// Prints the loader's warnings, and the one about the direct integrator
-// meeting version-2 content (spec §10), to stderr; `input` names the scene.
+// Prints the loader's warnings and the render's (render_warnings: the
+// direct integrator's limits, no emitter, adaptive sampling that cannot
+// adapt) to stderr; `input` names the scene.
 void print_warnings(const Diagnostics& diag, const Scene& scene, const RenderSettings& settings,
-                    const std::string& input);
+                    const RenderOptions& options, const std::string& input);
 
 // Runs `body` (returning the exit status) and turns what it throws into the
 // one line of spec §1, "sombra: error: WHERE: WHAT", and exit status 1

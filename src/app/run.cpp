@@ -217,7 +217,7 @@ int run_render(const CliOptions& options) {
         stats.load_seconds = seconds_since(load_start);
         // Under a time budget the scene's spp does not limit the passes; --spp does (spec §18).
         const RenderSettings settings = resolve_render_settings(input.settings, o.render);
-        print_warnings(diag, scene, settings, o.input);
+        print_warnings(diag, scene, settings, o.render, o.input);
         const AccelKind kind = o.render.accel;
 
         const auto mipmap_start = Clock::now();

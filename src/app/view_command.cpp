@@ -22,7 +22,7 @@ int run_view(const CliOptions& o) {
         LoadedScene input = load_input(o.input, diag);
         Scene& scene = input.scene;
         const RenderSettings settings = resolve_settings(input.settings, o.render.overrides);
-        print_warnings(diag, scene, settings, o.input);
+        print_warnings(diag, scene, settings, o.render, o.input);
         prepare_scene(scene, settings, o.render, o.input);
         const Accel accel = make_accel(scene, o.render.accel);
 

@@ -14,6 +14,11 @@ std::string lower_extension(const std::filesystem::path& path) {
 }
 
 LoadedScene load_input(const std::filesystem::path& input, Diagnostics& diag) {
+    std::error_code ec;
+    if (std::filesystem::is_directory(input, ec))
+        throw Error(input.string(),
+                    "is a folder, not a scene: give a scene .json or a model file (.obj, .ply, .gltf, "
+                    ".glb), e.g. one inside it");
     const std::string ext = lower_extension(input);
     if (ext == ".json") return load_scene_file(input, diag);
     if (ext == ".obj" || ext == ".ply" || ext == ".gltf" || ext == ".glb") return make_quicklook_scene(input, diag);

@@ -68,12 +68,14 @@ py::object render(const std::shared_ptr<PyScene>& scene, const py::dict& options
     RenderProgress watched;
     RenderOutput rendered;
     Film noisy;
+    std::vector<std::string> warnings;
     const std::uint64_t total = static_cast<std::uint64_t>(settings.width) *
                                 static_cast<std::uint64_t>(settings.height) * static_cast<std::uint64_t>(settings.spp);
     run_watched(
         [&] {
             const RenderLock lock = lock_at_frame(*scene, settings, o);
             const Scene& s = scene->loaded.scene;
+            warnings = render_warnings(s, settings, o);
             const Accel accel = make_accel(s, o.accel);
             rendered = render_image(make_job(s, accel, settings, o, start), watched);
             if (o.denoise && !rendered.cancelled) noisy = denoise_render(rendered, o.threads, &watched.cancel);
@@ -97,6 +99,7 @@ py::object render(const std::shared_ptr<PyScene>& scene, const py::dict& options
     add("variance", rendered.aovs.variance, 3);
     if (o.aovs.noisy) add("noisy", noisy.rgb, 3);
     if (o.aovs.denoise) add_denoise_layers(out, std::move(rendered.aovs.denoise));
+    out["warnings"] = warnings;
     out["spp_reached"] = static_cast<double>(rendered.samples) / static_cast<double>(w * h);
     out["passes"] = rendered.passes;
     return out;

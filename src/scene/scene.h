@@ -170,4 +170,9 @@ const SceneObject* object_of_triangle(const Scene& scene, std::uint32_t triangle
 // triangle. Emissive triangles of version 1 (ke, Ke) do not count.
 bool needs_path_integrator(const Scene& scene);
 
+// True when something in the scene emits light (spec §27): a light of some
+// power, an emissive material on some triangle, an emitting medium, a
+// background or environment that is not black.
+bool emits_light(const Scene& scene);
+
 }  // namespace sombra

@@ -80,4 +80,31 @@ std::uint64_t drawn_triangle_count(const Scene& scene) {
     return count;
 }
 
+bool emits_light(const Scene& scene) {
+    if (std::any_of(scene.lights.begin(), scene.lights.end(),
+                    [](const PunctualLight& l) { return max_component(l.intensity) > 0.0f; }))
+        return true;
+    if (std::any_of(scene.media.begin(), scene.media.end(),
+                    [](const Medium& m) { return max_component(m.emission) > 0.0f; }))
+        return true;
+    if (scene.environment) {
+        const EnvironmentMap& env = *scene.environment;
+        if (env.scale > 0.0f &&
+            std::any_of(env.image.rgb.begin(), env.image.rgb.end(), [](float v) { return v > 0.0f; }))
+            return true;
+    } else if (max_component(scene.background) > 0.0f) {
+        return true;
+    }
+    // An emissive material counts only where some triangle wears it.
+    std::vector<bool> emissive(scene.materials.size());
+    bool any = false;
+    for (std::size_t i = 0; i < scene.materials.size(); ++i) any |= (emissive[i] = is_emissive(scene.materials[i]));
+    if (!any) return false;
+    const auto wears = [&emissive](const TriangleMesh& mesh) {
+        return std::any_of(mesh.material_ids.begin(), mesh.material_ids.end(),
+                           [&emissive](std::uint32_t id) { return id < emissive.size() && emissive[id]; });
+    };
+    return wears(scene.geometry) || std::any_of(scene.instanced_meshes.begin(), scene.instanced_meshes.end(), wears);
+}
+
 }  // namespace sombra

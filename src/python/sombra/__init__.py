@@ -16,6 +16,7 @@ from __future__ import annotations
 
 import json
 import math
+import warnings
 from typing import Any, Mapping, Optional, Sequence, Union
 
 import numpy as np
@@ -110,6 +111,8 @@ def render(scene: Scene, *, aov: Union[Sequence[str], str, None] = None, progres
     finally:
         if bar is not None:
             bar.close()
+    for text in out["warnings"]:
+        warnings.warn(f"sombra: {text}", RuntimeWarning, stacklevel=2)
     if aov is None or not names:
         return out["color"]
     return {key: value for key, value in out.items() if isinstance(value, np.ndarray)}

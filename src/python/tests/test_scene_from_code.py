@@ -2,6 +2,7 @@
 from an OBJ file, and every piece is checked when it is given."""
 
 import json
+import warnings
 
 import numpy as np
 import pytest
@@ -203,3 +204,21 @@ def test_background_and_environment_exclude_each_other_and_bad_maps_are_refused(
     with pytest.raises(TypeError):
         s.environment = "sky.exr"
     assert s.environment == {"file": str(SKY)}  # the refused values changed nothing
+
+
+def test_a_render_warns_as_the_command_line_does():
+    # Spec §27: nothing emits light (one RuntimeWarning, a black image); a
+    # noise threshold that cannot stop a pixel early.
+    s = sombra.Scene()
+    s.camera = {"origin": [0, 0, 3], "look_at": [0, 0, 0]}
+    s.add_mesh(np.array([[-1, -1, 0], [1, -1, 0], [0, 1, 0]], np.float32), np.array([[0, 1, 2]], np.uint32))
+    with pytest.warns(RuntimeWarning, match="nothing in the scene emits light") as caught:
+        image = sombra.render(s, width=8, height=6, spp=1)
+    assert len(caught) == 1
+    assert not image.any()
+    s.add_light({"type": "point", "position": [0, 0, 2], "intensity": [1, 1, 1]})
+    with pytest.warns(RuntimeWarning, match="^sombra: --noise-threshold cannot stop any pixel early"):
+        sombra.render(s, width=8, height=6, spp=4, noise_threshold=0.1)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        sombra.render(s, width=8, height=6, spp=32, noise_threshold=0.1, min_spp=4)
