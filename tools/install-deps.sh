@@ -9,6 +9,7 @@ packages=(
   nlohmann-json3-dev     # scene JSON
   libtbb-dev             # parallel render loop and BVH build
   libpng-dev             # PNG output
+  libjpeg-dev            # JPEG output (libjpeg-turbo)
   libopenexr-dev         # EXR output, EXR environment maps
   libstb-dev             # stb_image: textures (PNG, JPEG, TGA, BMP) and Radiance .hdr (headers in /usr/include/stb, libstb)
   libcli11-dev           # command line

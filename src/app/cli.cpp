@@ -10,6 +10,8 @@
 #include "accel/accel.h"
 #include "app/display_server.h"
 #include "core/error.h"
+#include "image/display_transform.h"
+#include "image/image_io.h"
 #include "render/render_settings.h"
 
 namespace sombra {
@@ -66,6 +68,19 @@ CLI::Validator library_name_check(Read read) {
         "");
 }
 
+// --exposure and --tonemap: how 8-bit outputs (PNG, JPEG) show radiance (spec §1, §27).
+void add_display_options(CLI::App& command, CliOptions& o) {
+    command.add_option("--exposure", o.display.exposure, "Multiply radiance by 2^E before 8-bit encoding (PNG, JPEG)")
+        ->check(CLI::Number)
+        ->capture_default_str();
+    command
+        .add_option_function<std::string>(
+            "--tonemap", [&o](const std::string& name) { o.display.tonemap = tonemap_option(name); },
+            "8-bit outputs: none (clamp to [0, 1], the default) or pbr-neutral (Khronos PBR Neutral, after the "
+            "exposure)")
+        ->check(library_name_check(tonemap_option));
+}
+
 // The options of §1 that decide what is rendered; `render` and `explain` share them.
 void add_render_options(CLI::App& command, CliOptions& o) {
     RenderOptions& r = o.render;
@@ -83,9 +98,7 @@ void add_render_options(CLI::App& command, CliOptions& o) {
                     "Worker threads, 0 to " + std::to_string(kMaxThreads) + "; 0 = all hardware threads")
         ->check(library_check<int>([](RenderOptions& p, int v) { p.threads = v; }))
         ->capture_default_str();
-    command.add_option("--exposure", o.exposure, "Multiply radiance by 2^E before PNG encoding")
-        ->check(CLI::Number)
-        ->capture_default_str();
+    add_display_options(command, o);
     command
         .add_option_function<std::string>(
             "--accel", [&r](const std::string& name) { r.accel = accel_option(name); },
@@ -209,7 +222,7 @@ CliParse parse(int argc, const char* const* argv, std::ostream& out, std::ostrea
     CLI::App* render = app.add_subcommand(
         "render", "Render a scene (.json) or take a quick look at a model (.obj, .ply, .gltf, .glb)");
     render->add_option("input", o.input, "Scene file (.json) or model (.obj, .ply, .gltf, .glb)")->required();
-    render->add_option("-o,--output", o.output, "Image to write: .png (8-bit sRGB), .pfm or .exr (linear)")
+    render->add_option("-o,--output", o.output, "Image to write: .png or .jpg (8-bit sRGB), .pfm or .exr (linear)")
         ->capture_default_str();
     add_render_options(*render, o);
     render->add_option("--stats-json", o.stats_json, "Write the run's statistics as JSON to FILE");
@@ -240,11 +253,9 @@ CliParse parse(int argc, const char* const* argv, std::ostream& out, std::ostrea
     CLI::App* merge =
         app.add_subcommand("merge", "Join the .exr shards of one render (sombra render --shard I/N) into its image");
     merge->add_option("parts", o.parts, "The N shards, each an .exr written with --shard I/N")->required();
-    merge->add_option("-o,--output", o.output, "Image to write: .png (8-bit sRGB), .pfm or .exr (linear)")
+    merge->add_option("-o,--output", o.output, "Image to write: .png or .jpg (8-bit sRGB), .pfm or .exr (linear)")
         ->capture_default_str();
-    merge->add_option("--exposure", o.exposure, "Multiply radiance by 2^E before PNG encoding")
-        ->check(CLI::Number)
-        ->capture_default_str();
+    add_display_options(*merge, o);
     merge->add_flag("--denoise", o.render.denoise,
                     "Denoise the merged image (shards rendered with --denoise carry what it needs)");
     merge->add_flag("-q,--quiet", o.quiet, "No summary line");
@@ -253,11 +264,9 @@ CliParse parse(int argc, const char* const* argv, std::ostream& out, std::ostrea
         "denoise", "Denoise an .exr written with --aov denoise (or merged from such shards), as render --denoise does");
     denoise->add_option("input", o.input, "An .exr with the denoiser's layers (sombra render --aov denoise)")
         ->required();
-    denoise->add_option("-o,--output", o.output, "Image to write: .png (8-bit sRGB), .pfm or .exr (linear)")
+    denoise->add_option("-o,--output", o.output, "Image to write: .png or .jpg (8-bit sRGB), .pfm or .exr (linear)")
         ->capture_default_str();
-    denoise->add_option("--exposure", o.exposure, "Multiply radiance by 2^E before PNG encoding")
-        ->check(CLI::Number)
-        ->capture_default_str();
+    add_display_options(*denoise, o);
     denoise
         ->add_option("--threads", o.render.threads,
                      "Worker threads, 0 to " + std::to_string(kMaxThreads) + "; 0 = all hardware threads")
@@ -320,6 +329,18 @@ CliParse parse(int argc, const char* const* argv, std::ostream& out, std::ostrea
             err << "sombra: error: command line: " << problem << " (see 'sombra render --help')\n";
             return {std::nullopt, 2};
         }
+    }
+    if (o.display.tonemap != Tonemap::None &&
+        (o.command == Command::Render || o.command == Command::Merge || o.command == Command::Denoise)) {
+        bool eight_bit = false;
+        try {
+            eight_bit = is_eight_bit(image_format_for(o.output));
+        } catch (const Error&) {
+            eight_bit = true;  // an unknown extension is the output's own error, told after parsing
+        }
+        if (!eight_bit)
+            return refuse("--tonemap applies to 8-bit outputs (.png, .jpg); '" + one_line(o.output) +
+                          "' keeps linear radiance");
     }
     if (o.render.aovs.any()) {
         std::string ext = std::filesystem::path(o.output).extension().string();

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "api/render_options.h"
+#include "image/image_io.h"
 
 namespace sombra {
 
@@ -24,7 +25,7 @@ struct CliOptions {
     std::string input;  // scene .json, or a model .obj/.ply/.gltf/.glb for the quick look
     std::string output = "render.png";
     RenderOptions render;        // what is rendered and how: the library's options (api/render_options.h)
-    float exposure = 0;          // PNG only: radiance × 2^exposure
+    DisplayTransform display;    // 8-bit outputs only (PNG, JPEG): --exposure, --tonemap
     std::string stats_json;      // empty = none
     std::string display_server;  // --display-server HOST:PORT (tev); empty = none
     // --shard I/N (spec §21): render share I of N of the pixels; count 1 = all.

@@ -166,7 +166,7 @@ TEST_F(Cli, UnknownMaterialName) {
 TEST_F(Cli, UnwritableOutput) {
     write_text(dir_ / "s.json", scene());
     expect_input_error(run("render s.json -o no/such/folder/out.png"), "no/such/folder/out.png");
-    expect_input_error(run("render s.json -o out.jpg"), "out.jpg");
+    expect_input_error(run("render s.json -o out.tif"), "out.tif");
     fs::create_directories(dir_ / "adir.png");
     expect_input_error(run("render s.json -o adir.png"), "adir.png");
 }

@@ -106,7 +106,7 @@ TEST_F(Denoise, BrokenInputsToTheDenoiseCommandAreOneErrorLine) {
         if (exr.names[i] == "denoise.B.G") exr.values[i][2 * 71 + 3] = std::numeric_limits<float>::quiet_NaN();
         if (exr.names[i].find('.') != std::string::npos) layers.push_back({exr.names[i], exr.values[i].data(), 1});
     }
-    sombra::write_image(dir_ / "nan.exr", {exr.width, exr.height, rgb.data()}, 0.0f, layers);
+    sombra::write_image(dir_ / "nan.exr", {exr.width, exr.height, rgb.data()}, {}, layers);
     expect_input_error(run("denoise nan.exr -o out.png"), "nan.exr: denoise.B.G: nan at pixel (3, 2)");
 }
 

@@ -24,7 +24,7 @@ int run_denoise(const CliOptions& o) {
         const auto start = std::chrono::steady_clock::now();
         const std::vector<float> image = denoise_image(layers, o.render.threads);
         const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-        write_image(o.output, ImageView{layers.width, layers.height, image.data()}, o.exposure);
+        write_image(o.output, ImageView{layers.width, layers.height, image.data()}, o.display);
         if (!o.quiet) {
             char took[32];
             std::snprintf(took, sizeof took, "%.2f s", seconds);

@@ -1,12 +1,15 @@
 // Spec §27 from the command line: the warnings a new user needs (nothing
 // emits light, adaptive sampling that cannot adapt), a folder given as the
-// scene, and the range of --frame.
+// scene, the range of --frame, --tonemap and JPEG output.
 #include <gtest/gtest.h>
+#include <stb_image.h>
 
 #include <algorithm>
 #include <string>
+#include <vector>
 
 #include "cli_test_fixture.h"
+#include "image/display_transform.h"
 
 namespace {
 
@@ -82,6 +85,58 @@ TEST_F(Everyday, FramesRunFromZeroTo2To31Minus1) {
     }
     const RunResult frames = run("render s.json -o out_#.png -q --frames 2147483647-2147483648");
     EXPECT_EQ(frames.status, 2) << frames.err;
+}
+
+// The 8-bit RGB an image file decodes to (stb_image: PNG or JPEG).
+std::vector<unsigned char> decode_rgb(const fs::path& path, int& width, int& height) {
+    int channels = 0;
+    unsigned char* pixels = stbi_load(path.c_str(), &width, &height, &channels, 3);
+    if (pixels == nullptr) return {};
+    std::vector<unsigned char> rgb(pixels, pixels + static_cast<std::size_t>(width) * height * 3);
+    stbi_image_free(pixels);
+    return rgb;
+}
+
+TEST_F(Everyday, TheToneMapperShapesEightBitOutputsOnly) {
+    write_text(dir_ / "s.json", scene(R"({"width": 16, "height": 12, "spp": 2, "integrator": "path"})"));
+    ASSERT_EQ(run("render s.json -o linear.pfm -q").status, 0);
+    const Pfm linear = read_pfm(dir_ / "linear.pfm");
+    ASSERT_EQ(linear.rgb.size(), 16u * 12u * 3u);
+    // PFM rows run bottom to top; the PNG's top to bottom.
+    std::vector<float> top_down;
+    for (int y = 11; y >= 0; --y)
+        top_down.insert(top_down.end(), linear.rgb.begin() + y * 16 * 3, linear.rgb.begin() + (y + 1) * 16 * 3);
+    std::vector<std::vector<unsigned char>> shown;
+    for (const char* tonemap : {"none", "pbr-neutral"}) {
+        const RunResult r = run(std::string("render s.json -o t.png -q --exposure 3 --tonemap ") + tonemap);
+        ASSERT_EQ(r.status, 0) << r.err;
+        int w = 0, h = 0;
+        shown.push_back(decode_rgb(dir_ / "t.png", w, h));
+        const std::vector<std::uint8_t> want =
+            sombra::display_bytes({16, 12, top_down.data()}, {3.0f, sombra::tonemap_option(tonemap)});
+        EXPECT_EQ(shown.back(), std::vector<unsigned char>(want.begin(), want.end())) << tonemap;
+    }
+    EXPECT_NE(shown[0], shown[1]) << "the exposure should push some pixels into the compression";
+
+    const RunResult jpeg = run("render s.json -o t.jpg -q --tonemap pbr-neutral");
+    ASSERT_EQ(jpeg.status, 0) << jpeg.err;
+    int w = 0, h = 0;
+    EXPECT_EQ(decode_rgb(dir_ / "t.jpg", w, h).size(), 16u * 12u * 3u);
+    EXPECT_EQ(read_text(dir_ / "t.jpg").substr(0, 3), "\xFF\xD8\xFF");
+
+    for (const char* out : {"t.exr", "t.pfm"}) {
+        const RunResult r = run(std::string("render s.json -q --tonemap pbr-neutral -o ") + out);
+        EXPECT_EQ(r.status, 2) << out;
+        EXPECT_NE(r.err.find("--tonemap applies to 8-bit outputs (.png, .jpg)"), std::string::npos) << r.err;
+        EXPECT_FALSE(fs::exists(dir_ / out));
+    }
+    const RunResult unknown = run("render s.json -q --tonemap aces -o t.png");
+    EXPECT_EQ(unknown.status, 2);
+    EXPECT_NE(unknown.err.find("--tonemap: expected none or pbr-neutral, not 'aces'"), std::string::npos)
+        << unknown.err;
+    ASSERT_EQ(run("render s.json -q --shard 0/1 -o part.exr").status, 0);
+    EXPECT_EQ(run("merge part.exr -q --tonemap pbr-neutral -o merged.exr").status, 2);
+    EXPECT_EQ(run("merge part.exr -q --tonemap pbr-neutral -o merged.jpg").status, 0);
 }
 
 }  // namespace

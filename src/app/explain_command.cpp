@@ -104,7 +104,7 @@ int run_explain(const CliOptions& o) {
             interrupt.set_phase(InterruptWatcher::Phase::Writing);
             const std::string picture =
                 explain_svg(context, record,
-                            ImageView{rendered.film.width, rendered.film.height, rendered.film.rgb.data()}, o.exposure);
+                            ImageView{rendered.film.width, rendered.film.height, rendered.film.rgb.data()}, o.display);
             write_file_atomically(o.svg, [&picture](const std::filesystem::path& temp) {
                 std::ofstream out(temp, std::ios::binary);
                 out << picture;

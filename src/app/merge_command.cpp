@@ -10,7 +10,7 @@ namespace sombra {
 
 int run_merge(const CliOptions& o) {
     return reporting_errors(o.input, [&] {
-        const MergedShards merged = merge_shards(o.parts, o.output, o.exposure, o.render.denoise, o.render.threads);
+        const MergedShards merged = merge_shards(o.parts, o.output, o.display, o.render.denoise, o.render.threads);
         if (!o.quiet)
             std::cerr << "sombra: merged " << merged.count << " shards into " << one_line_message(o.output) << " ("
                       << merged.width << "x" << merged.height << ")\n";

@@ -138,7 +138,7 @@ int render_frame(const CliOptions& o, const Scene& scene, const Accel& accel, co
     interrupt.set_phase(InterruptWatcher::Phase::Writing);
 
     const auto write_start = Clock::now();
-    write_image(output, ImageView{rendered.film.width, rendered.film.height, rendered.film.rgb.data()}, o.exposure,
+    write_image(output, ImageView{rendered.film.width, rendered.film.height, rendered.film.rgb.data()}, o.display,
                 aov_layers(rendered.aovs, written, o.render.aovs.noisy ? &noisy : nullptr), shard_header);
     stats.write_seconds += seconds_since(write_start);
 

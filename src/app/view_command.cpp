@@ -30,7 +30,7 @@ int run_view(const CliOptions& o) {
         options.initial = ViewSettings{scene.camera, settings};
         options.threads = o.render.threads;
         options.light_selection = o.render.light_selection;
-        options.exposure = o.exposure;
+        options.display = o.display;
         options.denoise = o.render.denoise;
         options.port = o.port;
         options.scene_file = o.input;

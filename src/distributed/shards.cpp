@@ -106,8 +106,8 @@ std::vector<ImageAttribute> shard_attributes(const std::string& input, const Ren
             {kRenderAttribute, render}};
 }
 
-MergedShards merge_shards(const std::vector<std::string>& paths, const std::filesystem::path& output, float exposure,
-                          bool denoise, int threads) {
+MergedShards merge_shards(const std::vector<std::string>& paths, const std::filesystem::path& output,
+                          DisplayTransform display, bool denoise, int threads) {
     check_output_path(output);
     std::vector<Part> parts;
     for (const std::string& path : paths) parts.push_back(read_part(path));
@@ -164,7 +164,7 @@ MergedShards merge_shards(const std::vector<std::string>& paths, const std::file
     }
     // The AOV layers go into an .exr output only, as `render --aov` allows only that.
     const bool exr = image_format_for(output) == ImageFormat::Exr;
-    write_image(output, ImageView{width, height, rgb.data()}, exposure,
+    write_image(output, ImageView{width, height, rgb.data()}, display,
                 exr ? std::span<const ImageChannel>(layers) : std::span<const ImageChannel>());
     return MergedShards{static_cast<int>(parts.size()), width, height};
 }

@@ -38,7 +38,7 @@ struct MergedShards {
 // With `denoise`, the merged image is denoised (spec §25) on `threads`
 // (0 = all) from the denoiser's layers the shards carry; Error naming
 // the first missing one.
-MergedShards merge_shards(const std::vector<std::string>& parts, const std::filesystem::path& output, float exposure,
-                          bool denoise = false, int threads = 0);
+MergedShards merge_shards(const std::vector<std::string>& parts, const std::filesystem::path& output,
+                          DisplayTransform display, bool denoise = false, int threads = 0);
 
 }  // namespace sombra

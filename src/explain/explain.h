@@ -56,6 +56,7 @@ inline int picture_spp(const RenderSettings& settings) { return std::min(setting
 // marked. `image` is the render at picture_spp samples, or under --denoise
 // the one that was denoised (all its samples, before denoising), and then a
 // map of the weights around the pixel is drawn beside it. A complete SVG document.
-std::string explain_svg(const ExplainContext& context, const SampleRecord& record, ImageView image, float exposure);
+std::string explain_svg(const ExplainContext& context, const SampleRecord& record, ImageView image,
+                        DisplayTransform display);
 
 }  // namespace sombra

@@ -123,8 +123,8 @@ TEST(ExplainDenoise, SvgMapsEachPixelsWeightWithItsSign) {
     const DenoiseStory story = twelve_terms();
     const float pixels[8 * 8 * 3] = {};
     const ImageView image{8, 8, pixels};
-    const std::string plain = explain_svg({floor.scene, floor.job, "test.json"}, floor.record, image, 0.0f);
-    const std::string svg = explain_svg({floor.scene, floor.job, "test.json", &story}, floor.record, image, 0.0f);
+    const std::string plain = explain_svg({floor.scene, floor.job, "test.json"}, floor.record, image, {});
+    const std::string svg = explain_svg({floor.scene, floor.job, "test.json", &story}, floor.record, image, {});
     EXPECT_EQ(plain.find("denoise"), std::string::npos);
     EXPECT_EQ(svg.rfind("<svg", 0), 0u);
     EXPECT_NE(svg.find("</svg>"), std::string::npos);

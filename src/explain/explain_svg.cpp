@@ -38,7 +38,7 @@ public:
     Picture(const ExplainContext& context, const SampleRecord& record)
         : c_(context), r_(record), view_(context.job.camera) {}
 
-    std::string draw(ImageView image, float exposure) {
+    std::string draw(ImageView image, DisplayTransform display) {
         fit();
         const float image_scale =
             std::min(kPanel / static_cast<float>(image.width), kPanel / static_cast<float>(image.height));
@@ -62,7 +62,7 @@ public:
         lights();
         path();
         svg_ << "</g>\n";
-        rendered_image(image, exposure, kViewWidth + kGap, image_w, image_h);
+        rendered_image(image, display, kViewWidth + kGap, image_w, image_h);
         if (c_.denoised)
             svg_ << denoise_weight_map(*c_.denoised, r_.pixel_x, r_.pixel_y, kViewWidth + kGap + image_panel + kGap, 0);
         caption(lines, height);
@@ -271,8 +271,8 @@ private:
         }
     }
 
-    void rendered_image(ImageView image, float exposure, float left, float w, float h) {
-        const std::vector<std::uint8_t> png = encode_png_bytes(image, exposure);
+    void rendered_image(ImageView image, DisplayTransform display, float left, float w, float h) {
+        const std::vector<std::uint8_t> png = encode_png_bytes(image, display);
         svg_ << "<image x=\"" << num(left) << "\" y=\"0\" width=\"" << num(w) << "\" height=\"" << num(h)
              << "\" preserveAspectRatio=\"none\" style=\"image-rendering:pixelated\" href=\"data:image/png;base64,"
              << base64_encode(std::string_view(reinterpret_cast<const char*>(png.data()), png.size())) << "\"/>\n";
@@ -379,8 +379,9 @@ private:
 
 }  // namespace
 
-std::string explain_svg(const ExplainContext& context, const SampleRecord& record, ImageView image, float exposure) {
-    return Picture(context, record).draw(image, exposure);
+std::string explain_svg(const ExplainContext& context, const SampleRecord& record, ImageView image,
+                        DisplayTransform display) {
+    return Picture(context, record).draw(image, display);
 }
 
 }  // namespace sombra

@@ -356,7 +356,7 @@ TEST(ExplainRecord, SvgShowsTheBlockedShadowRayInRedAndEmbedsTheImage) {
     const BlockedStory story;
     const float pixel[3] = {0.1f, 0.2f, 0.3f};
     const std::string svg =
-        explain_svg(ExplainContext{story.scene, story.job, "test.json"}, story.record, ImageView{1, 1, pixel}, 0.0f);
+        explain_svg(ExplainContext{story.scene, story.job, "test.json"}, story.record, ImageView{1, 1, pixel}, {});
     EXPECT_EQ(svg.rfind("<svg", 0), 0u);
     EXPECT_NE(svg.find("</svg>"), std::string::npos);
     EXPECT_NE(svg.find("blocked by blocker.obj triangle"), std::string::npos);

@@ -40,7 +40,7 @@ protected:
         }
         const ImageChannel layers[] = {{"depth.Z", depth_.data(), 1}};
         const ImageAttribute attributes[] = {{"sombra.shard", "0/1"}, {"sombra.render", "test"}};
-        write_image(folder_ / "good.exr", {kWidth, kHeight, rgb_.data()}, 0.0f, layers, attributes);
+        write_image(folder_ / "good.exr", {kWidth, kHeight, rgb_.data()}, {}, layers, attributes);
         good_ = test::read_bytes(folder_ / "good.exr");
         table_ = test::exr_header_end(good_);
     }

@@ -39,16 +39,25 @@ fs::path resolve_target(const fs::path& path) {
     return error ? path : resolved;
 }
 
+// A JPEG holds at most 65,500 pixels a side (wider than any render, not
+// than an array from Python).
+void check_output_size(const fs::path& path, int width, int height) {
+    if (image_format_for(path) == ImageFormat::Jpeg && (width > kMaxJpegSide || height > kMaxJpegSide))
+        throw Error(path.string(), "a JPEG holds at most " + std::to_string(kMaxJpegSide) + " pixels a side, not " +
+                                       std::to_string(width) + "x" + std::to_string(height));
+}
+
 }  // namespace
 
 ImageFormat image_format_for(const fs::path& path) {
     const std::string extension = path.extension().string();
     const std::string lower = lower_case(extension);
     if (lower == ".png") return ImageFormat::Png;
+    if (lower == ".jpg" || lower == ".jpeg") return ImageFormat::Jpeg;
     if (lower == ".pfm") return ImageFormat::Pfm;
     if (lower == ".exr") return ImageFormat::Exr;
-    if (extension.empty()) throw Error(path.string(), "no image format extension (use .png, .pfm or .exr)");
-    throw Error(path.string(), "unsupported image format '" + extension.substr(1) + "' (use .png, .pfm or .exr)");
+    if (extension.empty()) throw Error(path.string(), "no image format extension (use .png, .jpg, .pfm or .exr)");
+    throw Error(path.string(), "unsupported image format '" + extension.substr(1) + "' (use .png, .jpg, .pfm or .exr)");
 }
 
 void check_output_path(const fs::path& path) {
@@ -67,7 +76,7 @@ void check_output_path(const fs::path& path) {
         throw Error(path.string(), "folder '" + folder.string() + "' is not writable: " + errno_message(errno));
 }
 
-void write_image(const fs::path& path, ImageView image, float exposure, std::span<const ImageChannel> layers,
+void write_image(const fs::path& path, ImageView image, DisplayTransform display, std::span<const ImageChannel> layers,
                  std::span<const ImageAttribute> attributes) {
     const ImageFormat format = image_format_for(path);
     if ((!layers.empty() || !attributes.empty()) && format != ImageFormat::Exr)
@@ -76,12 +85,14 @@ void write_image(const fs::path& path, ImageView image, float exposure, std::spa
         throw Error(path.string(), "cannot write an image of " + std::to_string(image.width) + "x" +
                                        std::to_string(image.height) + " pixels");
     if (image.rgb == nullptr) throw Error(path.string(), "cannot write: no pixel data");
+    check_output_size(path, image.width, image.height);
 
     const fs::path target = resolve_target(path);
     try {
         write_file_atomically(target, [&](const fs::path& temp) {
             switch (format) {
-                case ImageFormat::Png: write_png(temp, image, exposure); break;
+                case ImageFormat::Png: write_png(temp, image, display); break;
+                case ImageFormat::Jpeg: write_jpeg(temp, image, display); break;
                 case ImageFormat::Pfm: write_pfm(temp, image); break;
                 case ImageFormat::Exr: write_exr(temp, image, layers, attributes); break;
             }

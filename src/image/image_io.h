@@ -1,4 +1,4 @@
-// Film → file: PNG (8-bit sRGB), PFM (32-bit float) and OpenEXR (linear).
+// Film → file: PNG and JPEG (8-bit sRGB), PFM (32-bit float) and OpenEXR (linear).
 // Every write is atomic: the image goes to a temporary file in the target's
 // folder, which is renamed over the target only once complete, so a failed
 // run never leaves a partial file or spoils an existing one.
@@ -35,10 +35,22 @@ struct ImageAttribute {
     std::string value;
 };
 
-enum class ImageFormat { Png, Pfm, Exr };
+// none: each channel clamped to [0, 1] (spec §1's PNG); pbr-neutral:
+// Khronos' PBR Neutral tone mapper, which keeps base colours up to 0.76
+// unchanged and compresses brighter ones toward white.
+enum class Tonemap : std::uint8_t { None, PbrNeutral };
 
-// The format named by the path's extension (case-insensitive .png, .pfm,
-// .exr). Throws Error(path, ...) for any other extension.
+// What 8-bit outputs do to radiance before sRGB encoding: × 2^exposure,
+// then `tonemap`. PFM and EXR keep linear radiance.
+struct DisplayTransform {
+    float exposure = 0;
+    Tonemap tonemap = Tonemap::None;
+};
+
+enum class ImageFormat { Png, Jpeg, Pfm, Exr };
+
+// The format named by the path's extension (case-insensitive .png, .jpg,
+// .jpeg, .pfm, .exr). Throws Error(path, ...) for any other extension.
 ImageFormat image_format_for(const std::filesystem::path& path);
 
 // Checks, before any rendering, that `path` can be written: known extension,
@@ -46,13 +58,17 @@ ImageFormat image_format_for(const std::filesystem::path& path);
 // Throws Error(path, ...) otherwise.
 void check_output_path(const std::filesystem::path& path);
 
-// Writes the image in the format of the path's extension. `exposure` scales
-// radiance by 2^exposure for PNG only (PFM and EXR keep linear radiance).
+// True for the 8-bit formats that `DisplayTransform` applies to (PNG, JPEG).
+inline bool is_eight_bit(ImageFormat format) { return format == ImageFormat::Png || format == ImageFormat::Jpeg; }
+
+// Writes the image in the format of the path's extension. `display` (the
+// exposure, the tone mapper) applies to PNG and JPEG only: PFM and EXR
+// keep linear radiance.
 // Pixels with a non-finite channel are written as black in every format.
 // `layers` and `attributes` (EXR only; Error(path, ...) with another
 // format) go into the file beside R, G, B and into its header. Throws
 // Error(path, ...) on failure, leaving any earlier file at `path` untouched.
-void write_image(const std::filesystem::path& path, ImageView image, float exposure,
+void write_image(const std::filesystem::path& path, ImageView image, DisplayTransform display,
                  std::span<const ImageChannel> layers = {}, std::span<const ImageAttribute> attributes = {});
 
 // An OpenEXR file read back whole: every channel as 32-bit floats (row-major,
@@ -75,7 +91,7 @@ ExrChannels read_exr_channels(const std::filesystem::path& path, const std::vect
 
 // The bytes of the PNG file write_image would write for `image` (for
 // embedding, e.g. in `sombra explain`'s SVG). Throws Error("png", ...) on failure.
-std::vector<std::uint8_t> encode_png_bytes(ImageView image, float exposure);
+std::vector<std::uint8_t> encode_png_bytes(ImageView image, DisplayTransform display);
 
 // The bytes of the EXR file write_image would write for `image` without
 // layers (32-bit float R, G, B, linear; the viewer's "save EXR"). Throws

@@ -72,7 +72,7 @@ PngFile read_png(const fs::path& file) {
 std::vector<int> png_codes(const fs::path& file, const std::vector<float>& greys, float exposure) {
     std::vector<float> rgb;
     for (float g : greys) rgb.insert(rgb.end(), {g, g, g});
-    write_image(file, {static_cast<int>(greys.size()), 1, rgb.data()}, exposure);
+    write_image(file, {static_cast<int>(greys.size()), 1, rgb.data()}, {exposure});
     const PngFile png = read_png(file);
     std::vector<int> codes;
     for (std::size_t i = 0; i + 2 < png.rgb.size(); i += 3) {
@@ -90,15 +90,17 @@ TEST(ImageFormat, FollowsTheExtensionInAnyCase) {
     EXPECT_EQ(image_format_for("dir/a.PNG"), ImageFormat::Png);
     EXPECT_EQ(image_format_for("a.pfm"), ImageFormat::Pfm);
     EXPECT_EQ(image_format_for("a.Exr"), ImageFormat::Exr);
+    EXPECT_EQ(image_format_for("a.jpg"), ImageFormat::Jpeg);
+    EXPECT_EQ(image_format_for("a.JPEG"), ImageFormat::Jpeg);
 }
 
 TEST(ImageFormat, UnsupportedExtensionIsNamed) {
     try {
-        image_format_for("out/render.jpg");
+        image_format_for("out/render.tif");
         FAIL() << "no error";
     } catch (const Error& e) {
-        EXPECT_EQ(e.where(), "out/render.jpg");
-        EXPECT_EQ(e.message(), "unsupported image format 'jpg' (use .png, .pfm or .exr)");
+        EXPECT_EQ(e.where(), "out/render.tif");
+        EXPECT_EQ(e.message(), "unsupported image format 'tif' (use .png, .jpg, .pfm or .exr)");
     }
     EXPECT_THROW(image_format_for("render"), Error);
     EXPECT_THROW(image_format_for("render.png.tmp"), Error);
@@ -146,7 +148,7 @@ TEST(Srgb, TheTableGivesEncodeSrgb8sCodes) {
 
 TEST_F(ImageIoTest, PngIsEightBitRgbWithAnSrgbChunk) {
     const std::vector<float> rgb(5 * 3 * 3, 0.5f);
-    write_image(folder_ / "a.png", {5, 3, rgb.data()}, 0.0f);
+    write_image(folder_ / "a.png", {5, 3, rgb.data()}, {});
     const PngFile png = read_png(folder_ / "a.png");
     EXPECT_EQ(png.width, 5u);
     EXPECT_EQ(png.height, 3u);
@@ -190,7 +192,7 @@ TEST_F(ImageIoTest, PngClampsOutOfRangeValues) {
 
 TEST_F(ImageIoTest, PngWritesPixelsWithNonFiniteChannelsAsBlack) {
     const std::vector<float> rgb = {nan_value, 1, 1, 1, inf_value, 1, 1, 1, -inf_value, 1, 0.5f, 0};
-    write_image(folder_ / "a.png", {4, 1, rgb.data()}, 0.0f);
+    write_image(folder_ / "a.png", {4, 1, rgb.data()}, {});
     EXPECT_EQ(read_png(folder_ / "a.png").rgb, (std::vector<std::uint8_t>{0, 0, 0, 0, 0, 0, 0, 0, 0, 255, 188, 0}));
 }
 
@@ -200,7 +202,7 @@ TEST_F(ImageIoTest, PngRowsRunTopToBottomAndChannelsStayApart) {
     for (int j = 0; j < 2; ++j)
         for (int i = 0; i < 3; ++i)
             rgb.insert(rgb.end(), {static_cast<float>(i + 1) / 4.0f, static_cast<float>(j + 1) / 4.0f, 0.5f});
-    write_image(folder_ / "a.png", {3, 2, rgb.data()}, 0.0f);
+    write_image(folder_ / "a.png", {3, 2, rgb.data()}, {});
     // sRGB codes of 0.25, 0.5, 0.75 are 137, 188, 225.
     EXPECT_EQ(read_png(folder_ / "a.png").rgb,
               (std::vector<std::uint8_t>{137, 137, 188, 188, 137, 188, 225, 137, 188, 137, 188, 188, 188, 188, 188, 225,
@@ -216,7 +218,7 @@ TEST_F(ImageIoTest, PfmBytesAreExact) {
                        {static_cast<float>(i), static_cast<float>(j), 0.1f + static_cast<float>(i + 10 * j)});
     rgb[0] = -2.5f;
     rgb[1] = 1e-30f;
-    write_image(folder_ / "a.pfm", {2, 3, rgb.data()}, 3.0f);  // exposure does not apply
+    write_image(folder_ / "a.pfm", {2, 3, rgb.data()}, {3.0f});  // exposure does not apply
 
     const std::vector<unsigned char> bytes = read_bytes(folder_ / "a.pfm");
     const std::string header = "PF\n2 3\n-1.0\n";
@@ -237,7 +239,7 @@ TEST_F(ImageIoTest, PfmBytesAreExact) {
 
 TEST_F(ImageIoTest, PfmWritesPixelsWithNonFiniteChannelsAsZero) {
     const std::vector<float> rgb = {0.25f, nan_value, 3.0f, 7.0f, 8.0f, 9.0f};
-    write_image(folder_ / "a.pfm", {2, 1, rgb.data()}, 0.0f);
+    write_image(folder_ / "a.pfm", {2, 1, rgb.data()}, {});
     const std::vector<unsigned char> bytes = read_bytes(folder_ / "a.pfm");
     ASSERT_EQ(bytes.size(), 12u + 24u);
     float values[6];
@@ -252,7 +254,7 @@ TEST_F(ImageIoTest, ExrRoundTripGivesTheSameFloats) {
     rgb[3] = 123456.789f;  // beyond half's range
     rgb[4] = 1e-8f;        // below half's precision
     rgb[7] = -0.333333f;
-    write_image(folder_ / "a.exr", {width, height, rgb.data()}, 2.0f);  // exposure does not apply
+    write_image(folder_ / "a.exr", {width, height, rgb.data()}, {2.0f});  // exposure does not apply
 
     Imf::InputFile file((folder_ / "a.exr").c_str());
     const Imath::Box2i window = file.header().dataWindow();
@@ -277,7 +279,7 @@ TEST_F(ImageIoTest, ExrRoundTripGivesTheSameFloats) {
 
 TEST_F(ImageIoTest, ExrWritesPixelsWithNonFiniteChannelsAsZero) {
     const std::vector<float> rgb = {inf_value, 2, 3, 4, 5, 6};
-    write_image(folder_ / "a.exr", {1, 2, rgb.data()}, 0.0f);
+    write_image(folder_ / "a.exr", {1, 2, rgb.data()}, {});
     Imf::InputFile file((folder_ / "a.exr").c_str());
     std::vector<float> read(6, -1.0f);
     Imf::FrameBuffer frame;

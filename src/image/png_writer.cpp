@@ -13,7 +13,7 @@
 
 #include "core/error.h"
 #include "image/atomic_file.h"
-#include "image/srgb8_table.h"
+#include "image/display_transform.h"
 #include "image/writers.h"
 
 namespace sombra {
@@ -84,20 +84,7 @@ bool encode_png(std::FILE* out, png_uint_32 width, png_uint_32 height, png_bytep
 
 namespace {
 
-// 8-bit sRGB RGB bytes of the image, row-major, top row first.
-std::vector<png_byte> srgb_bytes(ImageView image, float exposure) {
-    const auto pixels = static_cast<std::size_t>(image.width) * static_cast<std::size_t>(image.height);
-    const float scale = std::exp2(exposure);
-    const Srgb8Table srgb;  // ~1 ms to build; encode_srgb8's codes without its pow()
-    std::vector<png_byte> bytes(pixels * 3);
-    for (std::size_t pixel = 0; pixel < pixels; ++pixel) {
-        if (!pixel_is_finite(image.rgb, pixel)) continue;  // stays black
-        for (std::size_t c = 0; c < 3; ++c) bytes[3 * pixel + c] = srgb.encode(image.rgb[3 * pixel + c] * scale);
-    }
-    return bytes;
-}
-
-std::vector<png_bytep> row_pointers(std::vector<png_byte>& bytes, ImageView image) {
+std::vector<png_bytep> row_pointers(std::vector<std::uint8_t>& bytes, ImageView image) {
     std::vector<png_bytep> rows(static_cast<std::size_t>(image.height));
     for (std::size_t j = 0; j < rows.size(); ++j)
         rows[j] = bytes.data() + j * static_cast<std::size_t>(image.width) * 3;
@@ -106,8 +93,8 @@ std::vector<png_bytep> row_pointers(std::vector<png_byte>& bytes, ImageView imag
 
 }  // namespace
 
-void write_png(const std::filesystem::path& file, ImageView image, float exposure) {
-    std::vector<png_byte> bytes = srgb_bytes(image, exposure);
+void write_png(const std::filesystem::path& file, ImageView image, DisplayTransform display) {
+    std::vector<std::uint8_t> bytes = display_bytes(image, display);
     std::vector<png_bytep> rows = row_pointers(bytes, image);
 
     OutputFile out = open_for_writing(file);
@@ -123,8 +110,8 @@ void write_png(const std::filesystem::path& file, ImageView image, float exposur
     finish_writing(std::move(out));
 }
 
-std::vector<std::uint8_t> encode_png_bytes(ImageView image, float exposure) {
-    std::vector<png_byte> bytes = srgb_bytes(image, exposure);
+std::vector<std::uint8_t> encode_png_bytes(ImageView image, DisplayTransform display) {
+    std::vector<std::uint8_t> bytes = display_bytes(image, display);
     std::vector<png_bytep> rows = row_pointers(bytes, image);
     // A memory stream lets the file encoder write into a buffer.
     char* buffer = nullptr;

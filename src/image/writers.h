@@ -22,7 +22,13 @@ namespace sombra {
 std::uint8_t encode_srgb8(float linear);
 
 // 8-bit RGB PNG with an sRGB chunk (plus the matching gAMA and cHRM).
-void write_png(const std::filesystem::path& file, ImageView image, float exposure);
+void write_png(const std::filesystem::path& file, ImageView image, DisplayTransform display);
+
+// The JPEG format's largest side (libjpeg's JPEG_MAX_DIMENSION).
+inline constexpr int kMaxJpegSide = 65500;
+
+// Baseline JPEG, 8-bit sRGB (JFIF), quality 95.
+void write_jpeg(const std::filesystem::path& file, ImageView image, DisplayTransform display);
 
 // Portable float map: "PF\n<w> <h>\n-1.0\n", then little-endian float32 RGB,
 // rows bottom to top (the PFM convention). Linear radiance.

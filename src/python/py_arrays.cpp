@@ -9,6 +9,8 @@
 
 #include "core/error.h"
 #include "core/image_limits.h"
+#include "image/display_transform.h"
+#include "image/image_io.h"
 #include "python/py_bindings.h"
 
 namespace py = pybind11;
@@ -50,26 +52,30 @@ ImageView image_from(const py::handle& array, py::array_t<float>& storage) {
 void bind_arrays(py::module_& m) {
     m.def(
         "write_image",
-        [](const std::string& path, const py::handle& array, float exposure) {
+        [](const std::string& path, const py::handle& array, float exposure, const std::string& tonemap) {
+            const DisplayTransform display{exposure, tonemap_option(tonemap)};
+            if (display.tonemap != Tonemap::None && !is_eight_bit(image_format_for(path)))
+                throw Error(path, "tonemap applies to 8-bit outputs (.png, .jpg); this format keeps linear radiance");
             py::array_t<float> storage;
             const ImageView image = image_from(array, storage);
             py::gil_scoped_release release;
-            write_image(path, image, exposure);
+            write_image(path, image, display);
         },
-        py::arg("path"), py::arg("array"), py::arg("exposure") = 0.0f);
+        py::arg("path"), py::arg("array"), py::arg("exposure") = 0.0f, py::arg("tonemap") = "none");
     m.def(
         "to_png",
-        [](const py::handle& array, float exposure) {
+        [](const py::handle& array, float exposure, const std::string& tonemap) {
+            const DisplayTransform display{exposure, tonemap_option(tonemap)};
             py::array_t<float> storage;
             const ImageView image = image_from(array, storage);
             std::vector<std::uint8_t> bytes;
             {
                 py::gil_scoped_release release;
-                bytes = encode_png_bytes(image, exposure);
+                bytes = encode_png_bytes(image, display);
             }
             return py::bytes(reinterpret_cast<const char*>(bytes.data()), bytes.size());
         },
-        py::arg("array"), py::arg("exposure") = 0.0f);
+        py::arg("array"), py::arg("exposure") = 0.0f, py::arg("tonemap") = "none");
 }
 
 }  // namespace sombra::python

@@ -23,7 +23,7 @@ SceneBuilder with_triangle(const Material& material) {
 TEST(EmitsLight, NothingButGreySurfacesEmitsNothing) {
     EXPECT_FALSE(emits_light(with_triangle(default_material()).finish()));
     SceneBuilder dark = with_triangle(default_material());
-    dark.add_light(make_point_light({0, 1, 0}, Vec3{0.0f}));  // a light of no power
+    dark.add_light(make_point_light({0, 1, 0}, Vec3{0.0f}));                                    // a light of no power
     dark.add_material(Material{"lamp", MaterialType::Diffuse, Vec3{0.5f}, {}, 1, Vec3{3.0f}});  // worn by nothing
     EXPECT_FALSE(emits_light(dark.finish()));
 }
@@ -33,8 +33,8 @@ TEST(EmitsLight, ALightAnEmitterABackgroundAnEnvironmentOrAGlowingMediumDo) {
     light.add_light(make_point_light({0, 1, 0}, Vec3{0.0f, 0.0f, 1.0f}));
     EXPECT_TRUE(emits_light(light.finish()));
 
-    EXPECT_TRUE(emits_light(with_triangle(Material{"lamp", MaterialType::Diffuse, Vec3{0.5f}, {}, 1, Vec3{3.0f}})
-                                .finish()));
+    EXPECT_TRUE(
+        emits_light(with_triangle(Material{"lamp", MaterialType::Diffuse, Vec3{0.5f}, {}, 1, Vec3{3.0f}}).finish()));
 
     SceneBuilder sky = with_triangle(default_material());
     sky.set_background({0.0f, 0.1f, 0.0f});

@@ -4,6 +4,7 @@
 #include <atomic>
 #include <string>
 
+#include "image/image_io.h"
 #include "scene/scene.h"
 #include "view/live_render.h"
 
@@ -17,7 +18,7 @@ struct ViewContext {
     const Scene& scene;
     LiveRender& live;
     std::string scene_file;
-    float exposure = 0;
+    DisplayTransform display;     // the page's starting exposure and tone mapper
     std::atomic<int> streams{0};  // event streams open now
 };
 

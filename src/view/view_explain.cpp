@@ -42,7 +42,7 @@ void explain_pixel(ViewContext& c, const httplib::Request& req, httplib::Respons
     const nlohmann::json answer = {
         {"json", nlohmann::json::parse(explain_json(context, record))},
         {"text", explain_text(context, record)},
-        {"svg", explain_svg(context, record, ImageView{image->width, image->height, image->rgb.data()}, c.exposure)}};
+        {"svg", explain_svg(context, record, ImageView{image->width, image->height, image->rgb.data()}, c.display)}};
     res.set_content(answer.dump(), "application/json");
 }
 

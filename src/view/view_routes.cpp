@@ -8,6 +8,8 @@
 #include <optional>
 #include <string>
 
+#include "core/error.h"
+#include "image/display_transform.h"
 #include "image/image_io.h"
 #include "view/query_values.h"
 #include "view/view_camera.h"
@@ -61,7 +63,8 @@ json state_json(const ViewContext& c) {
             {"max_depth", s.settings.max_depth},
             {"integrator", integrator_name(s.settings.integrator)},
             {"denoise", frame.denoise},
-            {"exposure", c.exposure},
+            {"exposure", c.display.exposure},
+            {"tonemap", tonemap_name(c.display.tonemap)},
             {"camera", camera_state},
             {"frame", frame_json(frame)}};
 }
@@ -159,17 +162,24 @@ std::shared_ptr<const Film> current_image(const ViewContext& c) {
 }
 
 void send_png(ViewContext& c, const httplib::Request& req, httplib::Response& res) {
-    float exposure = c.exposure;
+    DisplayTransform display = c.display;
     if (const std::optional<std::string> text = param(req, "exposure")) {
         std::string problem;
         const std::optional<double> e = parse_query_number("exposure", *text, problem);
         if (!e || std::abs(*e) > 64)
             return bad_request(res, problem.empty() ? "exposure must lie in [-64, 64]" : problem);
-        exposure = static_cast<float>(*e);
+        display.exposure = static_cast<float>(*e);
+    }
+    if (const std::optional<std::string> name = param(req, "tonemap")) {
+        try {
+            display.tonemap = tonemap_option(*name);
+        } catch (const Error& e) {
+            return bad_request(res, "tonemap: " + e.message());
+        }
     }
     const std::shared_ptr<const Film> image = current_image(c);
     const std::vector<std::uint8_t> png =
-        encode_png_bytes(ImageView{image->width, image->height, image->rgb.data()}, exposure);
+        encode_png_bytes(ImageView{image->width, image->height, image->rgb.data()}, display);
     res.set_content(std::string(png.begin(), png.end()), "image/png");
 }
 

@@ -38,7 +38,7 @@ httplib::Headers security_headers() {
 struct ViewServer::Impl {
     Impl(const Scene& scene, const Accel& accel, const ViewServerOptions& o)
         : live(scene, accel, o.initial, o.threads, o.light_selection, o.denoise),
-          context{scene, live, o.scene_file, o.exposure},
+          context{scene, live, o.scene_file, o.display},
           token(o.token.empty() ? make_view_token() : o.token) {}
 
     LiveRender live;

@@ -16,6 +16,7 @@
 #include <string>
 
 #include "accel/accel.h"
+#include "image/image_io.h"
 #include "render/lights/lights.h"
 #include "scene/scene.h"
 #include "view/live_render.h"
@@ -29,11 +30,11 @@ struct ViewServerOptions {
     ViewSettings initial;  // the scene's camera and settings with the command line's overrides
     int threads = 0;       // render threads; 0 = all hardware threads
     LightSelection light_selection = LightSelection::Automatic;
-    float exposure = 0;      // the page's starting exposure (PNG only)
-    bool denoise = false;    // the denoise switch's starting state (spec §25)
-    int port = 0;            // 0 = a free port the system picks
-    std::string scene_file;  // for explain's story and the page's title
-    std::string token;       // empty = make_view_token()
+    DisplayTransform display;  // the page's starting exposure and tone mapper
+    bool denoise = false;      // the denoise switch's starting state (spec §25)
+    int port = 0;              // 0 = a free port the system picks
+    std::string scene_file;    // for explain's story and the page's title
+    std::string token;         // empty = make_view_token()
 };
 
 class ViewServer {

@@ -158,24 +158,32 @@ def explain(scene: Scene, x: int, y: int, sample: int = 0, **options: Any) -> di
     return json.loads(_sombra.explain(impl, x, y, sample, _options("explain", options, _EXPLAIN_OPTIONS)))
 
 
-def write_image(path: PathLike, array: np.ndarray, exposure: float = 0) -> None:
+def write_image(path: PathLike, array: np.ndarray, exposure: float = 0, tonemap: str = "none") -> None:
     """Writes a (height, width, 3) float image, linear RGB, as the path's
-    extension says: .png (8-bit sRGB, radiance × 2^exposure), .pfm or .exr
-    (linear floats). The file is written whole or not at all.
-    Raises Error for a wrong shape, a NaN, or a file that cannot be written.
+    extension says: .png or .jpg (8-bit sRGB of radiance × 2^exposure, then
+    ``tonemap``: "none" clamps, "pbr-neutral" is Khronos' PBR Neutral), .pfm
+    or .exr (linear floats; a tone mapper is an Error there). The file is
+    written whole or not at all. Raises Error for a wrong shape, a NaN, or a
+    file that cannot be written.
     """
     if isinstance(exposure, bool) or not isinstance(exposure, (int, float)):
         raise TypeError(f"write_image(): exposure must be a number, not {type(exposure).__name__}")
     if not math.isfinite(exposure):
         raise Error(f"exposure: must be a finite number, not {exposure}")
-    _sombra.write_image(_path(path, "write_image"), array, float(exposure))
+    _sombra.write_image(_path(path, "write_image"), array, float(exposure), _tonemap(tonemap, "write_image"))
 
 
-def to_png(array: np.ndarray, exposure: float = 0) -> bytes:
+def _tonemap(name: str, caller: str) -> str:
+    if not isinstance(name, str):
+        raise TypeError(f"{caller}(): tonemap must be a str, not {type(name).__name__}")
+    return name
+
+
+def to_png(array: np.ndarray, exposure: float = 0, tonemap: str = "none") -> bytes:
     """The PNG file write_image would write, as bytes (for notebooks:
     ``IPython.display.Image(sombra.to_png(img))``)."""
     if isinstance(exposure, bool) or not isinstance(exposure, (int, float)):
         raise TypeError(f"to_png(): exposure must be a number, not {type(exposure).__name__}")
     if not math.isfinite(exposure):
         raise Error(f"exposure: must be a finite number, not {exposure}")
-    return _sombra.to_png(array, float(exposure))
+    return _sombra.to_png(array, float(exposure), _tonemap(tonemap, "to_png"))

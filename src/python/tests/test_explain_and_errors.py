@@ -132,3 +132,22 @@ def test_write_image_round_trips_through_pfm_and_png(tmp_path):
     png = pathlib.Path(tmp_path / "x.png").read_bytes()
     assert png.startswith(b"\x89PNG") and png == sombra.to_png(image, exposure=-1)
     assert png != sombra.to_png(image)
+
+
+def test_write_image_takes_a_tone_mapper_and_jpeg(tmp_path, tmp_path_factory):
+    # Spec §27: the command line's --tonemap, the same bytes as its PNG.
+    rng = np.random.default_rng(2)
+    image = rng.random((6, 8, 3), dtype=np.float32) * 3
+    mapped = sombra.to_png(image, exposure=0.5, tonemap="pbr-neutral")
+    assert mapped != sombra.to_png(image, exposure=0.5)
+    sombra.write_image(tmp_path / "t.png", image, exposure=0.5, tonemap="pbr-neutral")
+    assert (tmp_path / "t.png").read_bytes() == mapped
+    sombra.write_image(tmp_path / "t.jpg", image, tonemap="pbr-neutral")
+    assert (tmp_path / "t.jpg").read_bytes()[:3] == b"\xff\xd8\xff"
+    with pytest.raises(sombra.Error, match="tonemap applies to 8-bit outputs"):
+        sombra.write_image(tmp_path / "t.exr", image, tonemap="pbr-neutral")
+    assert not (tmp_path / "t.exr").exists()
+    with pytest.raises(sombra.Error, match="^--tonemap: expected none or pbr-neutral, not 'aces'$"):
+        sombra.to_png(image, tonemap="aces")
+    with pytest.raises(TypeError, match="tonemap must be a str"):
+        sombra.to_png(image, tonemap=1)
