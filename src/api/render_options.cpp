@@ -32,6 +32,8 @@ void check_render_options(const RenderOptions& o) {
         throw Error("--max-volume-depth", "must be between 0 and " + std::to_string(kMaxVolumeDepth) + ", not " +
                                               std::to_string(*o.overrides.max_volume_depth));
     if (o.aovs.noisy && !o.denoise) throw Error("--aov", "noisy is the image before denoising: it needs --denoise");
+    if (o.crop && o.denoise)
+        throw UsageError("--crop", "cannot go with --denoise yet: the denoiser scales depth by the whole image's");
     check_positive("--time", o.time_budget, kMaxTimeBudget);
     check_positive("--noise-threshold", o.noise_threshold, kMaxNoiseThreshold);
     if (o.min_spp < 1 || o.min_spp > kMaxSpp)
@@ -76,6 +78,14 @@ RenderSettings resolve_render_settings(const RenderSettings& scene_settings, con
     if (o.denoise && s.spp < 2)
         throw UsageError("--denoise", "needs at least 2 samples per pixel, and the render takes " +
                                           std::to_string(s.spp) + " (raise --spp)");
+    if (const std::optional<PixelWindow>& c = o.crop) {
+        const std::int64_t x1 = std::int64_t{c->x0} + c->width, y1 = std::int64_t{c->y0} + c->height;
+        if (c->x0 < 0 || c->width < 1 || x1 > s.width || c->y0 < 0 || c->height < 1 || y1 > s.height)
+            throw Error("--crop", "expected X0 Y0 X1 Y1 with 0 <= X0 < X1 <= " + std::to_string(s.width) +
+                                      " and 0 <= Y0 < Y1 <= " + std::to_string(s.height) + " (the image), not " +
+                                      std::to_string(c->x0) + " " + std::to_string(c->y0) + " " + std::to_string(x1) +
+                                      " " + std::to_string(y1));
+    }
     return s;
 }
 

@@ -38,6 +38,9 @@ struct RenderOptions {
     std::optional<double> time_budget;  // spec §18: seconds from the start of the command or call
     std::optional<double> noise_threshold;
     int min_spp = 16;
+    // Spec §27: render only this window of the image (its pixels exactly as
+    // in the whole render) and output an image of its size; unset = all.
+    std::optional<PixelWindow> crop;
     AovSet aovs;
     bool denoise = false;  // spec §25: the image denoised once the last pass is done
 };
@@ -61,7 +64,8 @@ RenderSettings resolve_settings(const RenderSettings& scene_settings, const Sett
 // The settings a render runs at: resolve_settings, and under a time budget
 // without an spp override no spp limit, since the budget decides (spec §18).
 // Throws UsageError("--denoise", ...) when options.denoise meets fewer than
-// 2 samples per pixel: the denoiser compares each pixel's two halves.
+// 2 samples per pixel: the denoiser compares each pixel's two halves, and
+// Error("--crop", ...) for a window outside the image.
 RenderSettings resolve_render_settings(const RenderSettings& scene_settings, const RenderOptions& options);
 
 // When pixels stop sampling, as the time budget, noise threshold and

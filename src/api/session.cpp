@@ -35,6 +35,12 @@ RenderJob make_job(const Scene& scene, const Accel& accel, const RenderSettings&
     RenderJob job = make_render_job(scene, accel, settings, options.threads, options.light_selection);
     job.limits = sampling_limits(options, start);
     job.aovs = options.aovs;
+    if (options.crop) {
+        job.window = options.crop;
+        // Adaptive sampling decides after each pass from 3 × 3 neighbourhoods (RenderJob::window_margin).
+        if (options.noise_threshold)
+            job.window_margin = (settings.spp + kAdaptivePassSamples - 1) / kAdaptivePassSamples;
+    }
     if (options.denoise) {
         job.aovs.denoise = true;
         if (job.limits.deadline)

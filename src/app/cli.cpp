@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <iostream>
 #include <type_traits>
+#include <vector>
 
 #include "accel/accel.h"
 #include "app/display_server.h"
@@ -158,6 +159,20 @@ void add_output_options(CLI::App* render_command, CliOptions& o) {
             "Float layers added to an .exr output: any of albedo, normal, depth, position, spp, variance, "
             "noisy (with --denoise), denoise (the denoiser's inputs), comma-separated")
         ->check(library_name_check(aov_option));
+    render
+        .add_option_function<std::vector<int>>(
+            "--crop",
+            [&r](const std::vector<int>& v) {
+                if (v[0] < 0 || v[1] < 0 || v[2] <= v[0] || v[3] <= v[1])
+                    throw CLI::ValidationError("--crop",
+                                               "expected X0 Y0 X1 Y1 with 0 <= X0 < X1 and 0 <= Y0 < Y1, not " +
+                                                   std::to_string(v[0]) + " " + std::to_string(v[1]) + " " +
+                                                   std::to_string(v[2]) + " " + std::to_string(v[3]));
+                r.crop = PixelWindow{v[0], v[1], v[2] - v[0], v[3] - v[1]};
+            },
+            "Render only the pixels X0 <= x < X1, Y0 <= y < Y1 and write an image of that size, each pixel as in "
+            "the whole render")
+        ->expected(4);
     render.add_flag("--denoise", r.denoise,
                     "Denoise the image once the last pass is done (at least 2 spp; the --time budget includes it)");
     render
@@ -307,6 +322,10 @@ CliParse parse(int argc, const char* const* argv, std::ostream& out, std::ostrea
         return CliParse{std::nullopt, 2};
     };
     if (o.render.frame && o.first_frame) return refuse("give --frame or --frames, not both");
+    if (o.render.crop && !o.display_server.empty())
+        return refuse("--crop and --display-server cannot go together yet: tev is sent the whole image's size");
+    if (o.render.crop && o.render.denoise)
+        return refuse("--crop cannot go with --denoise yet: the denoiser scales depth by the whole image's");
     if (o.render.aovs.noisy && !o.render.denoise)
         return refuse("--aov noisy is the image before denoising: it needs --denoise");
     if (o.render.denoise && o.render.overrides.spp && *o.render.overrides.spp < 2)

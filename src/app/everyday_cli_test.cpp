@@ -5,6 +5,7 @@
 #include <stb_image.h>
 
 #include <algorithm>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
@@ -137,6 +138,72 @@ TEST_F(Everyday, TheToneMapperShapesEightBitOutputsOnly) {
     ASSERT_EQ(run("render s.json -q --shard 0/1 -o part.exr").status, 0);
     EXPECT_EQ(run("merge part.exr -q --tonemap pbr-neutral -o merged.exr").status, 2);
     EXPECT_EQ(run("merge part.exr -q --tonemap pbr-neutral -o merged.jpg").status, 0);
+}
+
+// Pixels x0 … x1 − 1 of rows y0 … y1 − 1 of a width-wide PFM's floats, top row first.
+std::vector<float> window_of(const Pfm& image, int x0, int y0, int x1, int y1) {
+    std::vector<float> out;
+    for (int y = y0; y < y1; ++y) {
+        // PFM rows run bottom to top.
+        const std::size_t row = static_cast<std::size_t>(image.height - 1 - y) * image.width;
+        out.insert(out.end(), image.rgb.begin() + static_cast<std::ptrdiff_t>((row + x0) * 3),
+                   image.rgb.begin() + static_cast<std::ptrdiff_t>((row + x1) * 3));
+    }
+    return out;
+}
+
+std::vector<float> top_down(const Pfm& image) { return window_of(image, 0, 0, image.width, image.height); }
+
+TEST_F(Everyday, ACropIsItsWindowOfTheWholeRenderBitForBit) {
+    write_text(dir_ / "s.json", scene(R"({"width": 45, "height": 31, "spp": 24, "integrator": "path"})"));
+    struct Case {
+        std::string options;
+        bool adapts;
+    };
+    for (const Case& c : {Case{"", false}, Case{"--noise-threshold 0.08 --min-spp 4", true}}) {
+        SCOPED_TRACE(c.options);
+        ASSERT_EQ(run("render s.json -q -o whole.pfm --stats-json whole.json " + c.options).status, 0);
+        const RunResult r = run("render s.json -q -o crop.pfm --stats-json crop.json --crop 3 5 40 29 " + c.options);
+        ASSERT_EQ(r.status, 0) << r.err;
+        const Pfm whole = read_pfm(dir_ / "whole.pfm"), crop = read_pfm(dir_ / "crop.pfm");
+        ASSERT_EQ(crop.width, 37);
+        ASSERT_EQ(crop.height, 24);
+        EXPECT_EQ(top_down(crop), window_of(whole, 3, 5, 40, 29));
+        const auto stats = nlohmann::json::parse(read_text(dir_ / "crop.json"));
+        EXPECT_EQ(stats["width"], 37);
+        EXPECT_EQ(stats["height"], 24);
+        // Adaptive sampling stopped some pixels early (the spp reached is a
+        // mean, not a whole number): the margin mattered.
+        const auto whole_stats = nlohmann::json::parse(read_text(dir_ / "whole.json"));
+        EXPECT_EQ(whole_stats["spp_reached"].is_number_integer(), !c.adapts) << whole_stats.dump();
+    }
+    // Shards split the window; merged, they are the crop.
+    ASSERT_EQ(run("render s.json -q -o crop.pfm --crop 3 5 40 29").status, 0);
+    for (const char* part : {"0/3", "1/3", "2/3"}) {
+        const RunResult r =
+            run(std::string("render s.json -q --crop 3 5 40 29 --shard ") + part + " -o part" + part[0] + ".exr");
+        ASSERT_EQ(r.status, 0) << r.err;
+    }
+    const RunResult merged = run("merge part0.exr part1.exr part2.exr -q -o merged.pfm");
+    ASSERT_EQ(merged.status, 0) << merged.err;
+    EXPECT_EQ(read_text(dir_ / "merged.pfm"), read_text(dir_ / "crop.pfm"));
+    // A shard of another window does not merge with them.
+    ASSERT_EQ(run("render s.json -q --crop 3 5 40 30 --shard 2/3 -o other.exr").status, 0);
+    EXPECT_EQ(run("merge part0.exr part1.exr other.exr -q -o merged.pfm").status, 1);
+}
+
+TEST_F(Everyday, ACropOutsideTheImageOrWithTheDenoiserIsRefused) {
+    write_text(dir_ / "s.json", scene());  // 32 × 24
+    const RunResult outside = run("render s.json -q -o a.png --crop 0 0 33 10");
+    EXPECT_EQ(outside.status, 1);
+    EXPECT_EQ(outside.err,
+              "sombra: error: --crop: expected X0 Y0 X1 Y1 with 0 <= X0 < X1 <= 32 and 0 <= Y0 < Y1 <= 24 (the image), "
+              "not 0 0 33 10\n");
+    EXPECT_FALSE(fs::exists(dir_ / "a.png"));
+    for (const char* bad : {"--crop 5 5 5 9", "--crop 1 2 3", "--crop 0 0 8 8 --denoise --integrator path"}) {
+        const RunResult r = run(std::string("render s.json -q -o a.png ") + bad);
+        EXPECT_EQ(r.status, 2) << bad << ": " << r.err;
+    }
 }
 
 }  // namespace

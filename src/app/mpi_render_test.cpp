@@ -57,6 +57,7 @@ TEST_F(Mpi, RanksWriteTheSingleProcessBytes) {
     for (const Case& c : {Case{2, "--integrator direct", "out.png"}, Case{3, "--integrator path", "out.pfm"},
                           Case{4, "--integrator path --aov albedo,normal,depth,spp,variance", "out.exr"},
                           Case{2, "--integrator path --spp 3 --threads 1", "out.exr"},
+                          Case{3, "--integrator path --crop 7 5 61 44 --aov albedo,spp", "crop.exr"},
                           Case{3, "--integrator path --denoise --aov noisy,denoise", "denoised.exr"}}) {
         SCOPED_TRACE(std::to_string(c.ranks) + " ranks, " + c.options + ", " + c.file);
         const RunResult single = run("render s.json -q " + c.options + " -o single-" + c.file);

@@ -106,7 +106,8 @@ int render_frame(const CliOptions& o, const Scene& scene, const Accel& accel, co
     {
         const bool show = !o.quiet && isatty(STDERR_FILENO) && mpi.rank() == 0;
         ProgressBar bar(progress,
-                        shard_pixel_count(job.shard, settings.width, settings.height) *
+                        shard_pixel_count(job.shard, job.window ? job.window->width : settings.width,
+                                          job.window ? job.window->height : settings.height) *
                             static_cast<std::uint64_t>(settings.spp),
                         show, job.limits.deadline);
         rendered = distributed ? mpi.render(job, progress) : render_image(job, progress);
@@ -263,8 +264,9 @@ int run_render(const CliOptions& options) {
         stats.frames = o.first_frame && !o.sharded ? static_cast<std::uint64_t>(*o.last_frame - *o.first_frame + 1)
                                                    : frames.size();
         stats.processes = mpi.size();
-        stats.width = settings.width;
-        stats.height = settings.height;
+        // The image written: the --crop window's size (spec §27).
+        stats.width = o.render.crop ? o.render.crop->width : settings.width;
+        stats.height = o.render.crop ? o.render.crop->height : settings.height;
         stats.threads = o.render.threads > 0 ? o.render.threads : tbb::info::default_concurrency();
         stats.accel = std::string(accel_name(kind));
         stats.accel_bytes = accel_memory_bytes(accel);

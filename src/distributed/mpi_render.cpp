@@ -34,15 +34,17 @@ constexpr int kReadyTag = 1;   // a worker's first request: no pixels yet
 constexpr int kResultTag = 2;  // a block's floats, and a request for the next
 constexpr int kWorkTag = 3;    // rank 0's answer: a block number, or −1 = no more
 
-// Block b of the image (kShardBlock × kShardBlock, row by row, as shards count them).
-PixelWindow block_window(int b, int width, int height) {
-    const int per_row = (width + kShardBlock - 1) / kShardBlock;
-    const int x0 = (b % per_row) * kShardBlock, y0 = (b / per_row) * kShardBlock;
-    return {x0, y0, std::min(kShardBlock, width - x0), std::min(kShardBlock, height - y0)};
+// Block b of `region`, the image or its --crop window (kShardBlock ×
+// kShardBlock, row by row, as shards count them).
+PixelWindow block_window(int b, const PixelWindow& region) {
+    const int per_row = (region.width + kShardBlock - 1) / kShardBlock;
+    const int x = (b % per_row) * kShardBlock, y = (b / per_row) * kShardBlock;
+    return {region.x0 + x, region.y0 + y, std::min(kShardBlock, region.width - x),
+            std::min(kShardBlock, region.height - y)};
 }
 
-int block_count(int width, int height) {
-    return ((width + kShardBlock - 1) / kShardBlock) * ((height + kShardBlock - 1) / kShardBlock);
+int block_count(const PixelWindow& region) {
+    return ((region.width + kShardBlock - 1) / kShardBlock) * ((region.height + kShardBlock - 1) / kShardBlock);
 }
 
 // A block's images and their floats a pixel, in an order both ends know:
@@ -81,30 +83,32 @@ std::vector<float> pack(RenderOutput& block, const AovSet& aovs) {
     return floats;
 }
 
-// Copies a block's packed floats into the whole image's arrays, each
-// allocated on first use.
-void place(RenderOutput& image, const RenderJob& job, const PixelWindow& w, const std::vector<float>& floats) {
-    const std::size_t width = static_cast<std::size_t>(job.settings.width);
+// Copies a block's packed floats into the region's arrays, each allocated
+// on first use.
+void place(RenderOutput& image, const RenderJob& job, const PixelWindow& region, const PixelWindow& w,
+           const std::vector<float>& floats) {
+    const auto width = static_cast<std::size_t>(region.width);
     std::size_t at = 0;
     for (const BlockImage& target : images_of(image, job.aovs)) {
         const std::size_t c = target.channels;
         std::vector<float>& values = *target.values;
-        if (values.empty()) values.resize(width * static_cast<std::size_t>(job.settings.height) * c);
+        if (values.empty()) values.resize(width * static_cast<std::size_t>(region.height) * c);
         for (int row = 0; row < w.height; ++row) {
-            const std::size_t to =
-                ((static_cast<std::size_t>(w.y0 + row)) * width + static_cast<std::size_t>(w.x0)) * c;
+            const std::size_t to = ((static_cast<std::size_t>(w.y0 - region.y0 + row)) * width +
+                                    static_cast<std::size_t>(w.x0 - region.x0)) *
+                                   c;
             std::memcpy(&values[to], &floats[at], static_cast<std::size_t>(w.width) * c * sizeof(float));
             at += static_cast<std::size_t>(w.width) * c;
         }
     }
     if (job.aovs.denoise) {
-        image.aovs.denoise.width = job.settings.width;
-        image.aovs.denoise.height = job.settings.height;
+        image.aovs.denoise.width = region.width;
+        image.aovs.denoise.height = region.height;
     }
 }
 
-RenderOutput render_block(RenderJob& job, int b, RenderProgress& progress) {
-    job.window = block_window(b, job.settings.width, job.settings.height);
+RenderOutput render_block(RenderJob& job, const PixelWindow& region, int b, RenderProgress& progress) {
+    job.window = block_window(b, region);
     return render_image(job, progress);
 }
 
@@ -172,8 +176,9 @@ RayCounters MpiRun::sum(const RayCounters& mine) const {
 }
 
 RenderOutput MpiRun::render(RenderJob job, RenderProgress& progress) const {
-    const int width = job.settings.width, height = job.settings.height;
-    const int blocks = block_count(width, height);
+    // The pixels rendered: the --crop window, or the whole image.
+    const PixelWindow region = job.window.value_or(PixelWindow{0, 0, job.settings.width, job.settings.height});
+    const int blocks = block_count(region);
     RenderOutput out;
     if (rank_ != 0) {
         // A worker: ask, render, send back (which asks again), until told −1.
@@ -182,7 +187,7 @@ RenderOutput MpiRun::render(RenderJob job, RenderProgress& progress) const {
             int b = -1;
             MPI_Recv(&b, 1, MPI_INT, 0, kWorkTag, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
             if (b < 0) break;
-            RenderOutput block = render_block(job, b, progress);
+            RenderOutput block = render_block(job, region, b, progress);
             if (block.cancelled) {
                 out.cancelled = true;
                 return out;
@@ -198,18 +203,18 @@ RenderOutput MpiRun::render(RenderJob job, RenderProgress& progress) const {
 
     // Rank 0: a thread renders blocks from the same counter the workers'
     // requests draw from, while this one answers them (MPI_THREAD_FUNNELED).
-    out.film = Film(width, height);
+    out.film = Film(region.width, region.height);
     std::atomic<int> next{0};
     std::mutex placing;
     RayCounters local;
     std::thread renderer([&, job]() mutable {
         for (int b = next.fetch_add(1); b < blocks; b = next.fetch_add(1)) {
-            RenderOutput block = render_block(job, b, progress);
+            RenderOutput block = render_block(job, region, b, progress);
             if (block.cancelled) return;
             local += block.counters;
             const std::vector<float> floats = pack(block, job.aovs);
             const std::lock_guard<std::mutex> lock(placing);
-            place(out, job, *job.window, floats);
+            place(out, job, region, *job.window, floats);
         }
     });
     std::vector<int> assigned(static_cast<std::size_t>(size_), -1);
@@ -230,10 +235,10 @@ RenderOutput MpiRun::render(RenderJob job, RenderProgress& progress) const {
         const int source = status.MPI_SOURCE;
         MPI_Recv(floats.data(), count, MPI_FLOAT, source, status.MPI_TAG, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
         if (status.MPI_TAG == kResultTag) {
-            const PixelWindow w = block_window(assigned[static_cast<std::size_t>(source)], width, height);
+            const PixelWindow w = block_window(assigned[static_cast<std::size_t>(source)], region);
             {
                 const std::lock_guard<std::mutex> lock(placing);
-                place(out, job, w, floats);
+                place(out, job, region, w, floats);
             }
             progress.samples_done.fetch_add(static_cast<std::uint64_t>(w.width) * static_cast<std::uint64_t>(w.height) *
                                             block_samples_per_pixel);
@@ -251,7 +256,7 @@ RenderOutput MpiRun::render(RenderJob job, RenderProgress& progress) const {
     if (out.cancelled) return out;
     out.counters = sum(local);
     // Every pixel took the spp (no time budget or threshold here).
-    out.pixels = static_cast<std::uint64_t>(width) * static_cast<std::uint64_t>(height);
+    out.pixels = static_cast<std::uint64_t>(region.width) * static_cast<std::uint64_t>(region.height);
     out.samples = out.pixels * block_samples_per_pixel;
     out.min_pixel_spp = out.max_pixel_spp = static_cast<std::uint32_t>(job.settings.spp);
     out.passes = 1;

@@ -100,8 +100,11 @@ std::vector<ImageAttribute> shard_attributes(const std::string& input, const Ren
         std::string(integrator_name(s.integrator)) + ", max_depth " + std::to_string(s.max_depth) +
         ", texture_filter " + std::string(texture_filter_name(s.texture_filter)) + ", accel " +
         std::string(accel_name(o.accel)) + ", light_tree " + std::string(light_selection_name(o.light_selection)) +
-        (o.time_budget ? ", time " + std::to_string(*o.time_budget) : std::string()) + ", aov [" + aov_list(o.aovs) +
-        "]";
+        (o.time_budget ? ", time " + std::to_string(*o.time_budget) : std::string()) +
+        (o.crop ? ", crop " + std::to_string(o.crop->x0) + " " + std::to_string(o.crop->y0) + " " +
+                      std::to_string(o.crop->x0 + o.crop->width) + " " + std::to_string(o.crop->y0 + o.crop->height)
+                : std::string()) +
+        ", aov [" + aov_list(o.aovs) + "]";
     return {{kShardAttribute, std::to_string(shard.index) + "/" + std::to_string(shard.count)},
             {kRenderAttribute, render}};
 }

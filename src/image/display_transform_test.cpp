@@ -33,9 +33,8 @@ TEST(PbrNeutral, KeepsBaseColoursAndCompressesHighlightsAsTheSpecificationSays) 
     // (2, 1, 0.5): offset 0.04, peak 1.96, new peak 1 − 0.24²/1.44 = 0.96,
     // scaled by 0.96/1.96, then 1 − 1/1.15 of the way to grey 0.96.
     const double g = 1.0 - 1.0 / 1.15, s = 0.96 / 1.96;
-    expect_near(pbr_neutral({2.0f, 1.0f, 0.5f}),
-                {0.96f, static_cast<float>(0.96 * s * (1 - g) + 0.96 * g),
-                 static_cast<float>(0.46 * s * (1 - g) + 0.96 * g)});
+    expect_near(pbr_neutral({2.0f, 1.0f, 0.5f}), {0.96f, static_cast<float>(0.96 * s * (1 - g) + 0.96 * g),
+                                                  static_cast<float>(0.46 * s * (1 - g) + 0.96 * g)});
 }
 
 TEST(PbrNeutral, GreysRiseSteadilyTowardWhiteWithoutReachingIt) {
@@ -70,8 +69,8 @@ TEST(DisplayBytes, TheToneMapperActsAfterTheExposureAndBeforeSrgb) {
     const std::vector<float> rgb{1.0f, 0.5f, 0.25f};
     const std::vector<std::uint8_t> bytes = display_bytes({1, 1, rgb.data()}, {1.0f, Tonemap::PbrNeutral});
     const Vec3 mapped = pbr_neutral({2.0f, 1.0f, 0.5f});
-    EXPECT_EQ(bytes, (std::vector<std::uint8_t>{encode_srgb8(mapped.x), encode_srgb8(mapped.y),
-                                                 encode_srgb8(mapped.z)}));
+    EXPECT_EQ(bytes,
+              (std::vector<std::uint8_t>{encode_srgb8(mapped.x), encode_srgb8(mapped.y), encode_srgb8(mapped.z)}));
 }
 
 // A JPEG file decoded by libjpeg: width, height, RGB bytes.

@@ -95,6 +95,16 @@ RenderOptions render_options_from(const py::dict& options) {
             r.noise_threshold = py::cast<double>(value);
         } else if (key == "min_spp") {
             r.min_spp = int_option(key, value);
+        } else if (key == "crop") {
+            const py::sequence corners = py::cast<py::sequence>(value);
+            if (corners.size() != 4) throw Error("--crop", "expected (x0, y0, x1, y1): 4 whole numbers");
+            int c[4];
+            for (int k = 0; k < 4; ++k) c[k] = int_option(key, corners[static_cast<std::size_t>(k)]);
+            if (c[0] < 0 || c[1] < 0 || c[2] <= c[0] || c[3] <= c[1])
+                throw Error("--crop", "expected X0 Y0 X1 Y1 with 0 <= X0 < X1 and 0 <= Y0 < Y1, not " +
+                                          std::to_string(c[0]) + " " + std::to_string(c[1]) + " " +
+                                          std::to_string(c[2]) + " " + std::to_string(c[3]));
+            r.crop = PixelWindow{c[0], c[1], c[2] - c[0], c[3] - c[1]};
         } else if (key == "denoise") {
             r.denoise = py::cast<bool>(value);
         } else if (key == "aov") {

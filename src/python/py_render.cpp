@@ -69,8 +69,9 @@ py::object render(const std::shared_ptr<PyScene>& scene, const py::dict& options
     RenderOutput rendered;
     Film noisy;
     std::vector<std::string> warnings;
-    const std::uint64_t total = static_cast<std::uint64_t>(settings.width) *
-                                static_cast<std::uint64_t>(settings.height) * static_cast<std::uint64_t>(settings.spp);
+    const PixelWindow image = o.crop.value_or(PixelWindow{0, 0, settings.width, settings.height});
+    const std::uint64_t total = static_cast<std::uint64_t>(image.width) * static_cast<std::uint64_t>(image.height) *
+                                static_cast<std::uint64_t>(settings.spp);
     run_watched(
         [&] {
             const RenderLock lock = lock_at_frame(*scene, settings, o);
@@ -81,7 +82,7 @@ py::object render(const std::shared_ptr<PyScene>& scene, const py::dict& options
             if (o.denoise && !rendered.cancelled) noisy = denoise_render(rendered, o.threads, &watched.cancel);
         },
         watched, total, progress);
-    const py::ssize_t w = settings.width, h = settings.height;
+    const py::ssize_t w = image.width, h = image.height;  // the --crop window's size (spec §27)
     py::dict out;
     out["color"] = numpy_from(std::move(rendered.film.rgb), {h, w, 3});
     auto add = [&out, w, h](const char* name, std::vector<float>& layer, py::ssize_t channels) {

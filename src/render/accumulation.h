@@ -39,6 +39,8 @@ public:
     Accumulation(int width, int height, bool moments, AovSet aovs);
 
     std::size_t pixels() const { return count_.size(); }
+    int width() const { return width_; }
+    int height() const { return height_; }
     // Pixel (i, j)'s index in the arrays (row-major, top row first).
     std::size_t index(int i, int j) const {
         return static_cast<std::size_t>(j) * static_cast<std::size_t>(width_) + static_cast<std::size_t>(i);

@@ -11,6 +11,7 @@
 #include <numbers>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "render/path_test_util.h"
@@ -33,7 +34,7 @@ using testing::PathRun;
 // `boundary` when given.
 void add_object(SceneBuilder& b, const TriangleMesh& mesh, std::uint32_t material,
                 std::optional<MediumBoundary> boundary) {
-    EXPECT_EQ(b.add_mesh(mesh, {}, {}, MeshPlacement{"object", "", std::nullopt, material, boundary}),
+    EXPECT_EQ(b.add_mesh(mesh, {}, {}, MeshPlacement{"object", "", std::nullopt, material, std::move(boundary)}),
               MeshProblem::None);
 }
 

@@ -83,12 +83,11 @@ void sample_pixel(const RenderJob& job, const IntegratorContext& ctx, Accumulati
 // decided from the pass's finished sums only (a separate loop), so that the
 // decisions do not depend on the order pixels were rendered in.
 void stop_converged_pixels(const RenderJob& job, Accumulation& acc) {
-    const RenderSettings& s = job.settings;
     const double threshold = job.limits.noise_threshold;
     const auto min_spp = static_cast<std::uint32_t>(std::max(job.limits.min_spp, 2));
     std::vector<std::uint8_t> stop(acc.pixels(), 0);
-    tbb::parallel_for(0, s.height, [&](int j) {
-        for (int i = 0; i < s.width; ++i) {
+    tbb::parallel_for(0, acc.height(), [&](int j) {
+        for (int i = 0; i < acc.width(); ++i) {
             const std::size_t pixel = acc.index(i, j);
             if (acc.done(pixel) || acc.count(pixel) < min_spp) continue;
             stop[pixel] = acc.luminance_standard_error(i, j) <=
@@ -97,6 +96,39 @@ void stop_converged_pixels(const RenderJob& job, Accumulation& acc) {
     });
     for (std::size_t p = 0; p < stop.size(); ++p)
         if (stop[p]) acc.finish(p);
+}
+
+// `w` grown by `margin` pixels on each side, within the width × height image.
+PixelWindow grown_window(const PixelWindow& w, int margin, int width, int height) {
+    const int x0 = std::max(0, w.x0 - margin), y0 = std::max(0, w.y0 - margin);
+    const int x1 = std::min(width, w.x0 + w.width + margin), y1 = std::min(height, w.y0 + w.height + margin);
+    return {x0, y0, x1 - x0, y1 - y0};
+}
+
+// Keeps `kept`'s pixels of images covering `area` (channels per pixel from
+// each image's size), top row first.
+void cut_to_window(RenderOutput& out, const PixelWindow& area, const PixelWindow& kept) {
+    const auto cut = [&](std::vector<float>& values) {
+        if (values.empty()) return;
+        const std::size_t channels =
+            values.size() / (static_cast<std::size_t>(area.width) * static_cast<std::size_t>(area.height));
+        std::vector<float> inside;
+        inside.reserve(static_cast<std::size_t>(kept.width) * static_cast<std::size_t>(kept.height) * channels);
+        for (int j = kept.y0; j < kept.y0 + kept.height; ++j) {
+            const std::size_t row = static_cast<std::size_t>(j - area.y0) * static_cast<std::size_t>(area.width) +
+                                    static_cast<std::size_t>(kept.x0 - area.x0);
+            inside.insert(inside.end(), values.begin() + static_cast<std::ptrdiff_t>(row * channels),
+                          values.begin() +
+                              static_cast<std::ptrdiff_t>((row + static_cast<std::size_t>(kept.width)) * channels));
+        }
+        values = std::move(inside);
+    };
+    cut(out.film.rgb);
+    out.film.width = kept.width;
+    out.film.height = kept.height;
+    for (std::vector<float>* aov :
+         {&out.aovs.albedo, &out.aovs.normal, &out.aovs.position, &out.aovs.depth, &out.aovs.spp, &out.aovs.variance})
+        cut(*aov);
 }
 
 // How many samples each pass adds (see kTimedPassSamples).
@@ -161,7 +193,8 @@ RenderOutput render_image(const RenderJob& job, RenderProgress& progress) {
     using Clock = std::chrono::steady_clock;
     const RenderSettings& rs = job.settings;
     // The pixels rendered: the window's, or the whole image's.
-    const PixelWindow area = job.window.value_or(PixelWindow{0, 0, rs.width, rs.height});
+    const PixelWindow kept = job.window.value_or(PixelWindow{0, 0, rs.width, rs.height});
+    const PixelWindow area = grown_window(kept, job.window_margin, rs.width, rs.height);
     Accumulation acc(area.width, area.height, job.limits.noise_threshold > 0, job.aovs);
     tbb::combinable<RayCounters> per_thread;
     const IntegratorContext ctx = make_integrator_context(job);
@@ -178,9 +211,9 @@ RenderOutput render_image(const RenderJob& job, RenderProgress& progress) {
     tbb::task_arena arena(threads);
     RenderOutput out;
     if (job.shard.count > 1)
-        for (int j = 0; j < rs.height; ++j)
-            for (int i = 0; i < rs.width; ++i)
-                if (!shard_owns(job.shard, rs.width, i, j)) acc.finish(acc.index(i, j));
+        for (int j = 0; j < area.height; ++j)
+            for (int i = 0; i < area.width; ++i)
+                if (!shard_owns(job.shard, area.width, i, j)) acc.finish(acc.index(i, j));
     arena.execute([&] {
         // A window (an MPI block, 32 × 32) in 8 × 8 tiles: 16 of them, enough for a rank's threads.
         const int tile_size = job.window ? kTileSize / 2 : kTileSize;
@@ -228,11 +261,12 @@ RenderOutput render_image(const RenderJob& job, RenderProgress& progress) {
 
     out.aovs = acc.aov_images();
     out.film = acc.take_image();
-    // Over the pixels rendered: a shard's others have no samples by design.
+    if (kept.width != area.width || kept.height != area.height) cut_to_window(out, area, kept);
+    // Over the pixels kept: a shard's others have no samples by design.
     out.min_pixel_spp = std::numeric_limits<std::uint32_t>::max();
-    for (int j = area.y0; j < area.y0 + area.height; ++j)
-        for (int i = area.x0; i < area.x0 + area.width; ++i) {
-            if (job.shard.count > 1 && !shard_owns(job.shard, rs.width, i, j)) continue;
+    for (int j = kept.y0; j < kept.y0 + kept.height; ++j)
+        for (int i = kept.x0; i < kept.x0 + kept.width; ++i) {
+            if (job.shard.count > 1 && !shard_owns(job.shard, area.width, i - area.x0, j - area.y0)) continue;
             const std::uint32_t n = acc.count(acc.index(i - area.x0, j - area.y0));
             ++out.pixels;
             out.samples += n;

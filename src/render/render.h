@@ -90,8 +90,14 @@ struct RenderJob {
     ShardSpec shard;  // the pixels to render; the others stay black with no samples
     // Set: only the window's pixels, each exactly as in the whole image, and
     // the output (film, AOVs, counts) is the window's size: one block of an
-    // MPI render (distributed/mpi_render.cpp). Not with a shard or a noise threshold.
+    // MPI render (distributed/mpi_render.cpp), or --crop (spec §27). A shard
+    // splits the window's pixels as it would an image of the window's size.
     std::optional<PixelWindow> window;
+    // Pixels rendered around the window and dropped: adaptive sampling's
+    // rule pools each pixel's 3 × 3 neighbours after every pass, so a pixel
+    // depends on those up to one pixel further each pass; a margin of as
+    // many pixels as there are passes keeps the window's pixels exact.
+    int window_margin = 0;
     // Called on the render's thread after each pass that ran to its end (not
     // after a cancelled one) with what the passes have gathered and the
     // number of passes so far: the viewer publishes the image from here.

@@ -16,7 +16,9 @@ SceneBuilder with_triangle(const Material& material) {
     t.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
     t.triangles = {{0, 1, 2}};
     t.material_ids = {0};
-    EXPECT_EQ(b.add_mesh(t, std::vector<Material>{material}, {}, MeshPlacement{"t", "t.obj"}), MeshProblem::None);
+    MeshPlacement placement;
+    placement.name = "t";
+    EXPECT_EQ(b.add_mesh(t, std::vector<Material>{material}, {}, placement), MeshProblem::None);
     return b;
 }
 

@@ -70,6 +70,7 @@ def render(scene: Scene, *, aov: Union[Sequence[str], str, None] = None, progres
       time                       seconds: render sample passes until the next would
                                  end past the budget (counted from this call)
       noise_threshold, min_spp   adaptive sampling
+      crop                       (x0, y0, x1, y1): only those pixels, as in the whole image
       denoise                    True: the image denoised once the last pass is done
                                  (spec §25; at least 2 spp), as ``sombra render --denoise``
     aov: any of "albedo", "normal", "depth", "position", "spp", "variance",

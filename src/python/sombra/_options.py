@@ -49,6 +49,7 @@ _RENDER_OPTIONS = {
     "time": ("--time", _NUMBER),
     "noise_threshold": ("--noise-threshold", _NUMBER),
     "min_spp": ("--min-spp", _INT),
+    "crop": ("--crop", (tuple, list)),
     "denoise": ("--denoise", _BOOL),
 }
 

@@ -222,3 +222,21 @@ def test_a_render_warns_as_the_command_line_does():
     with warnings.catch_warnings():
         warnings.simplefilter("error")
         sombra.render(s, width=8, height=6, spp=32, noise_threshold=0.1, min_spp=4)
+
+
+def test_a_crop_is_its_window_of_the_whole_render():
+    # Spec §27: crop=(x0, y0, x1, y1), the command line's --crop.
+    s = sombra.load(REPO / "scenes" / "cornell-box-path.json", width=40, height=30, spp=8)
+    whole = sombra.render(s)
+    crop = sombra.render(s, crop=(5, 4, 33, 21))
+    assert crop.shape == (17, 28, 3)
+    assert crop.tobytes() == np.ascontiguousarray(whole[4:21, 5:33]).tobytes()
+    adaptive = sombra.render(s, crop=[5, 4, 33, 21], noise_threshold=0.1, min_spp=4)
+    assert adaptive.tobytes() == np.ascontiguousarray(
+        sombra.render(s, noise_threshold=0.1, min_spp=4)[4:21, 5:33]).tobytes()
+    with pytest.raises(sombra.Error, match="^--crop: expected X0 Y0 X1 Y1 with 0 <= X0 < X1 <= 40"):
+        sombra.render(s, crop=(0, 0, 41, 5))
+    with pytest.raises(sombra.Error, match="--crop"):
+        sombra.render(s, crop=(3, 3, 2, 5))
+    with pytest.raises(sombra.Error, match="--crop"):
+        sombra.render(s, crop=(0, 0, 4))
