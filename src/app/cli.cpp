@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "accel/accel.h"
+#include "app/cli_suggest.h"
 #include "app/display_server.h"
 #include "core/error.h"
 #include "image/display_transform.h"
@@ -302,7 +303,8 @@ CliParse parse(int argc, const char* const* argv, std::ostream& out, std::ostrea
         return {std::nullopt, 0};
     } catch (const CLI::ParseError& e) {
         const std::string_view sub = argc > 1 ? std::string_view(argv[1]) : std::string_view();
-        err << "sombra: error: command line: " << one_line(e.what()) << " (see 'sombra "
+        err << "sombra: error: command line: " << parse_error_hint(app, argc, argv).value_or(one_line(e.what()))
+            << " (see 'sombra "
             << (sub == "explain" || sub == "view" || sub == "merge" || sub == "denoise" ? sub : "render")
             << " --help')\n";
         return {std::nullopt, 2};

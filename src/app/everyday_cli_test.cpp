@@ -206,4 +206,40 @@ TEST_F(Everyday, ACropOutsideTheImageOrWithTheDenoiserIsRefused) {
     }
 }
 
+TEST_F(Everyday, AMisspeltOptionOrAMissingCommandIsNamedWithTheLikelyFix) {
+    write_text(dir_ / "s.json", scene());
+    struct Case {
+        const char* args;
+        const char* message;
+    };
+    for (const Case& c : {Case{"render s.json --widht 100",
+                               "unknown option '--widht' (did you mean --width?) (see 'sombra render --help')"},
+                          Case{"render s.json --noise-treshold=0.1",
+                               "unknown option '--noise-treshold' (did you mean --noise-threshold?)"},
+                          Case{"explain s.json 1 2 --smaple 3", "unknown option '--smaple' (did you mean --sample?)"},
+                          Case{"render s.json --zzzzzzzz", "unknown option '--zzzzzzzz' (see"},
+                          Case{"s.json",
+                               "'s.json' is not a command: to render it, run 'sombra render s.json' (commands: render, "
+                               "explain, view, merge, denoise)"},
+                          Case{"rendr s.json", "unknown command 'rendr' (did you mean render?)"}}) {
+        const RunResult r = run(c.args);
+        EXPECT_EQ(r.status, 2) << c.args;
+        EXPECT_EQ(r.err.rfind(std::string("sombra: error: command line: ") + c.message, 0), 0u) << r.err;
+        EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+    }
+}
+
+TEST_F(Everyday, AMissingMeshSaysWhereItWasSought) {
+    fs::create_directories(dir_ / "scenes");
+    write_text(dir_ / "scenes" / "s.json", R"({"camera": {"origin": [0, 0, 3], "look_at": [0, 0, 0]},
+        "objects": [{"file": "models/sphere.obj"}]})");
+    const RunResult r = run("render scenes/s.json -o out.png");
+    EXPECT_EQ(r.status, 1);
+    EXPECT_EQ(r.err,
+              "sombra: error: scenes/s.json: /objects/0/file: cannot open 'models/sphere.obj': no such file "
+              "(looked for " +
+                  (fs::canonical(dir_) / "scenes" / "models" / "sphere.obj").string() +
+                  ", relative to the scene's folder)\n");
+}
+
 }  // namespace

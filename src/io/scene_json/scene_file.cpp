@@ -57,7 +57,8 @@ void read_object_file(const SceneJson& s, const Json& v, std::string_view pointe
     spec.path = scene_path.parent_path() / fs::path(file);
     std::error_code ec;
     const fs::file_status status = fs::status(spec.path, ec);
-    if (!fs::exists(status)) json_fail(s, file_pointer, "cannot open '" + file + "': no such file");
+    if (!fs::exists(status))
+        json_fail(s, file_pointer, "cannot open '" + file + "': no such file " + looked_for(spec.path));
     if (fs::is_directory(status)) json_fail(s, file_pointer, "'" + file + "' is a folder, not a mesh file");
     // A device or a pipe could be read forever.
     if (!fs::is_regular_file(status)) json_fail(s, file_pointer, "'" + file + "' is not a regular file");

@@ -176,6 +176,12 @@ void json_warn(const SceneJson& s, std::string_view pointer, const std::string& 
     s.diag.warn(json_where(s, one_line(std::string(pointer), kMaxEcho, false)), one_line(what, kMaxEcho, false));
 }
 
+std::string looked_for(const std::filesystem::path& path) {
+    std::error_code ec;
+    const std::filesystem::path absolute = std::filesystem::absolute(path, ec);
+    return "(looked for " + (ec ? path : absolute.lexically_normal()).string() + ", relative to the scene's folder)";
+}
+
 std::string json_child(std::string_view pointer, std::string_view key) {
     std::string p(pointer);
     p += '/';

@@ -52,6 +52,9 @@ void json_warn(const SceneJson& s, std::string_view pointer, const std::string& 
 
 // The pointer of a member or element below `pointer` (RFC 6901 escaping).
 std::string json_child(std::string_view pointer, std::string_view key);
+// "(looked for /abs/path, relative to the scene's folder)": where a file
+// named in the scene was sought, for the message that it is missing.
+std::string looked_for(const std::filesystem::path& path);
 std::string json_child(std::string_view pointer, std::size_t index);
 
 // Fails with "expected an object" (or an array) unless v is one.

@@ -36,7 +36,8 @@ EnvironmentMap read_environment(const SceneJson& s, const Json& v, std::string_v
     const fs::path path = folder / fs::path(env.file);
     std::error_code ec;
     const fs::file_status status = fs::status(path, ec);
-    if (!fs::exists(status)) json_fail(s, file_pointer, "cannot open '" + env.file + "': no such file");
+    if (!fs::exists(status))
+        json_fail(s, file_pointer, "cannot open '" + env.file + "': no such file " + looked_for(path));
     if (!fs::is_regular_file(status)) json_fail(s, file_pointer, "'" + env.file + "' is not a regular file");
 
     std::size_t clamped = 0;

@@ -5,6 +5,8 @@ conversions every function shares (private to the package)."""
 from __future__ import annotations
 
 import json
+import numbers
+import operator
 import os
 import warnings
 from typing import Any, Callable, Mapping, Union
@@ -17,8 +19,10 @@ PathLike = Union[str, "os.PathLike[str]"]
 Progress = Union[bool, Callable[[int, int], Any], None]
 
 # keyword → (command-line option, the Python types it takes). bool is refused
-# where a number is asked for, though Python counts it an int. The option's
-# name is what errors about its value say, as on the command line.
+# where a number is asked for, though Python counts it an int; numpy's
+# integers and floats count as Python's (whatever operator.index or
+# numbers.Real take). The option's name is what errors about its value say,
+# as on the command line.
 _INT = (int,)
 _NUMBER = (int, float)
 _STR = (str,)
@@ -49,7 +53,7 @@ _RENDER_OPTIONS = {
     "time": ("--time", _NUMBER),
     "noise_threshold": ("--noise-threshold", _NUMBER),
     "min_spp": ("--min-spp", _INT),
-    "crop": ("--crop", (tuple, list)),
+    "crop": ("--crop", (tuple, list, np.ndarray)),
     "denoise": ("--denoise", _BOOL),
 }
 
@@ -63,11 +67,31 @@ def _options(function: str, options: Mapping[str, Any], table: Mapping[str, tupl
         if value is None:
             continue  # None means "as the scene says", like leaving the option out
         _, types = table[key]
-        if (isinstance(value, bool) and types is not _BOOL) or not isinstance(value, types):
+        plain = _plain_number(value, types)
+        if plain is None:
             names = " or ".join(t.__name__ for t in types)
             raise TypeError(f"{function}(): {key} must be {names}, not {type(value).__name__}")
-        checked[key] = value
+        checked[key] = plain
     return checked
+
+
+def _plain_number(value: Any, types: tuple) -> Any:
+    """`value` as the Python type `types` asks for (a numpy int as an int,
+    a numpy float as a float, a numpy bool as a bool), or None."""
+    is_bool = isinstance(value, (bool, np.bool_))
+    if types is _BOOL:
+        return bool(value) if is_bool else None
+    if is_bool:
+        return None
+    if types is _INT or types is _NUMBER:
+        try:
+            return operator.index(value)
+        except TypeError:
+            pass
+        if types is _NUMBER and isinstance(value, numbers.Real):
+            return float(value)
+        return None
+    return value if isinstance(value, types) else None
 
 
 def _warn(scene_impl: Any) -> None:

@@ -240,3 +240,17 @@ def test_a_crop_is_its_window_of_the_whole_render():
         sombra.render(s, crop=(3, 3, 2, 5))
     with pytest.raises(sombra.Error, match="--crop"):
         sombra.render(s, crop=(0, 0, 4))
+
+
+def test_numpy_numbers_are_taken_as_python_numbers():
+    # Issue 39: numpy users pass np.int64 and np.float32 where ints and floats are meant.
+    s = sombra.load(REPO / "scenes" / "cornell-box-path.json", width=np.int64(12), height=np.int32(9))
+    image = sombra.render(s, spp=np.uint8(4), seed=np.int64(3), noise_threshold=np.float32(0.5), min_spp=np.int16(2),
+                          denoise=np.bool_(False))
+    assert image.shape == (9, 12, 3)
+    assert image.tobytes() == sombra.render(s, spp=4, seed=3, noise_threshold=float(np.float32(0.5)),
+                                            min_spp=2).tobytes()
+    with pytest.raises(TypeError, match="width must be int, not float"):
+        sombra.render(s, width=12.0)
+    with pytest.raises(TypeError, match="spp must be int, not bool"):
+        sombra.render(s, spp=np.bool_(True))
