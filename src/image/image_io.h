@@ -71,6 +71,16 @@ inline bool is_eight_bit(ImageFormat format) { return format == ImageFormat::Png
 void write_image(const std::filesystem::path& path, ImageView image, DisplayTransform display,
                  std::span<const ImageChannel> layers = {}, std::span<const ImageAttribute> attributes = {});
 
+// A PFM file read back: linear RGB, top row first; a grey ("Pf") file
+// gives three equal channels. Throws Error(path, what) for a file that is
+// not a PFM, whose size does not match its header, or of more than
+// kMaxImageSide a side (core/image_limits.h).
+struct PfmImage {
+    int width = 0, height = 0;
+    std::vector<float> rgb;
+};
+PfmImage read_pfm(const std::filesystem::path& path);
+
 // An OpenEXR file read back whole: every channel as 32-bit floats (row-major,
 // top row first) and the header's text attributes.
 struct ExrChannels {

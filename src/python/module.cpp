@@ -11,6 +11,7 @@ namespace py = pybind11;
 
 PYBIND11_MODULE(_sombra, m) {
     m.doc() = "sombra's renderer, bound for Python; use the package `sombra`, which documents it";
+    m.attr("__version__") = SOMBRA_VERSION;
     // sombra.Error is a ValueError: a wrong input is a wrong value. Its text
     // is the command line's one line without "sombra: error: ".
     static py::exception<sombra::Error> error(m, "Error", PyExc_ValueError);

@@ -3,7 +3,9 @@
 // past the end.
 #include "python/py_arrays.h"
 
+#include <cctype>
 #include <cmath>
+#include <filesystem>
 #include <memory>
 #include <string>
 
@@ -11,6 +13,7 @@
 #include "core/image_limits.h"
 #include "image/display_transform.h"
 #include "image/image_io.h"
+#include "io/images/texture_image.h"
 #include "python/py_bindings.h"
 
 namespace py = pybind11;
@@ -49,7 +52,41 @@ ImageView image_from(const py::handle& array, py::array_t<float>& storage) {
     return ImageView{static_cast<int>(a.shape(1)), static_cast<int>(a.shape(0)), rgb};
 }
 
+namespace {
+
+// An image file as linear RGB floats (height, width, 3): PFM, or what
+// textures read (PNG, JPEG and the like decoded from sRGB, EXR, HDR).
+py::array_t<float> read_image_array(const std::string& path) {
+    std::vector<float> rgb;
+    int width = 0, height = 0;
+    {
+        py::gil_scoped_release release;
+        std::string ext = std::filesystem::path(path).extension().string();
+        for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+        if (ext == ".pfm") {
+            PfmImage image = read_pfm(path);
+            width = image.width;
+            height = image.height;
+            rgb = std::move(image.rgb);
+        } else {
+            const Texture t = read_texture_file(path, TextureEncoding::Color);
+            width = t.width;
+            height = t.height;
+            const auto pixels = static_cast<std::size_t>(width) * static_cast<std::size_t>(height);
+            const auto channels = static_cast<std::size_t>(t.channels);
+            rgb.resize(pixels * 3);
+            // Grey fills the three channels; alpha is dropped.
+            for (std::size_t p = 0; p < pixels; ++p)
+                for (std::size_t c = 0; c < 3; ++c) rgb[3 * p + c] = t.texels[p * channels + (channels >= 3 ? c : 0)];
+        }
+    }
+    return numpy_from(std::move(rgb), {height, width, 3});
+}
+
+}  // namespace
+
 void bind_arrays(py::module_& m) {
+    m.def("read_image", &read_image_array, py::arg("path"));
     m.def(
         "write_image",
         [](const std::string& path, const py::handle& array, float exposure, const std::string& tonemap) {

@@ -16,6 +16,19 @@ namespace sombra {
 
 namespace {
 
+// The reason a request the routes never saw was refused, for the body.
+std::string error_text(int status) {
+    switch (status) {
+        case 400: return "400 bad request: the request could not be read (a malformed request line, header or body)";
+        case 404:
+            return "404 not found: no such page (the viewer serves /, /state, /image.png, /image.exr, /events, "
+                   "/explain, POST /camera and POST /settings)";
+        case 405: return "405 method not allowed: GET the pages, POST /camera and /settings";
+        case 413: return "413 payload too large: a body holds at most " + std::to_string(kMaxViewBody) + " bytes";
+        default: return std::to_string(status);
+    }
+}
+
 // Request threads: every event stream holds one while it is open, and the
 // page's other requests need a few beside them.
 constexpr std::size_t kRequestThreads = kMaxViewStreams + 8;
@@ -71,7 +84,7 @@ ViewServer::ViewServer(const Scene& scene, const Accel& accel, const ViewServerO
         return httplib::Server::HandlerResponse::Handled;
     });
     server.set_error_handler([](const httplib::Request&, httplib::Response& res) {
-        if (res.body.empty()) res.set_content(std::to_string(res.status) + "\n", "text/plain");
+        if (res.body.empty()) res.set_content(error_text(res.status) + "\n", "text/plain");
     });
     server.set_exception_handler([](const httplib::Request&, httplib::Response& res, const std::exception_ptr&) {
         res.status = 500;

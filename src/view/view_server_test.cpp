@@ -93,6 +93,11 @@ TEST(ViewServer, RefusesOversizedAndMalformedRequestsAndGoesOn) {
     const auto big = client.Post("/camera?token=" + std::string(kToken), body, "text/plain");
     ASSERT_TRUE(big);
     EXPECT_EQ(big->status, 413);
+    EXPECT_EQ(big->body, "413 payload too large: a body holds at most " + std::to_string(kMaxViewBody) + " bytes\n");
+    const auto nowhere = client.Get("/nowhere?token=" + std::string(kToken));
+    ASSERT_TRUE(nowhere);
+    EXPECT_EQ(nowhere->status, 404);
+    EXPECT_TRUE(nowhere->body.starts_with("404 not found: no such page")) << nowhere->body;
     const auto long_uri = client.Get("/state?token=" + std::string(kToken) + "&pad=" + std::string(20000, 'a'));
     if (long_uri) {
         EXPECT_GE(long_uri->status, 400);  // or the connection was closed on it

@@ -26,7 +26,9 @@ from ._options import _EXPLAIN_OPTIONS, _RENDER_OPTIONS, _SCENE_OPTIONS, PathLik
 from ._progress import Bar as _Bar
 from ._scene import Scene
 
-__all__ = ["Error", "Scene", "load", "render", "denoise", "explain", "write_image", "to_png"]
+__all__ = ["Error", "Scene", "load", "render", "denoise", "explain", "write_image", "read_image", "to_png"]
+
+__version__: str = _sombra.__version__
 
 #: A wrong input (scene, option value, array): a ValueError whose text is the
 #: command line's one line, "WHERE: WHAT" (WHERE a file:line:col, a JSON path
@@ -178,6 +180,15 @@ def _tonemap(name: str, caller: str) -> str:
     if not isinstance(name, str):
         raise TypeError(f"{caller}(): tonemap must be a str, not {type(name).__name__}")
     return name
+
+
+def read_image(path: PathLike) -> np.ndarray:
+    """An image file as a float32 array (height, width, 3) of linear RGB, top
+    row first: .pfm and .exr as stored (what write_image wrote, float for
+    float), .hdr, and PNG, JPEG, TGA, BMP decoded from sRGB (a grey image
+    fills the three channels, alpha is dropped). Raises Error for a missing,
+    unreadable or damaged file."""
+    return _sombra.read_image(_path(path, "read_image"))
 
 
 def to_png(array: np.ndarray, exposure: float = 0, tonemap: str = "none") -> bytes:

@@ -151,3 +151,30 @@ def test_write_image_takes_a_tone_mapper_and_jpeg(tmp_path, tmp_path_factory):
         sombra.to_png(image, tonemap="aces")
     with pytest.raises(TypeError, match="tonemap must be a str"):
         sombra.to_png(image, tonemap=1)
+
+
+def test_read_image_reads_back_what_write_image_wrote(tmp_path):
+    rng = np.random.default_rng(3)
+    image = rng.random((5, 7, 3), dtype=np.float32) * 3
+    for name in ("a.pfm", "a.exr"):
+        sombra.write_image(tmp_path / name, image)
+        back = sombra.read_image(tmp_path / name)
+        assert back.dtype == np.float32 and back.tobytes() == image.tobytes(), name
+    # 8-bit files come back linear: each value within half a code of sRGB.
+    sombra.write_image(tmp_path / "a.png", image)
+    png = sombra.read_image(tmp_path / "a.png")
+    assert png.shape == (5, 7, 3)
+    clamped = np.minimum(image, 1)
+    assert np.all(np.abs(png - clamped) <= 0.02 * np.maximum(clamped, 0.05))
+    # A grey PFM fills three channels.
+    (tmp_path / "g.pfm").write_bytes(b"Pf\n2 1\n-1.0\n" + np.array([0.25, 2.0], "<f4").tobytes())
+    assert sombra.read_image(tmp_path / "g.pfm").tolist() == [[[0.25] * 3, [2.0] * 3]]
+    (tmp_path / "short.pfm").write_bytes(b"PF\n100000 100000\n-1.0\n" + bytes(12))
+    with pytest.raises(sombra.Error, match="out of range"):
+        sombra.read_image(tmp_path / "short.pfm")
+    (tmp_path / "cut.pfm").write_bytes(b"PF\n2 2\n-1.0\n" + bytes(12))
+    with pytest.raises(sombra.Error, match="holds 24 bytes, not the 60 its header says"):
+        sombra.read_image(tmp_path / "cut.pfm")
+    with pytest.raises(sombra.Error, match="missing.png"):
+        sombra.read_image(tmp_path / "missing.png")
+    assert isinstance(sombra.__version__, str) and sombra.__version__.count(".") == 2
