@@ -75,6 +75,7 @@ void InterruptWatcher::watch() {
             if (on_interrupt_) on_interrupt_();
             continue;
         }
+        if (phase_.load() == Phase::Failed) std::_Exit(interrupted_exit_status(sig));  // one line was enough
         if (phase_.load() == Phase::Preparing) {
             // Loading a large mesh cannot be cut short, and nothing has been
             // written yet: leave now. _Exit runs no destructors that could

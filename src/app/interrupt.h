@@ -22,6 +22,7 @@ public:
         Rendering,  // the watcher cancels the render; the run then stops without writing
         Writing,    // too late to stop: the (atomic) write completes and the run ends normally
         Serving,    // `sombra view`: the watcher calls the function given to on_interrupt, which ends the server
+        Failed,     // the run's error is said: a signal (mpirun ending the ranks) ends the process quietly
     };
 
     // Must be constructed before any other thread exists (oneTBB's workers

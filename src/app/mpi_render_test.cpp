@@ -47,6 +47,12 @@ protected:
                          " timeout -k 5 60 mpirun --allow-run-as-root --oversubscribe -np " + std::to_string(ranks) +
                          " " + shell_quote(SOMBRA_EXE) + " " + args);
     }
+    // How many times `part` occurs in `text`.
+    static std::size_t count(const std::string& text, const std::string& part) {
+        std::size_t n = 0;
+        for (std::size_t at = text.find(part); at != std::string::npos; at = text.find(part, at + 1)) ++n;
+        return n;
+    }
 };
 
 TEST_F(Mpi, RanksWriteTheSingleProcessBytes) {
@@ -67,6 +73,13 @@ TEST_F(Mpi, RanksWriteTheSingleProcessBytes) {
         EXPECT_EQ(ranks.err, "");
         EXPECT_EQ(read_text(dir_ / c.file), read_text(dir_ / ("single-" + c.file)));
     }
+}
+
+TEST_F(Mpi, TheSummaryIsOneLineAndNamesTheRanks) {
+    const RunResult r = mpirun(2, "render s.json --integrator path --threads 1 -o two.png");
+    ASSERT_EQ(r.status, 0) << r.err;
+    EXPECT_EQ(count(r.err, "sombra: "), 1u) << r.err;
+    EXPECT_NE(r.err.find("2 processes × 1 thread each)"), std::string::npos) << r.err;
 }
 
 TEST_F(Mpi, StatsSayProcessesAndCountRaysOverAllRanks) {
@@ -108,6 +121,7 @@ TEST_F(Mpi, AFailingInputEndsEveryRankWithOneLine) {
     const RunResult r = mpirun(2, "render missing.json -q -o out.png");
     EXPECT_NE(r.status, 0);
     EXPECT_NE(r.err.find("sombra: error: missing.json"), std::string::npos) << r.err;
+    EXPECT_EQ(count(r.err, "sombra: "), 1u) << r.err;  // not rank 1's too, nor its SIGTERM
     EXPECT_FALSE(fs::exists(dir_ / "out.png"));
 }
 

@@ -1,5 +1,6 @@
 #include "app/run.h"
 
+#include <fcntl.h>
 #include <unistd.h>
 
 #include <tbb/info.h>
@@ -9,6 +10,7 @@
 #include <iostream>
 #include <optional>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "accel/accel.h"
@@ -157,6 +159,15 @@ int render_frame(const CliOptions& o, const Scene& scene, const Accel& accel, co
     return 0;
 }
 
+// Points standard error at /dev/null (a rank that is not rank 0).
+void silence_stderr() {
+    const int null = ::open("/dev/null", O_WRONLY | O_CLOEXEC);
+    if (null < 0) return;
+    std::fflush(stderr);
+    ::dup2(null, STDERR_FILENO);
+    ::close(null);
+}
+
 // Why `o` cannot run as K > 1 ranks, as a command-line problem (exit 2), or
 // nothing: --time and --noise-threshold on a still (a block would take the
 // budget, a stopping rule reads neighbours in other blocks), --shard,
@@ -202,6 +213,11 @@ int run_render(const CliOptions& options) {
         }
     }
     const MpiRun mpi;  // starts MPI only under a launcher
+    // Ranks that share one image say nothing: rank 0 reports for all (its
+    // error, warnings, the summary), and the launcher ends the others with
+    // SIGTERM once it stops. Frames are each rank's own, and so are their words.
+    const bool silent = mpi.active() && mpi.rank() != 0 && !options.first_frame;
+    if (silent) silence_stderr();
     CliOptions o = options;
     o.render.threads = mpi.threads_per_rank(o.render.threads);
     const bool writes = mpi.rank() == 0 || o.first_frame;  // under mpirun frames are written by their rank
@@ -280,7 +296,15 @@ int run_render(const CliOptions& options) {
         return 0;
     });
     // One rank's failure ends every rank, before rank 0 could write an image.
-    if (exit_status != 0 && mpi.active()) mpi.abort(exit_status);
+    if (exit_status != 0 && mpi.active()) {
+        // Another rank may be aborting too: its SIGTERM must not add a second line.
+        interrupt.set_phase(InterruptWatcher::Phase::Failed);
+        // A silent rank's failure (a missing scene) is rank 0's too, which
+        // says it: give rank 0 the time to abort first, so that it is not
+        // ended before it could. A failure of this rank alone still ends the job.
+        if (silent) std::this_thread::sleep_for(std::chrono::seconds(1));
+        mpi.abort(exit_status);
+    }
     return exit_status;
 }
 

@@ -78,8 +78,10 @@ std::string summary_line(const RunStats& s, const std::string& output) {
            std::to_string(s.height) + (s.frames > 1 ? " × " + std::to_string(s.frames) + " frames" : std::string()) +
            " at " + samples_text(s) + (s.passes > 1 ? " in " + std::to_string(s.passes) + " passes" : std::string()) +
            ", " + s.integrator + " | load " + seconds(s.load_seconds) + ", build " + seconds(s.build_seconds) +
-           ", render " + seconds(s.render_seconds) + " (" + rate + ", " + std::to_string(s.threads) +
-           (s.threads == 1 ? " thread), " : " threads), ") +
+           ", render " + seconds(s.render_seconds) + " (" + rate + ", " +
+           (s.processes > 1 ? std::to_string(s.processes) + " processes × " : std::string()) +
+           std::to_string(s.threads) + (s.threads == 1 ? " thread" : " threads") +
+           (s.processes > 1 ? " each), " : "), ") +
            (s.denoise_seconds > 0 ? "denoise " + seconds(s.denoise_seconds) + ", " : std::string()) + "write " +
            seconds(s.write_seconds) + " | wrote " + output;
 }

@@ -21,8 +21,7 @@ namespace {
 
 float load_float(const unsigned char* p, bool little_endian) {
     std::uint32_t bits = 0;
-    for (int byte = 0; byte < 4; ++byte)
-        bits |= std::uint32_t{p[little_endian ? byte : 3 - byte]} << (8 * byte);
+    for (int byte = 0; byte < 4; ++byte) bits |= std::uint32_t{p[little_endian ? byte : 3 - byte]} << (8 * byte);
     return std::bit_cast<float>(bits);
 }
 
