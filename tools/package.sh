@@ -34,7 +34,8 @@ contents="$(dpkg-deb -c "$deb" | awk '{print $NF}')"
 for path in ./usr/bin/sombra ./usr/share/man/man1/sombra.1.gz ./usr/share/doc/sombra/copyright \
     ./usr/share/doc/sombra/changelog.gz ./usr/lib/python3/dist-packages/sombra/__init__.py \
     ./usr/lib/python3/dist-packages/sombra/_options.py ./usr/lib/python3/dist-packages/sombra/_progress.py \
-    ./usr/lib/python3/dist-packages/sombra/_scene.py; do
+    ./usr/lib/python3/dist-packages/sombra/_scene.py ./usr/lib/python3/dist-packages/sombra/_sombra.pyi \
+    ./usr/lib/python3/dist-packages/sombra/py.typed; do
     grep -qxF "$path" <<<"$contents" || fail "$deb lacks $path"
 done
 grep -qE '^\./usr/lib/python3/dist-packages/sombra/_sombra\.cpython-[0-9]+-.*\.so$' <<<"$contents" ||

@@ -7,13 +7,16 @@
 
 #include <chrono>
 #include <mutex>
+#include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "accel/accel.h"
 #include "api/session.h"
 #include "core/error.h"
 #include "explain/explain.h"
+#include "image/display_transform.h"
 #include "python/py_arrays.h"
 #include "python/py_bindings.h"
 #include "python/py_denoise.h"
@@ -106,32 +109,35 @@ py::object render(const std::shared_ptr<PyScene>& scene, const py::dict& options
     return out;
 }
 
-std::string explain(const std::shared_ptr<PyScene>& scene, const py::int_& column, const py::int_& row,
-                    const py::int_& sample_index, const py::dict& options) {
+// explain's story as JSON and, when `display` is given, its SVG picture
+// (empty otherwise), as `sombra explain --json --svg` writes them.
+py::tuple explain(const std::shared_ptr<PyScene>& scene, const py::int_& column, const py::int_& row,
+                  const py::int_& sample_index, const py::dict& options, const py::object& picture) {
     const int x = int_value(column), y = int_value(row), sample = int_value(sample_index);
     const RenderOptions o = render_options_from(options);
+    std::optional<DisplayTransform> display;
+    if (!picture.is_none()) {
+        const auto [exposure, tonemap] = py::cast<std::pair<float, std::string>>(picture);
+        display = DisplayTransform{exposure, tonemap_option(tonemap)};
+    }
     const RenderSettings settings = resolve_settings(scene->loaded.settings, o.overrides);
     // A pixel beyond int's range is outside every image; the message shows it as given.
     if (!py::int_(x).equal(column) || !py::int_(y).equal(row))
         throw Error("pixel (" + std::string(py::repr(column)) + ", " + std::string(py::repr(row)) + ")",
                     "outside the " + std::to_string(settings.width) + "x" + std::to_string(settings.height) + " image");
     check_explain_pixel(x, y, sample, settings);
-    if (!o.denoise) {
-        py::gil_scoped_release release;
-        const RenderLock lock = lock_at_frame(*scene, settings, o);
-        const Scene& s = scene->loaded.scene;
-        const Accel accel = make_accel(s, o.accel);
-        const RenderJob job = make_job(s, accel, settings, o, std::chrono::steady_clock::now());
-        return explain_json(ExplainContext{s, job, scene->source}, record_pixel_sample(job, x, y, sample));
-    }
-    // Under denoise: the whole image as render(denoise=True) makes it, and
-    // the weights that made this pixel of it, on a thread Ctrl-C can stop.
-    const RenderSettings render_settings = resolve_render_settings(scene->loaded.settings, o);
+    // Under denoise the whole image as render(denoise=True) makes it, and the
+    // weights that made this pixel of it (the picture shows that render, as
+    // the command line's does); for a picture alone a quick render; on a
+    // thread Ctrl-C can stop.
+    const RenderSettings render_settings = o.denoise ? resolve_render_settings(scene->loaded.settings, o) : settings;
     RenderProgress watched;
-    std::string story;
-    const std::uint64_t total = static_cast<std::uint64_t>(render_settings.width) *
-                                static_cast<std::uint64_t>(render_settings.height) *
-                                static_cast<std::uint64_t>(render_settings.spp);
+    std::string story, svg;
+    const int picture_samples = o.denoise ? render_settings.spp : picture_spp(render_settings);
+    const std::uint64_t total = !o.denoise && !display ? 0
+                                                       : static_cast<std::uint64_t>(render_settings.width) *
+                                                             static_cast<std::uint64_t>(render_settings.height) *
+                                                             static_cast<std::uint64_t>(picture_samples);
     run_watched(
         [&] {
             const RenderLock lock = lock_at_frame(*scene, render_settings, o);
@@ -139,24 +145,38 @@ std::string explain(const std::shared_ptr<PyScene>& scene, const py::int_& colum
             const Accel accel = make_accel(s, o.accel);
             const RenderJob job = make_job(s, accel, render_settings, o, std::chrono::steady_clock::now());
             const SampleRecord record = record_pixel_sample(job, x, y, sample);
-            const RenderOutput rendered = render_image(job, watched);
-            if (rendered.cancelled) return;
-            const std::size_t p = (static_cast<std::size_t>(y) * static_cast<std::size_t>(render_settings.width) +
-                                   static_cast<std::size_t>(x)) *
-                                  3;
-            const DenoiseStory denoised{explain_denoised_pixel(rendered.aovs.denoise, x, y, o.threads),
+            std::optional<DenoiseStory> denoised;
+            RenderOutput rendered;
+            if (o.denoise || display) {
+                RenderJob whole = job;
+                if (!o.denoise) whole.settings.spp = picture_samples;
+                rendered = render_image(whole, watched);
+                if (rendered.cancelled) return;
+            }
+            if (o.denoise) {
+                const std::size_t p = (static_cast<std::size_t>(y) * static_cast<std::size_t>(render_settings.width) +
+                                       static_cast<std::size_t>(x)) *
+                                      3;
+                denoised = DenoiseStory{explain_denoised_pixel(rendered.aovs.denoise, x, y, o.threads),
                                         {rendered.film.rgb[p], rendered.film.rgb[p + 1], rendered.film.rgb[p + 2]}};
-            story = explain_json(ExplainContext{s, job, scene->source, &denoised}, record);
+            }
+            const ExplainContext context{s, job, scene->source, denoised ? &*denoised : nullptr};
+            story = explain_json(context, record);
+            if (display)
+                svg = explain_svg(context, record,
+                                  ImageView{rendered.film.width, rendered.film.height, rendered.film.rgb.data()},
+                                  *display);
         },
         watched, total, py::none());
-    return story;
+    return py::make_tuple(story, svg);
 }
 
 }  // namespace
 
 void bind_render(py::module_& m) {
     m.def("render", &render, py::arg("scene"), py::arg("options"), py::arg("progress") = py::none());
-    m.def("explain", &explain, py::arg("scene"), py::arg("x"), py::arg("y"), py::arg("sample"), py::arg("options"));
+    m.def("explain", &explain, py::arg("scene"), py::arg("x"), py::arg("y"), py::arg("sample"), py::arg("options"),
+          py::arg("picture") = py::none());
 }
 
 }  // namespace sombra::python

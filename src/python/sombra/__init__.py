@@ -26,7 +26,8 @@ from ._options import _EXPLAIN_OPTIONS, _RENDER_OPTIONS, _SCENE_OPTIONS, PathLik
 from ._progress import Bar as _Bar
 from ._scene import Scene
 
-__all__ = ["Error", "Scene", "load", "render", "denoise", "explain", "write_image", "read_image", "to_png"]
+__all__ = ["Error", "Scene", "load", "render", "denoise", "explain", "explain_svg", "write_image", "read_image",
+           "to_png"]
 
 __version__: str = _sombra.__version__
 
@@ -158,7 +159,25 @@ def explain(scene: Scene, x: int, y: int, sample: int = 0, **options: Any) -> di
     for name, value in (("x", x), ("y", y), ("sample", sample)):
         if isinstance(value, bool) or not isinstance(value, int):
             raise TypeError(f"explain(): {name} must be int, not {type(value).__name__}")
-    return json.loads(_sombra.explain(impl, x, y, sample, _options("explain", options, _EXPLAIN_OPTIONS)))
+    return json.loads(_sombra.explain(impl, x, y, sample, _options("explain", options, _EXPLAIN_OPTIONS))[0])
+
+
+def explain_svg(scene: Scene, x: int, y: int, sample: int = 0, *, exposure: float = 0, tonemap: str = "none",
+                **options: Any) -> str:
+    """The picture of pixel (x, y)'s story as SVG text, what ``sombra explain
+    SCENE X Y --svg FILE`` writes: the path drawn in the scene from the side
+    and from the camera, over a quick render of the image (``picture_spp``
+    samples; with denoise=True the render that was denoised), shown with
+    ``exposure`` and ``tonemap`` as write_image shows images. Options as
+    for :func:`explain`."""
+    impl = _scene_impl(scene, "explain_svg")
+    for name, value in (("x", x), ("y", y), ("sample", sample)):
+        if isinstance(value, bool) or not isinstance(value, int):
+            raise TypeError(f"explain_svg(): {name} must be int, not {type(value).__name__}")
+    if isinstance(exposure, bool) or not isinstance(exposure, (int, float)) or not math.isfinite(exposure):
+        raise TypeError(f"explain_svg(): exposure must be a finite number, not {exposure!r}")
+    return _sombra.explain(impl, x, y, sample, _options("explain_svg", options, _EXPLAIN_OPTIONS),
+                           (float(exposure), _tonemap(tonemap, "explain_svg")))[1]
 
 
 def write_image(path: PathLike, array: np.ndarray, exposure: float = 0, tonemap: str = "none") -> None:

@@ -6,7 +6,7 @@ import pathlib
 import numpy as np
 import pytest
 
-from conftest import import_sombra, run_cli
+from conftest import REPO, import_sombra, run_cli
 
 sombra = import_sombra()
 
@@ -178,3 +178,31 @@ def test_read_image_reads_back_what_write_image_wrote(tmp_path):
     with pytest.raises(sombra.Error, match="missing.png"):
         sombra.read_image(tmp_path / "missing.png")
     assert isinstance(sombra.__version__, str) and sombra.__version__.count(".") == 2
+
+
+def test_explain_svg_is_the_command_lines_picture(tmp_path):
+    scene_file = REPO / "scenes" / "cornell-box-path.json"
+    s = sombra.load(scene_file, width=24, height=20, spp=4)
+    for extra, options in (([], {}), (["--exposure", "1", "--tonemap", "pbr-neutral"],
+                                      {"exposure": 1, "tonemap": "pbr-neutral"})):
+        out = tmp_path / "cli.svg"
+        status, _, err = run_cli("explain", scene_file, 12, 9, "--width", 24, "--height", 20, "--spp", 4, "--json",
+                                 "--svg", out, *extra)
+        assert status == 0, err
+        svg = sombra.explain_svg(s, 12, 9, **options)
+        assert svg.startswith("<svg") or svg.startswith("<?xml")
+        assert svg == out.read_text()
+    with pytest.raises(sombra.Error, match="--tonemap"):
+        sombra.explain_svg(s, 1, 1, tonemap="filmic")
+
+
+def test_the_package_ships_its_types():
+    # PEP 561: py.typed, and a stub naming every function and class of _sombra.
+    import ast
+    import pathlib
+    folder = pathlib.Path(sombra.__file__).parent
+    assert (folder / "py.typed").exists()
+    stub = ast.parse((folder / "_sombra.pyi").read_text())
+    stubbed = {node.name for node in stub.body if isinstance(node, (ast.FunctionDef, ast.ClassDef))}
+    compiled = {name for name in dir(sombra._sombra) if not name.startswith("__")}
+    assert stubbed == compiled
