@@ -33,7 +33,7 @@ shared="../shared"
 # python3 earlier on PATH, e.g. from pyenv, may not have them).
 python="${SOMBRA_PYTHON:-/usr/bin/python3}"
 
-"$root/tools/install-deps.sh"
+"$root/tools/install-deps.sh" --test
 [ -d "$shared/scenes" ] || { echo "bench.sh: $root/$shared/scenes not found" >&2; exit 1; }
 cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release >/dev/null
 cmake --build "$build" --target sombra-bench sombra -j "$(nproc)"

@@ -58,7 +58,7 @@ def main() -> int:
     if nbconvert is None:
         if os.environ.get("SOMBRA_REQUIRE_JUPYTER"):
             return fail("jupyter-nbconvert is not installed and SOMBRA_REQUIRE_JUPYTER is set "
-                        "(tools/install-deps.sh installs it)")
+                        "(tools/install-deps.sh --test installs it)")
         print(f"skipped: jupyter-nbconvert is not installed (Debian's jupyter-nbconvert); {NOTEBOOK} not run")
         return SKIP
     with tempfile.TemporaryDirectory() as tmp:

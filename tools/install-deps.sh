@@ -1,7 +1,16 @@
 #!/usr/bin/env bash
-# Installs what building and testing sombra needs, from Debian 12's packages.
+# Installs what sombra needs from Debian 12's packages:
+#
+#   tools/install-deps.sh          building and rendering (tools/demo.sh, the .deb's users, Python)
+#   tools/install-deps.sh --test   that, and what the tests, CI and the benchmarks need (tools/test.sh, .ci/run)
+#
 # Idempotent: installs only what is missing, and does nothing when all is there.
 set -euo pipefail
+case "${1:-}" in
+  '') testing=false ;;
+  --test) testing=true ;;
+  *) echo "usage: tools/install-deps.sh [--test]" >&2; exit 2 ;;
+esac
 
 packages=(
   build-essential cmake ninja-build pkg-config
@@ -20,22 +29,27 @@ packages=(
   libmeshoptimizer-dev   # EXT_meshopt_compression (decoders; the tests encode with it too)
   libwebp-dev            # WebP textures (EXT_texture_webp; the tests encode with it too)
   libopenvdb-dev         # grid media from OpenVDB files (spec §26; the tests write VDB files with it too)
-  assimp-testmodels      # tests: real and deliberately broken glTF 2.0 files (/usr/share/assimp/models/glTF2)
-  libgtest-dev libgmock-dev  # tests
-  libopenmpi-dev openmpi-bin  # mpirun -np K sombra render (optional: the build works without it)
-  libembree-dev          # --accel embree, the BVH's yardstick (optional: the build works without it)
-  python3-matplotlib python3-numpy  # tools/bench.sh: the big benchmark mesh and the cost-growth plot
-  pybind11-dev python3-pybind11 python3-pytest  # the Python module (src/python/) and its pytest tests
+  pybind11-dev python3-pybind11 python3-numpy  # the Python module (src/python/)
   python3-venv           # the set-up's .venv (tools/build.sh: .venv/bin/python imports sombra)
-  jupyter-nbconvert python3-ipykernel  # tests: examples/tour.ipynb executed (jupyter-nbconvert --execute)
-  lintian                # tools/package.sh: checks the .deb
-  clang-14 libclang-rt-14-dev  # libFuzzer + sanitizer runtimes (tools/fuzz.sh)
-  clang-tidy-14 clang-format-14  # tools/tidy.sh (CI: zero findings), .clang-format
-  chromium                     # the viewer's end-to-end test (tools/browser/viewer_e2e.mjs), headless
 )
-# Node.js for that test's driver (playwright-core, from npm below): the
-# machine's own when it has one, else Debian's.
-command -v node >/dev/null && command -v npm >/dev/null || packages+=(nodejs npm)
+if $testing; then
+  packages+=(
+    assimp-testmodels      # tests: real and deliberately broken glTF 2.0 files (/usr/share/assimp/models/glTF2)
+    libgtest-dev libgmock-dev  # tests
+    libopenmpi-dev openmpi-bin  # mpirun -np K sombra render (optional: the build works without it)
+    libembree-dev          # --accel embree, the BVH's yardstick (optional: the build works without it)
+    python3-matplotlib     # tools/bench.sh: the big benchmark mesh and the cost-growth plot
+    python3-pytest         # the Python module's tests
+    jupyter-nbconvert python3-ipykernel  # tests: examples/tour.ipynb executed (jupyter-nbconvert --execute)
+    lintian                # tools/package.sh: checks the .deb
+    clang-14 libclang-rt-14-dev  # libFuzzer + sanitizer runtimes (tools/fuzz.sh)
+    clang-tidy-14 clang-format-14  # tools/tidy.sh (CI: zero findings), .clang-format
+    chromium                     # the viewer's end-to-end test (tools/browser/viewer_e2e.mjs), headless
+  )
+  # Node.js for that test's driver (playwright-core, from npm below): the
+  # machine's own when it has one, else Debian's.
+  command -v node >/dev/null && command -v npm >/dev/null || packages+=(nodejs npm)
+fi
 
 missing=()
 for p in "${packages[@]}"; do
@@ -53,7 +67,7 @@ fi
 # playwright-core drives Debian's chromium (it downloads no browser of its
 # own), at the version package-lock.json pins, into tools/browser/node_modules.
 browser="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)/browser"
-if [ ! -f "$browser/node_modules/playwright-core/package.json" ]; then
+if $testing && [ ! -f "$browser/node_modules/playwright-core/package.json" ]; then
   echo "sombra: installing playwright-core (npm) in tools/browser" >&2
   (cd "$browser" && npm ci --no-audit --no-fund --loglevel=error >/dev/null)
 fi

@@ -3,6 +3,6 @@
 # whole test suite through CTest.
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
-"$root/tools/build.sh"
+"$root/tools/build.sh" --tests
 cd "$root"
 ctest --preset release
