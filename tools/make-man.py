@@ -107,7 +107,34 @@ def man_page(sombra: str) -> str:
             if entries:
                 lines += [f".SS {roff(section)}"] + entries_roff(entries)
     lines += [".SH OPTIONS"] + entries_roff(top.sections.get("Options", []))
+    # Each example: what it does, then the command (run from a copy of the
+    # examples the package installs, so that their relative paths resolve).
+    examples = [
+        ("Copy the examples somewhere writable, then path-trace the Cornell box lit by its ceiling light:",
+         "cp -r /usr/share/sombra/examples ~/sombra-examples && cd ~/sombra-examples\n"
+         "sombra render cornell-box-path.json -o cornell.png"),
+        ("The same at 64 samples per pixel, denoised, tone mapped for the screen:",
+         "sombra render cornell-box-path.json --spp 64 --denoise --tonemap pbr-neutral -o cornell.jpg"),
+        ("A quick look at a model file, whatever it is (OBJ, PLY, glTF):",
+         "sombra render model.glb -o look.png"),
+        ("A window of the image, bit for bit as in the whole render:",
+         "sombra render spheres.json --crop 100 50 400 300 -o window.png"),
+        ("Every term of the rendering equation behind pixel (200, 150), with a picture of its path:",
+         "sombra explain cornell-box-path.json 200 150 --svg story.svg"),
+        ("The render in a browser, refining as you move the camera:",
+         "sombra view fog-spot.json"),
+        ("Linear floats and the passes a denoiser or compositor wants:",
+         "sombra render spheres.json --aov albedo,normal,depth -o spheres.exr"),
+    ]
+    lines += [".SH EXAMPLES"]
+    for what, command in examples:
+        lines += [".PP", roff(what), ".PP", ".nf", ".RS"] + [roff(line) for line in command.split("\n")] + [".RE",
+                                                                                                           ".fi"]
     lines += [
+        ".SH FILES",
+        ".TP",
+        ".I /usr/share/sombra/examples",
+        "Example scenes (JSON) with their models and textures.",
         ".SH EXIT STATUS",
         "0 on success; 1 for a bad input (a scene, a model, an image, an option's value),",
         "after one line",

@@ -35,7 +35,9 @@ for path in ./usr/bin/sombra ./usr/share/man/man1/sombra.1.gz ./usr/share/doc/so
     ./usr/share/doc/sombra/changelog.gz ./usr/lib/python3/dist-packages/sombra/__init__.py \
     ./usr/lib/python3/dist-packages/sombra/_options.py ./usr/lib/python3/dist-packages/sombra/_progress.py \
     ./usr/lib/python3/dist-packages/sombra/_scene.py ./usr/lib/python3/dist-packages/sombra/_sombra.pyi \
-    ./usr/lib/python3/dist-packages/sombra/py.typed; do
+    ./usr/lib/python3/dist-packages/sombra/py.typed ./usr/share/bash-completion/completions/sombra \
+    ./usr/share/zsh/vendor-completions/_sombra ./usr/share/sombra/examples/cornell-box-path.json \
+    ./usr/share/sombra/examples/models/cornell-box-empty.obj ./usr/share/sombra/examples/textures/checker.png; do
     grep -qxF "$path" <<<"$contents" || fail "$deb lacks $path"
 done
 grep -qE '^\./usr/lib/python3/dist-packages/sombra/_sombra\.cpython-[0-9]+-.*\.so$' <<<"$contents" ||
@@ -50,7 +52,7 @@ echo "== package: lintian (fails on errors; warnings listed)"
 if command -v lintian >/dev/null; then
     lintian --fail-on error --tag-display-limit 0 "$deb" || fail "lintian reports errors on $deb"
 else
-    echo "lintian is not installed (tools/install-deps.sh installs it): not run"
+    echo "lintian is not installed (tools/install-deps.sh --test installs it): not run"
     [ -z "${SOMBRA_REQUIRE_LINTIAN:-}" ] || fail "lintian is missing and SOMBRA_REQUIRE_LINTIAN is set"
 fi
 
@@ -62,6 +64,12 @@ dpkg -x "$deb" "$tree"
 "$tree/usr/bin/sombra" render scenes/cornell-box.json --width 32 --height 32 --quiet -o "$tree/cornell.png"
 [ -s "$tree/cornell.png" ] || fail "the extracted sombra wrote no image"
 zcat "$tree/usr/share/man/man1/sombra.1.gz" | grep -q '^\.SH "SOMBRA RENDER"' || fail "the man page has no render section"
+zcat "$tree/usr/share/man/man1/sombra.1.gz" | grep -q '^\.SH EXAMPLES' || fail "the man page has no EXAMPLES"
+# Every example scene renders from the installed copy, as the man page says to run them.
+for scene in "$tree"/usr/share/sombra/examples/*.json; do
+    "$tree/usr/bin/sombra" render "$scene" --width 24 --height 16 --spp 1 --quiet -o "$tree/example.png" ||
+        fail "the installed example $(basename "$scene") does not render"
+done
 PYTHONPATH="$tree/usr/lib/python3/dist-packages" PYTHONDONTWRITEBYTECODE=1 /usr/bin/python3 -c '
 import sys, sombra
 assert sombra.__file__.startswith(sys.argv[1]), sombra.__file__
