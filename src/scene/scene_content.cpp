@@ -1,6 +1,7 @@
 // Questions about a loaded scene's content that the app asks before rendering.
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <vector>
 
 #include "scene/scene.h"
@@ -44,27 +45,35 @@ const SceneObject* object_of_surface(const Scene& scene, std::uint32_t triangle,
                                    : &scene.objects[scene.instances[instance].object];
 }
 
+namespace {
+
+// The inverse of `m` when m is invertible in float (a finite, non-zero
+// determinant and a finite inverse), for place_instance and place_grid_medium.
+std::optional<Transform> float_inverse(const Transform& m) {
+    const float det = determinant3(m);
+    if (!(det != 0.0f) || !std::isfinite(det)) return std::nullopt;
+    const Transform inverse = inverse_affine(m);
+    for (const float v : inverse.m)
+        if (!std::isfinite(v)) return std::nullopt;
+    return inverse;
+}
+
+}  // namespace
+
 bool place_instance(Instance& instance, const Transform& object_to_world) {
-    const float det = determinant3(object_to_world);
-    if (!(det != 0.0f) || !std::isfinite(det)) return false;
-    const Transform to_object = inverse_affine(object_to_world);
-    for (const float v : to_object.m)
-        if (!std::isfinite(v)) return false;
+    const std::optional<Transform> to_object = float_inverse(object_to_world);
+    if (!to_object) return false;
     instance.object_to_world = object_to_world;
-    instance.world_to_object = to_object;
+    instance.world_to_object = *to_object;
     instance.normal_to_world = normal_transform(object_to_world);
-    instance.mirrored = det < 0.0f;
+    instance.mirrored = determinant3(object_to_world) < 0.0f;
     return true;
 }
 
 bool place_grid_medium(Medium& medium, const Transform& object_to_world) {
-    const Transform grid_to_world = compose(medium.density->index_to_world, object_to_world);
-    const float det = determinant3(grid_to_world);
-    if (!(det != 0.0f) || !std::isfinite(det)) return false;
-    const Transform to_grid = inverse_affine(grid_to_world);
-    for (const float v : to_grid.m)
-        if (!std::isfinite(v)) return false;
-    medium.world_to_grid = to_grid;
+    const std::optional<Transform> to_grid = float_inverse(compose(medium.density->index_to_world, object_to_world));
+    if (!to_grid) return false;
+    medium.world_to_grid = *to_grid;
     return true;
 }
 
