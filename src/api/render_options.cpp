@@ -32,8 +32,6 @@ void check_render_options(const RenderOptions& o) {
         throw Error("--max-volume-depth", "must be between 0 and " + std::to_string(kMaxVolumeDepth) + ", not " +
                                               std::to_string(*o.overrides.max_volume_depth));
     if (o.aovs.noisy && !o.denoise) throw Error("--aov", "noisy is the image before denoising: it needs --denoise");
-    if (o.crop && o.denoise)
-        throw UsageError("--crop", "cannot go with --denoise yet: the denoiser scales depth by the whole image's");
     check_positive("--time", o.time_budget, kMaxTimeBudget);
     check_positive("--noise-threshold", o.noise_threshold, kMaxNoiseThreshold);
     if (o.min_spp < 1 || o.min_spp > kMaxSpp)

@@ -37,6 +37,7 @@ RenderJob make_job(const Scene& scene, const Accel& accel, const RenderSettings&
     job.aovs = options.aovs;
     if (options.crop) {
         job.window = options.crop;
+        if (options.denoise) job.window = denoise_window(*options.crop, settings.width, settings.height);
         // Adaptive sampling decides after each pass from 3 × 3 neighbourhoods (RenderJob::window_margin).
         if (options.noise_threshold)
             job.window_margin = (settings.spp + kAdaptivePassSamples - 1) / kAdaptivePassSamples;
@@ -46,17 +47,32 @@ RenderJob make_job(const Scene& scene, const Accel& accel, const RenderSettings&
         if (job.limits.deadline)
             *job.limits.deadline -=
                 std::chrono::duration_cast<std::chrono::steady_clock::duration>(std::chrono::duration<double>(
-                    denoise_seconds_estimate(settings.width, settings.height, options.threads)));
+                    denoise_seconds_estimate(job.window ? job.window->width : settings.width,
+                                             job.window ? job.window->height : settings.height, options.threads)));
     }
     return job;
 }
 
-Film denoise_render(RenderOutput& rendered, int threads, const std::atomic<bool>* cancel) {
-    std::vector<float> denoised = denoise_image(rendered.aovs.denoise, threads, cancel);
+PixelWindow denoise_window(const PixelWindow& crop, int width, int height) {
+    const PixelRect r =
+        denoise_source_rect({crop.x0, crop.y0, crop.x0 + crop.width, crop.y0 + crop.height}, width, height);
+    return {r.x0, r.y0, r.width(), r.height()};
+}
+
+Film denoise_render(RenderOutput& rendered, const RenderJob& job, const RenderOptions& options,
+                    const std::atomic<bool>* cancel) {
+    std::vector<float> denoised = denoise_image(rendered.aovs.denoise, options.threads, cancel);
     if (denoised.empty()) return {};  // cancelled
     Film noisy = std::move(rendered.film);
     rendered.film = Film(noisy.width, noisy.height);
     rendered.film.rgb = std::move(denoised);
+    if (options.crop && job.window && !(*job.window == *options.crop)) {
+        cut_to_window(rendered, *job.window, *options.crop);
+        RenderOutput noisy_window;
+        noisy_window.film = std::move(noisy);
+        cut_to_window(noisy_window, *job.window, *options.crop);
+        noisy = std::move(noisy_window.film);
+    }
     return noisy;
 }
 

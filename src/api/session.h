@@ -43,12 +43,19 @@ void prepare_scene(Scene& scene, const RenderSettings& settings, const RenderOpt
 RenderJob make_job(const Scene& scene, const Accel& accel, const RenderSettings& settings, const RenderOptions& options,
                    std::chrono::steady_clock::time_point start);
 
-// Spec §25: the film of `rendered` (gathered with the denoise AOV, as
-// make_job asks under options.denoise) replaced by the denoised image, on
-// `threads` (0 = all; the result is the same for any). Returns the film
-// before it: the noisy AOV. Once `*cancel` is true the denoiser gives up:
-// `rendered` keeps its film, and the Film returned is empty.
-Film denoise_render(RenderOutput& rendered, int threads, const std::atomic<bool>* cancel = nullptr);
+// What make_job renders for a --crop window under --denoise (spec §27): the
+// window grown by the denoiser's reach, so that denoising it gives the
+// window's pixels as denoising the whole image does (denoise_source_rect).
+PixelWindow denoise_window(const PixelWindow& crop, int width, int height);
+
+// Spec §25: the film of `rendered` (by `job`, which make_job made from
+// `options` with options.denoise) replaced by the denoised image, on
+// options.threads (the result is the same for any), then, with
+// options.crop, everything cut from the grown window to the crop. Returns
+// the film before denoising: the noisy AOV. Once `*cancel` is true the
+// denoiser gives up: `rendered` keeps its film, and the Film returned is empty.
+Film denoise_render(RenderOutput& rendered, const RenderJob& job, const RenderOptions& options,
+                    const std::atomic<bool>* cancel = nullptr);
 
 // What a render of `scene` at `settings` as `options` ask should warn of,
 // each one line without its place (the front end names the scene): the

@@ -11,6 +11,7 @@
 
 #include "cli_test_fixture.h"
 #include "image/display_transform.h"
+#include "image/image_io.h"
 
 namespace {
 
@@ -192,7 +193,34 @@ TEST_F(Everyday, ACropIsItsWindowOfTheWholeRenderBitForBit) {
     EXPECT_EQ(run("merge part0.exr part1.exr other.exr -q -o merged.pfm").status, 1);
 }
 
-TEST_F(Everyday, ACropOutsideTheImageOrWithTheDenoiserIsRefused) {
+TEST_F(Everyday, ADenoisedCropIsItsWindowOfTheWholeDenoisedRender) {
+    // Wide enough that the window grown by the denoiser's reach is not the image.
+    write_text(dir_ / "s.json", scene(R"({"width": 200, "height": 130, "spp": 4, "integrator": "path"})"));
+    for (const std::string options : {"", " --noise-threshold 0.2 --min-spp 2 --spp 6"}) {
+        SCOPED_TRACE(options);
+        ASSERT_EQ(run("render s.json -q --denoise --aov noisy -o whole.exr" + options).status, 0);
+        const RunResult r = run("render s.json -q --denoise --aov noisy -o crop.exr --crop 131 90 171 121" + options);
+        ASSERT_EQ(r.status, 0) << r.err;
+        ASSERT_EQ(run("render s.json -q --denoise -o whole.pfm" + options).status, 0);
+        ASSERT_EQ(run("render s.json -q --denoise -o crop.pfm --crop 131 90 171 121" + options).status, 0);
+        const Pfm whole = read_pfm(dir_ / "whole.pfm"), crop = read_pfm(dir_ / "crop.pfm");
+        ASSERT_EQ(crop.width, 40);
+        ASSERT_EQ(crop.height, 31);
+        EXPECT_EQ(top_down(crop), window_of(whole, 131, 90, 171, 121));
+        // The noisy layer is the crop's too.
+        const auto noisy_red = [this](const char* file, int x0, int y0, int width) {
+            const sombra::ExrChannels exr = sombra::read_exr_channels(dir_ / file, {"noisy.R"});
+            std::vector<float> out;
+            if (exr.values.size() != 1) return out;
+            for (int y = y0; y < y0 + 31; ++y)
+                for (int x = x0; x < x0 + 40; ++x) out.push_back(exr.values[0][static_cast<std::size_t>(y * width + x)]);
+            return out;
+        };
+        EXPECT_EQ(noisy_red("crop.exr", 0, 0, 40), noisy_red("whole.exr", 131, 90, 200));
+    }
+}
+
+TEST_F(Everyday, ACropOutsideTheImageOrSplitWithTheDenoiserIsRefused) {
     write_text(dir_ / "s.json", scene());  // 32 × 24
     const RunResult outside = run("render s.json -q -o a.png --crop 0 0 33 10");
     EXPECT_EQ(outside.status, 1);
@@ -200,7 +228,7 @@ TEST_F(Everyday, ACropOutsideTheImageOrWithTheDenoiserIsRefused) {
               "sombra: error: --crop: expected X0 Y0 X1 Y1 with 0 <= X0 < X1 <= 32 and 0 <= Y0 < Y1 <= 24 (the image), "
               "not 0 0 33 10\n");
     EXPECT_FALSE(fs::exists(dir_ / "a.png"));
-    for (const char* bad : {"--crop 5 5 5 9", "--crop 1 2 3", "--crop 0 0 8 8 --denoise --integrator path"}) {
+    for (const char* bad : {"--crop 5 5 5 9", "--crop 1 2 3", "--crop 0 0 8 8 --denoise --integrator path --shard 0/2"}) {
         const RunResult r = run(std::string("render s.json -q -o a.png ") + bad);
         EXPECT_EQ(r.status, 2) << bad << ": " << r.err;
     }

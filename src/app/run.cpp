@@ -130,7 +130,7 @@ int render_frame(const CliOptions& o, const Scene& scene, const Accel& accel, co
     Film noisy;
     if (o.render.denoise && !pixel_shard) {
         const auto denoise_start = Clock::now();
-        noisy = denoise_render(rendered, o.render.threads);
+        noisy = denoise_render(rendered, job, o.render);
         stats.denoise_seconds += seconds_since(denoise_start);
         if (progress.cancel.load()) {
             const int sig = interrupt.signal_received();

@@ -45,9 +45,33 @@ struct FeatureGroup {
     int first, count;
 };
 constexpr FeatureGroup kFeatureGroups[3] = {{0, 3}, {3, 3}, {6, 1}};
-// Depth is divided by the image's largest finite depth; a half that hit
-// nothing reads as a bit beyond the farthest surface.
-constexpr float kMissDepth = 1.25f;
+// Depth enters as its logarithm: a difference is then relative, the same
+// on a scene of any scale (the regression drops a feature whose spread
+// over a window is below kFlatFeature). A half that hit nothing reads as
+// a bit (×1.25) beyond the farthest surface within kMissDepthRadius of the
+// pixel, or as log 1 = 0 with none there: a pixel's features, like all
+// the denoiser reads, come from its neighbourhood alone (spec §27's crop).
+constexpr int kMissDepthRadius = 8;
+const float kMissDepthBeyond = std::log(1.25f);
+// A variance the render could not estimate (+∞: one sample) reads as the
+// largest finite one within kVarianceFillRadius of the pixel (0 with none).
+constexpr int kVarianceFillRadius = 7;
+
+// How far each stage reads around a pixel: non-local means reads values
+// within the window and the guide within window + patch; a collaborative
+// regression's output reads the guide up to 2R + P away (windows centred
+// within R, each comparing patches up to R + P from its centre, as does
+// the choice of an own window there) and the features and target up to 2R.
+constexpr int filter_reach(const NlMeansParams& p) { return p.window_radius + p.patch_radius; }
+constexpr int regression_reach(const NlMeansParams& p) { return 2 * p.window_radius + p.patch_radius; }
+// The cross-filtered features: the miss fill, box3 of their variance, the prefilter.
+constexpr int kFeatureReach = kMissDepthRadius + 1 + filter_reach(kFeaturePrefilter);
+constexpr int kGuideReach = std::max(kVarianceFillRadius, kFeatureReach);
+constexpr int kFirstReach = regression_reach({kRegressionRadius, kRegressionPatch, 1.0f}) + kGuideReach;
+// The choice between candidates filters their errors, then the choice itself.
+constexpr int kCombinedReach = 2 * filter_reach(kSelectionFilter) + kFirstReach;
+constexpr int kSecondGuideReach = std::max(kCombinedReach, filter_reach(kSecondFeatureFilter) + kFeatureReach);
+constexpr int kReach = regression_reach(kSecondRegression) + kSecondGuideReach;
 
 Raster raster_of(const std::vector<float>& values, int width, int height, int channels) {
     Raster r(width, height, channels);
@@ -107,8 +131,64 @@ Raster filter_features(const Raster& values, const Raster& guide, const Raster& 
     return out;
 }
 
-// The features of half h: albedo, normal, depth scaled by `depth_scale`.
-Raster half_features(const DenoiseLayers& layers, int h, float depth_scale) {
+// Per pixel, the largest of `values` within `radius` in x and y (a
+// separable max filter: the result is exact in any order).
+std::vector<float> local_max(const std::vector<float>& values, int width, int height, int radius) {
+    std::vector<float> rows(values.size()), out(values.size());
+    const auto at = [width](int x, int y) {
+        return static_cast<std::size_t>(y) * static_cast<std::size_t>(width) + static_cast<std::size_t>(x);
+    };
+    for (int y = 0; y < height; ++y)
+        for (int x = 0; x < width; ++x) {
+            float m = values[at(x, y)];
+            for (int u = std::max(x - radius, 0); u <= std::min(x + radius, width - 1); ++u) m = std::max(m, values[at(u, y)]);
+            rows[at(x, y)] = m;
+        }
+    for (int y = 0; y < height; ++y)
+        for (int x = 0; x < width; ++x) {
+            float m = rows[at(x, y)];
+            for (int v = std::max(y - radius, 0); v <= std::min(y + radius, height - 1); ++v) m = std::max(m, rows[at(x, v)]);
+            out[at(x, y)] = m;
+        }
+    return out;
+}
+
+// Each half's depth feature: log depth, a miss filled as kMissDepthRadius says.
+std::array<std::vector<float>, 2> depth_features(const DenoiseLayers& layers) {
+    constexpr float kNone = -std::numeric_limits<float>::infinity();
+    const std::size_t n = static_cast<std::size_t>(layers.width) * static_cast<std::size_t>(layers.height);
+    std::array<std::vector<float>, 2> out{std::vector<float>(n), std::vector<float>(n)};
+    std::vector<float> farthest(n, kNone);
+    for (int h = 0; h < 2; ++h)
+        for (std::size_t p = 0; p < n; ++p) {
+            const float depth = layers.depth[h][p];
+            out[h][p] = std::isfinite(depth) ? std::log(std::max(depth, std::numeric_limits<float>::min())) : kNone;
+            farthest[p] = std::max(farthest[p], out[h][p]);
+        }
+    farthest = local_max(farthest, layers.width, layers.height, kMissDepthRadius);
+    for (int h = 0; h < 2; ++h)
+        for (std::size_t p = 0; p < n; ++p)
+            if (out[h][p] == kNone) out[h][p] = farthest[p] == kNone ? 0.0f : farthest[p] + kMissDepthBeyond;
+    return out;
+}
+
+// The variance of a half's mean: twice the whole mean's (halves of equal
+// size), an unknown one filled as kVarianceFillRadius says.
+Raster half_variance_of(const DenoiseLayers& layers) {
+    const std::size_t n = static_cast<std::size_t>(layers.width) * static_cast<std::size_t>(layers.height);
+    std::vector<float> largest(n, 0.0f);
+    for (std::size_t p = 0; p < n; ++p)
+        for (std::size_t c = 0; c < 3; ++c)
+            if (const float v = layers.variance[3 * p + c]; std::isfinite(v)) largest[p] = std::max(largest[p], v);
+    largest = local_max(largest, layers.width, layers.height, kVarianceFillRadius);
+    Raster out(layers.width, layers.height, 3);
+    for (std::size_t i = 0; i < layers.variance.size(); ++i)
+        out.values[i] = 2.0f * (std::isfinite(layers.variance[i]) ? layers.variance[i] : largest[i / 3]);
+    return out;
+}
+
+// The features of half h: albedo, normal, and `depth` (depth_features').
+Raster half_features(const DenoiseLayers& layers, int h, const std::vector<float>& depth) {
     Raster f(layers.width, layers.height, kRegressionFeatures);
     for (std::size_t p = 0; p < static_cast<std::size_t>(layers.width) * static_cast<std::size_t>(layers.height); ++p) {
         float* out = &f.values[p * kRegressionFeatures];
@@ -116,8 +196,7 @@ Raster half_features(const DenoiseLayers& layers, int h, float depth_scale) {
             out[c] = layers.albedo[h][3 * p + static_cast<std::size_t>(c)];
             out[3 + c] = layers.normal[h][3 * p + static_cast<std::size_t>(c)];
         }
-        const float depth = layers.depth[h][p];
-        out[6] = std::isfinite(depth) ? depth / depth_scale : kMissDepth;
+        out[6] = depth[p];
     }
     return f;
 }
@@ -228,22 +307,10 @@ NforPasses run_passes(const DenoiseLayers& layers, int threads, const std::atomi
     const int w = layers.width, h = layers.height;
     NforPasses s;
     for (int half = 0; half < 2; ++half) s.color[half] = raster_of(layers.color[half], w, h, 3);
-    // Halves of equal size each have twice the variance of the whole mean.
-    // A variance the render could not estimate (+∞: one sample) reads as the image's largest.
-    float largest = 0.0f;
-    for (const float v : layers.variance)
-        if (std::isfinite(v)) largest = std::max(largest, v);
-    s.half_variance = Raster(w, h, 3);
-    for (std::size_t i = 0; i < layers.variance.size(); ++i)
-        s.half_variance.values[i] = 2.0f * (std::isfinite(layers.variance[i]) ? layers.variance[i] : largest);
-
-    float depth_scale = 0.0f;
-    for (int half = 0; half < 2; ++half)
-        for (const float d : layers.depth[half])
-            if (std::isfinite(d)) depth_scale = std::max(depth_scale, d);
-    if (!(depth_scale > 0.0f)) depth_scale = 1.0f;
+    s.half_variance = half_variance_of(layers);
     {
-        const Raster raw_features[2] = {half_features(layers, 0, depth_scale), half_features(layers, 1, depth_scale)};
+        const std::array<std::vector<float>, 2> depth = depth_features(layers);
+        const Raster raw_features[2] = {half_features(layers, 0, depth[0]), half_features(layers, 1, depth[1])};
         const Raster feature_variance = box3(
             pointwise(raw_features[0], raw_features[1], [](float a, float b) { return 0.5f * (a - b) * (a - b); }));
         // Cross-filtering: each half's features, weighted by the other half's,
@@ -314,6 +381,14 @@ PixelRect grown(PixelRect r, int by, int width, int height) {
 }
 
 }  // namespace
+
+int denoise_reach() { return kReach; }
+
+PixelRect denoise_source_rect(PixelRect kept, int width, int height) {
+    const auto aligned_down = [](int v) { return std::max(v, 0) / kDenoiseAlign * kDenoiseAlign; };
+    return {aligned_down(kept.x0 - kReach), aligned_down(kept.y0 - kReach), std::min(kept.x1 + kReach, width),
+            std::min(kept.y1 + kReach, height)};
+}
 
 double denoise_seconds_estimate(int width, int height, int threads) {
     // One thread's seconds a pixel: 20–23 µs measured on a quiet 2-core

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "denoise/denoise_layers.h"
+#include "denoise/raster.h"
 
 namespace sombra {
 
@@ -30,6 +31,21 @@ struct DenoiseTimes {
 // `times`, when given, gets the seconds each stage took.
 std::vector<float> denoise_image(const DenoiseLayers& layers, int threads = 0,
                                  const std::atomic<bool>* cancel = nullptr, DenoiseTimes* times = nullptr);
+
+// How far the denoiser reads: a pixel of denoise_image(layers) rests on
+// the layers' pixels within denoise_reach() of it along x and y alone
+// (spec §27's --crop; docs/cli.md gives the figure). Its tiles and grid of
+// windows start at the image's corner, so a window of the image denoised
+// alone matches the whole image only if its corner is a multiple of
+// kDenoiseAlign pixels from the image's.
+int denoise_reach();
+inline constexpr int kDenoiseAlign = 2 * kDenoiseTile;  // tiles run in a 2 × 2 checkerboard
+
+// The window of a width × height image whose layers, denoised alone, give
+// the pixels of `kept` bit for bit as denoising the whole image does:
+// `kept` grown by denoise_reach() within the image, its corner moved back
+// to a multiple of kDenoiseAlign.
+PixelRect denoise_source_rect(PixelRect kept, int width, int height);
 
 // The seconds denoise_image is expected to take on a width × height image
 // with `threads` (0 = all hardware threads): what a --time budget keeps

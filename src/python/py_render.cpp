@@ -73,7 +73,9 @@ py::object render(const std::shared_ptr<PyScene>& scene, const py::dict& options
     Film noisy;
     std::vector<std::string> warnings;
     const PixelWindow image = o.crop.value_or(PixelWindow{0, 0, settings.width, settings.height});
-    const std::uint64_t total = static_cast<std::uint64_t>(image.width) * static_cast<std::uint64_t>(image.height) *
+    // The pixels rendered: a crop under denoise is rendered grown by the denoiser's reach.
+    const PixelWindow area = o.crop && o.denoise ? denoise_window(*o.crop, settings.width, settings.height) : image;
+    const std::uint64_t total = static_cast<std::uint64_t>(area.width) * static_cast<std::uint64_t>(area.height) *
                                 static_cast<std::uint64_t>(settings.spp);
     run_watched(
         [&] {
@@ -81,8 +83,9 @@ py::object render(const std::shared_ptr<PyScene>& scene, const py::dict& options
             const Scene& s = scene->loaded.scene;
             warnings = render_warnings(s, settings, o);
             const Accel accel = make_accel(s, o.accel);
-            rendered = render_image(make_job(s, accel, settings, o, start), watched);
-            if (o.denoise && !rendered.cancelled) noisy = denoise_render(rendered, o.threads, &watched.cancel);
+            const RenderJob job = make_job(s, accel, settings, o, start);
+            rendered = render_image(job, watched);
+            if (o.denoise && !rendered.cancelled) noisy = denoise_render(rendered, job, o, &watched.cancel);
         },
         watched, total, progress);
     const py::ssize_t w = image.width, h = image.height;  // the --crop window's size (spec §27)

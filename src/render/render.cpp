@@ -105,8 +105,8 @@ PixelWindow grown_window(const PixelWindow& w, int margin, int width, int height
     return {x0, y0, x1 - x0, y1 - y0};
 }
 
-// Keeps `kept`'s pixels of images covering `area` (channels per pixel from
-// each image's size), top row first.
+}  // namespace
+
 void cut_to_window(RenderOutput& out, const PixelWindow& area, const PixelWindow& kept) {
     const auto cut = [&](std::vector<float>& values) {
         if (values.empty()) return;
@@ -129,7 +129,19 @@ void cut_to_window(RenderOutput& out, const PixelWindow& area, const PixelWindow
     for (std::vector<float>* aov :
          {&out.aovs.albedo, &out.aovs.normal, &out.aovs.position, &out.aovs.depth, &out.aovs.spp, &out.aovs.variance})
         cut(*aov);
+    DenoiseLayers& layers = out.aovs.denoise;
+    if (layers.width == area.width && layers.height == area.height) {
+        cut(layers.variance);
+        for (int half = 0; half < 2; ++half)
+            for (std::vector<float>* layer : {&layers.color[half], &layers.albedo[half], &layers.normal[half],
+                                              &layers.depth[half]})
+                cut(*layer);
+        layers.width = kept.width;
+        layers.height = kept.height;
+    }
 }
+
+namespace {
 
 // How many samples each pass adds (see kTimedPassSamples).
 std::uint32_t pass_samples(const RenderJob& job) {

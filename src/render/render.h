@@ -76,6 +76,7 @@ inline std::uint64_t shard_pixel_count(const ShardSpec& shard, int width, int he
 // A rectangle of the image: pixels x0 ≤ i < x0 + width, y0 ≤ j < y0 + height.
 struct PixelWindow {
     int x0 = 0, y0 = 0, width = 0, height = 0;
+    bool operator==(const PixelWindow&) const = default;
 };
 
 struct RenderJob {
@@ -131,6 +132,11 @@ struct RenderOutput {
     RayCounters counters;
     bool cancelled = false;  // true when progress.cancel stopped the loop: the film is incomplete
 };
+
+// Keeps the pixels of `kept` of everything `out` holds over `area` (film,
+// AOVs, the denoiser's layers), top row first: --crop's image from a
+// render of a larger window.
+void cut_to_window(RenderOutput& out, const PixelWindow& area, const PixelWindow& kept);
 
 // Renders the image in passes (spec §18). Each pixel is the equal-weight
 // average (box filter) of its samples, taken in index order 0, 1, 2, …, so

@@ -242,6 +242,17 @@ def test_a_crop_is_its_window_of_the_whole_render():
         sombra.render(s, crop=(0, 0, 4))
 
 
+def test_a_denoised_crop_is_its_window_of_the_whole_denoised_render():
+    # Spec §27: rendered grown by the denoiser's reach, then cut; wide enough
+    # that the grown window is not the whole image.
+    s = sombra.load(REPO / "scenes" / "cornell-box-path.json", width=200, height=120, spp=2)
+    whole = sombra.render(s, denoise=True, aov=["noisy"])
+    crop = sombra.render(s, denoise=True, aov=["noisy"], crop=(140, 80, 180, 110))
+    assert crop["color"].shape == (30, 40, 3)
+    for layer in ("color", "noisy"):
+        assert crop[layer].tobytes() == np.ascontiguousarray(whole[layer][80:110, 140:180]).tobytes(), layer
+
+
 def test_numpy_numbers_are_taken_as_python_numbers():
     # Issue 39: numpy users pass np.int64 and np.float32 where ints and floats are meant.
     s = sombra.load(REPO / "scenes" / "cornell-box-path.json", width=np.int64(12), height=np.int32(9))
