@@ -1,9 +1,16 @@
 // Ctrl-C and kill during a render: a prompt stop, no output, and an earlier
 // image left exactly as it was.
+#include <arpa/inet.h>
 #include <gtest/gtest.h>
+#include <netinet/in.h>
 #include <signal.h>  // NOLINT(modernize-deprecated-headers): kill() is POSIX, declared here, not in <csignal>
+#include <sys/socket.h>
 #include <sys/wait.h>
 #include <unistd.h>
+
+#include <cstdio>
+#include <regex>
+#include <vector>
 
 #include <chrono>
 #include <filesystem>
@@ -65,6 +72,75 @@ TEST_P(Interrupt, StopsWithinASecondAndWritesNothing) {
     EXPECT_EQ(read_text(dir_ / "out.png"), "earlier image");
     for (const auto& entry : fs::directory_iterator(dir_))
         EXPECT_EQ(entry.path().filename().string().find(".tmp"), std::string::npos) << entry.path();
+}
+
+// A connection to 127.0.0.1:port that sends `path`'s GET and never reads
+// the answer (a receive buffer of 1 KiB, so the server's writes block).
+int stalled_request(int port, const std::string& path) {
+    const int fd = ::socket(AF_INET, SOCK_STREAM, 0);
+    if (fd < 0) return -1;
+    const int small = 1024;
+    ::setsockopt(fd, SOL_SOCKET, SO_RCVBUF, &small, sizeof small);
+    sockaddr_in address{};
+    address.sin_family = AF_INET;
+    address.sin_port = htons(static_cast<std::uint16_t>(port));
+    address.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+    if (::connect(fd, reinterpret_cast<const sockaddr*>(&address), sizeof address) != 0) {
+        ::close(fd);
+        return -1;
+    }
+    const std::string request = "GET " + path + " HTTP/1.1\r\nHost: 127.0.0.1:" + std::to_string(port) + "\r\n\r\n";
+    if (::send(fd, request.data(), request.size(), MSG_NOSIGNAL) < 0) {
+        ::close(fd);
+        return -1;
+    }
+    return fd;
+}
+
+TEST_P(Interrupt, EndsTheViewerAtOnceWhateverItsClientsDo) {
+    // Spec §20: Ctrl-C ends the server at once, even with event streams and
+    // an image download that their clients stopped reading (still open).
+    const int sig = GetParam();
+    int out[2];
+    ASSERT_EQ(::pipe(out), 0);
+    const pid_t pid = fork();
+    ASSERT_GE(pid, 0);
+    if (pid == 0) {
+        if (chdir(dir_.c_str()) != 0) _exit(99);
+        ::dup2(out[1], STDOUT_FILENO);
+        ::close(out[0]);
+        if (!freopen("stderr.txt", "w", stderr)) _exit(99);
+        execl(SOMBRA_EXE, SOMBRA_EXE, "view", "slow.json", "--port", "0", "--width", "1024", "--height", "1024",
+              static_cast<char*>(nullptr));
+        _exit(98);
+    }
+    ::close(out[1]);
+    // The first line: http://127.0.0.1:PORT/?token=TOKEN
+    std::string line;
+    char c = 0;
+    while (::read(out[0], &c, 1) == 1 && c != '\n') line += c;
+    std::smatch m;
+    ASSERT_TRUE(std::regex_search(line, m, std::regex(R"(127\.0\.0\.1:(\d+)/\?token=(\w+))"))) << line;
+    const int port = std::stoi(m[1].str());
+    const std::string token = m[2].str();
+    std::vector<int> stalled;
+    for (const char* path : {"/events", "/events", "/image.exr"})
+        stalled.push_back(stalled_request(port, std::string(path) + "?token=" + token));
+    for (const int fd : stalled) EXPECT_GE(fd, 0);
+    std::this_thread::sleep_for(std::chrono::milliseconds(700));  // the streams and the download under way
+
+    const auto sent = std::chrono::steady_clock::now();
+    ASSERT_EQ(kill(pid, sig), 0);
+    int status = 0;
+    ASSERT_EQ(waitpid(pid, &status, 0), pid);
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - sent).count();
+    EXPECT_LT(seconds, 1.0);  // httplib's write and keep-alive timeouts are 5 s
+    ASSERT_TRUE(WIFEXITED(status));
+    EXPECT_EQ(WEXITSTATUS(status), 0);
+    EXPECT_NE(read_text(dir_ / "stderr.txt").find("sombra: view ended"), std::string::npos);
+    for (const int fd : stalled)
+        if (fd >= 0) ::close(fd);
+    ::close(out[0]);
 }
 
 INSTANTIATE_TEST_SUITE_P(Signals, Interrupt, ::testing::Values(SIGINT, SIGTERM));

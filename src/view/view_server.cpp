@@ -1,8 +1,13 @@
 #include "view/view_server.h"
 
+#include <dirent.h>
 #include <httplib.h>
+#include <netinet/in.h>
+#include <sys/socket.h>
+#include <sys/stat.h>
 
 #include <atomic>
+#include <cstdlib>
 #include <chrono>
 #include <optional>
 #include <string_view>
@@ -27,6 +32,34 @@ std::string error_text(int status) {
         case 413: return "413 payload too large: a body holds at most " + std::to_string(kMaxViewBody) + " bytes";
         default: return std::to_string(status);
     }
+}
+
+// Shuts down every TCP connection of this process whose local end is
+// 127.0.0.1:`port` (those the server accepted; the listening socket has no
+// peer): a request thread blocked writing to a client that stopped reading,
+// or waiting on a kept-alive connection, then returns at once instead of
+// after httplib's 5-second timeouts, and Ctrl-C ends the viewer at once
+// (spec §20). httplib 0.11 keeps its connections' sockets to itself, so
+// they are found among the process's open files.
+void shut_down_connections(int port) {
+    DIR* fds = ::opendir("/proc/self/fd");
+    if (fds == nullptr) return;
+    const int own = ::dirfd(fds);
+    while (const dirent* entry = ::readdir(fds)) {
+        char* end = nullptr;
+        const long fd = std::strtol(entry->d_name, &end, 10);
+        if (end == entry->d_name || *end != '\0' || fd == own) continue;
+        struct stat info {};
+        if (::fstat(static_cast<int>(fd), &info) != 0 || !S_ISSOCK(info.st_mode)) continue;
+        sockaddr_in local{}, peer{};
+        socklen_t local_size = sizeof local, peer_size = sizeof peer;
+        if (::getsockname(static_cast<int>(fd), reinterpret_cast<sockaddr*>(&local), &local_size) != 0 ||
+            local.sin_family != AF_INET || ntohs(local.sin_port) != port)
+            continue;
+        if (::getpeername(static_cast<int>(fd), reinterpret_cast<sockaddr*>(&peer), &peer_size) != 0) continue;
+        ::shutdown(static_cast<int>(fd), SHUT_RDWR);
+    }
+    ::closedir(fds);
 }
 
 // Request threads: every event stream holds one while it is open, and the
@@ -127,6 +160,7 @@ void ViewServer::stop() {
     while (impl_->serving.load() && !impl_->server.is_running())
         std::this_thread::sleep_for(std::chrono::milliseconds(1));
     impl_->server.stop();
+    shut_down_connections(impl_->port);
 }
 
 }  // namespace sombra
