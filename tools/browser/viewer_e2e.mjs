@@ -226,6 +226,26 @@ try {
   const raw = await pixelsOf(page);
   check(raw.data.every((v, i) => v === orbited.data[i]), "with the switch off the page shows the raw image again");
 
+  // 5b. A second click compares: two stories side by side, both pixels
+  // marked; once the camera moves the marks go (they were of the old view)
+  // and each story says the view has moved.
+  await page.mouse.click(box.x + (10 + 0.5) * box.width / WIDTH, box.y + (12 + 0.5) * box.height / HEIGHT);
+  await page.waitForFunction(() => document.querySelectorAll("#stories .story pre").length === 2 &&
+                                   document.querySelectorAll("#stories .story h3")[1].textContent.startsWith("2: pixel (10, 12)"),
+                             null, { timeout: 30000 });
+  const [left, right] = await page.locator("#stories .story").evaluateAll((divs) => divs.map((d) => d.getBoundingClientRect().toJSON()));
+  check(Math.abs(left.top - right.top) < 1 && right.left >= left.right - 1,
+        `the two stories stand side by side (${Math.round(left.left)},${Math.round(left.top)} and ${Math.round(right.left)},${Math.round(right.top)})`);
+  const marked = () => page.evaluate(() => {
+    const c = document.getElementById("marks");
+    return c.getContext("2d").getImageData(0, 0, c.width, c.height).data.some((v, i) => i % 4 === 3 && v > 0);
+  });
+  check(await marked(), "both clicked pixels are marked");
+  await page.screenshot({ path: path.join(artifacts, "5-compared.png") });
+  await page.keyboard.press("ArrowLeft");
+  await page.waitForFunction(() => document.querySelector("#stories .story .moved").textContent !== "", null, { timeout: 10000 });
+  check(!(await marked()), "after the camera moved the old marks are gone");
+
   // 6. An orthographic camera (a glTF file's: a 2 × 2 square seen square on
   // from z = 4, ymag 1.5) zooms by its half-height.
   const square = new Float32Array([-1, -1, 0, 1, -1, 0, 1, 1, 0, -1, 1, 0]);
