@@ -213,7 +213,8 @@ TEST_F(Everyday, ADenoisedCropIsItsWindowOfTheWholeDenoisedRender) {
             std::vector<float> out;
             if (exr.values.size() != 1) return out;
             for (int y = y0; y < y0 + 31; ++y)
-                for (int x = x0; x < x0 + 40; ++x) out.push_back(exr.values[0][static_cast<std::size_t>(y * width + x)]);
+                for (int x = x0; x < x0 + 40; ++x)
+                    out.push_back(exr.values[0][static_cast<std::size_t>(y * width + x)]);
             return out;
         };
         EXPECT_EQ(noisy_red("crop.exr", 0, 0, 40), noisy_red("whole.exr", 131, 90, 200));
@@ -228,7 +229,8 @@ TEST_F(Everyday, ACropOutsideTheImageOrSplitWithTheDenoiserIsRefused) {
               "sombra: error: --crop: expected X0 Y0 X1 Y1 with 0 <= X0 < X1 <= 32 and 0 <= Y0 < Y1 <= 24 (the image), "
               "not 0 0 33 10\n");
     EXPECT_FALSE(fs::exists(dir_ / "a.png"));
-    for (const char* bad : {"--crop 5 5 5 9", "--crop 1 2 3", "--crop 0 0 8 8 --denoise --integrator path --shard 0/2"}) {
+    for (const char* bad :
+         {"--crop 5 5 5 9", "--crop 1 2 3", "--crop 0 0 8 8 --denoise --integrator path --shard 0/2"}) {
         const RunResult r = run(std::string("render s.json -q -o a.png ") + bad);
         EXPECT_EQ(r.status, 2) << bad << ": " << r.err;
     }

@@ -141,13 +141,15 @@ std::vector<float> local_max(const std::vector<float>& values, int width, int he
     for (int y = 0; y < height; ++y)
         for (int x = 0; x < width; ++x) {
             float m = values[at(x, y)];
-            for (int u = std::max(x - radius, 0); u <= std::min(x + radius, width - 1); ++u) m = std::max(m, values[at(u, y)]);
+            for (int u = std::max(x - radius, 0); u <= std::min(x + radius, width - 1); ++u)
+                m = std::max(m, values[at(u, y)]);
             rows[at(x, y)] = m;
         }
     for (int y = 0; y < height; ++y)
         for (int x = 0; x < width; ++x) {
             float m = rows[at(x, y)];
-            for (int v = std::max(y - radius, 0); v <= std::min(y + radius, height - 1); ++v) m = std::max(m, rows[at(x, v)]);
+            for (int v = std::max(y - radius, 0); v <= std::min(y + radius, height - 1); ++v)
+                m = std::max(m, rows[at(x, v)]);
             out[at(x, y)] = m;
         }
     return out;

@@ -26,7 +26,8 @@ DenoiseLayers layers_with_sky(int width, int height) {
             const std::size_t p = static_cast<std::size_t>(y * width + x);
             const bool sky = y < height / 4 && x < 2 * width / 3;
             for (int h = 0; h < 2; ++h) {
-                layers.depth[h][p] = sky ? std::numeric_limits<float>::infinity() : 2.0f + 0.05f * static_cast<float>(x);
+                layers.depth[h][p] =
+                    sky ? std::numeric_limits<float>::infinity() : 2.0f + 0.05f * static_cast<float>(x);
                 if (sky)
                     for (int c = 0; c < 3; ++c) layers.albedo[h][3 * p + c] = layers.normal[h][3 * p + c] = 0.0f;
             }

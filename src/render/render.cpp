@@ -133,8 +133,8 @@ void cut_to_window(RenderOutput& out, const PixelWindow& area, const PixelWindow
     if (layers.width == area.width && layers.height == area.height) {
         cut(layers.variance);
         for (int half = 0; half < 2; ++half)
-            for (std::vector<float>* layer : {&layers.color[half], &layers.albedo[half], &layers.normal[half],
-                                              &layers.depth[half]})
+            for (std::vector<float>* layer :
+                 {&layers.color[half], &layers.albedo[half], &layers.normal[half], &layers.depth[half]})
                 cut(*layer);
         layers.width = kept.width;
         layers.height = kept.height;

@@ -7,8 +7,8 @@
 #include <sys/stat.h>
 
 #include <atomic>
-#include <cstdlib>
 #include <chrono>
+#include <cstdlib>
 #include <optional>
 #include <string_view>
 #include <thread>
