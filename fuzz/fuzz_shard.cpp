@@ -1,5 +1,7 @@
 // libFuzzer target for the shard files `sombra merge` reads (spec §21) and
 // the layers `sombra denoise` reads (§25): they come from other machines.
+// An input that starts with 'P' is read as a PFM file instead (read_pfm:
+// Python's sombra.read_image), the other float image format sombra reads.
 // The input is written as an .exr and read back with read_exr_channels
 // (image/image_io.h), as merge reads each part, then taken as the
 // denoiser's layers and, when they pass its check and are small, denoised:
@@ -27,9 +29,32 @@ namespace {
     std::abort();
 }
 
+// A PFM file: refused with an Error or read whole, its size within the limits.
+void fuzz_pfm(const std::uint8_t* data, std::size_t size) {
+    static const std::filesystem::path file =
+        std::filesystem::temp_directory_path() / ("sombra-fuzz-shard-" + std::to_string(::getpid()) + ".pfm");
+    {
+        std::ofstream out(file, std::ios::binary | std::ios::trunc);
+        out.write(reinterpret_cast<const char*>(data), static_cast<std::streamsize>(size));
+    }
+    try {
+        const sombra::PfmImage image = sombra::read_pfm(file);
+        if (image.width <= 0 || image.height <= 0 || image.width > sombra::kMaxImageSide ||
+            image.height > sombra::kMaxImageSide)
+            broken("a PFM size outside the limits was accepted");
+        if (image.rgb.size() != static_cast<std::size_t>(image.width) * static_cast<std::size_t>(image.height) * 3)
+            broken("a PFM image of the wrong length");
+    } catch (const sombra::Error&) {
+    }
+}
+
 }  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+    if (size > 0 && data[0] == 'P') {
+        fuzz_pfm(data, size);
+        return 0;
+    }
     static const std::filesystem::path file =
         std::filesystem::temp_directory_path() / ("sombra-fuzz-shard-" + std::to_string(::getpid()) + ".exr");
     {

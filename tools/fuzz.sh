@@ -161,10 +161,15 @@ seed_view() {
   printf 'localhost:8765\x00\x00\x001e39' | add_seed "$corpus" no-token
 }
 
-# Shard seeds: EXR files sombra render --shard wrote (fuzz/seeds/shard).
+# Shard seeds: EXR files sombra render --shard wrote (fuzz/seeds/shard),
+# and PFM files (the target reads an input starting with 'P' as one):
+# colour and grey, both byte orders, a comment-free minimal header.
 seed_shard() {
   local corpus="$1" f
   for f in "$root"/fuzz/seeds/shard/*.exr; do add_seed "$corpus" "$(basename "$f")" <"$f"; done
+  { printf 'PF\n2 1\n-1.0\n'; printf '\x00\x00\x80\x3f%.0s' 1 2 3 4 5 6; } | add_seed "$corpus" colour-le.pfm
+  { printf 'Pf\n1 2\n1.0\n'; printf '\x3f\x80\x00\x00\x40\x00\x00\x00'; } | add_seed "$corpus" grey-be.pfm
+  { printf 'PF 1 1 -2.5 '; printf '\x00\x00\xc0\x7f\x00\x00\x80\x7f\x00\x00\x00\x00'; } | add_seed "$corpus" nan-inf.pfm
 }
 
 # VDB seeds: small OpenVDB files (fuzz/seeds/vdb: voxels, an active tile

@@ -94,10 +94,13 @@ std::shared_ptr<LoadedMesh> make_mesh(const py::handle& positions, const py::han
 // Checks one section given as JSON text at `pointer`, by the reader's
 // function for it; returns what Python shows of it (the settings for
 // "render"), or None.
-py::object check_part(const std::string& kind, const std::string& text, const std::string& pointer) {
+// `name` names the scene in messages; `folder` anchors relative texture and
+// environment paths (a scene from code's: the working directory).
+py::object check_part(const std::string& kind, const std::string& text, const std::string& pointer,
+                      const std::string& name, const std::string& folder) {
     Diagnostics diag;
-    const SceneJson s{kSceneName, diag};
-    const Json v = parse_scene_json(text, kSceneName);
+    const SceneJson s{name, diag};
+    const Json v = parse_scene_json(text, name);
     if (kind == "render") {
         return settings_dict(read_render(s, v, pointer));
     }
@@ -105,8 +108,8 @@ py::object check_part(const std::string& kind, const std::string& text, const st
         (void)read_camera(s, v, pointer);
     } else if (kind == "materials") {
         std::vector<Texture> textures;
-        SceneTextures folder{".", &textures};
-        (void)read_materials(s, v, pointer, folder);
+        SceneTextures textures_folder{folder, &textures};
+        (void)read_materials(s, v, pointer, textures_folder);
     } else if (kind == "lights") {
         (void)read_lights(s, v, pointer);
     } else if (kind == "transform") {
@@ -117,7 +120,7 @@ py::object check_part(const std::string& kind, const std::string& text, const st
         (void)read_rgb(s, v, pointer);
     } else if (kind == "environment") {
         py::gil_scoped_release release;  // reading a large map takes a moment
-        (void)read_environment(s, v, pointer, ".");
+        (void)read_environment(s, v, pointer, folder);
     } else {
         throw std::invalid_argument("check_part: unknown kind " + kind);
     }
@@ -131,7 +134,8 @@ void bind_parts(py::module_& m) {
         "triangle_count", [](const LoadedMesh& mesh) { return mesh.mesh.triangle_count(); });
     m.def("make_mesh", &make_mesh, py::arg("positions"), py::arg("indices"), py::arg("normals"), py::arg("uvs"),
           py::arg("where"));
-    m.def("check_part", &check_part, py::arg("kind"), py::arg("text"), py::arg("pointer"));
+    m.def("check_part", &check_part, py::arg("kind"), py::arg("text"), py::arg("pointer"),
+          py::arg("name") = kSceneName, py::arg("folder") = ".");
 }
 
 }  // namespace sombra::python

@@ -44,11 +44,14 @@ std::shared_ptr<PyScene> load(const std::string& path, const py::dict& overrides
 
 // `name` names the text in messages; its folder anchors relative mesh paths.
 // `meshes`: those the text's objects name as {"mesh": i} (a scene from code).
+// `cache`: the mesh files read before for the same Scene (an edited one).
 std::shared_ptr<PyScene> load_text(const std::string& text, const std::string& name, const py::dict& overrides,
-                                   const std::vector<std::shared_ptr<LoadedMesh>>& meshes) {
+                                   const std::vector<std::shared_ptr<LoadedMesh>>& meshes,
+                                   const std::shared_ptr<MeshFileCache>& cache) {
     std::vector<const LoadedMesh*> given;
     for (const auto& m : meshes) given.push_back(m.get());
-    return read_scene(name, overrides, [&](Diagnostics& diag) { return load_scene_text(text, name, diag, given); });
+    return read_scene(name, overrides,
+                      [&](Diagnostics& diag) { return load_scene_text(text, name, diag, given, cache.get()); });
 }
 
 }  // namespace
@@ -104,9 +107,15 @@ void bind_scene(py::module_& m) {
         .def_property_readonly("triangle_count", [](const PyScene& s) { return stored_triangle_count(s.loaded.scene); })
         .def_property_readonly("instanced_triangle_count",
                                [](const PyScene& s) { return drawn_triangle_count(s.loaded.scene); });
+    // Opaque: what a Scene read from a file or a dict keeps between edits.
+    py::class_<MeshFileCache, std::shared_ptr<MeshFileCache>>(m, "MeshCache")
+        .def(py::init<>())
+        .def("__len__", [](const MeshFileCache& c) { return c.meshes.size(); });
     m.def("load", &load, py::arg("path"), py::arg("overrides"));
     m.def("load_text", &load_text, py::arg("text"), py::arg("name"), py::arg("overrides"),
-          py::arg("meshes") = std::vector<std::shared_ptr<LoadedMesh>>{});
+          py::arg("meshes") = std::vector<std::shared_ptr<LoadedMesh>>{},
+          py::arg("cache") = std::shared_ptr<MeshFileCache>{});
+    m.def("read_scene_text", [](const std::string& path) { return read_scene_text(path); }, py::arg("path"));
 }
 
 }  // namespace sombra::python

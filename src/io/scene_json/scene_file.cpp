@@ -46,15 +46,27 @@ struct ObjectSpec {
     std::vector<std::uint32_t> grid_interiors;
 };
 
-// The object's file, checked to be one before any mesh is read.
+// Where a MeshFileCache keeps a mesh file: its absolute path, "." and ".." resolved.
+fs::path cache_key(const fs::path& path) {
+    std::error_code ec;
+    const fs::path absolute = fs::absolute(path, ec);
+    return (ec ? path : absolute).lexically_normal();
+}
+
+// The object's file, checked to be one before any mesh is read (unless
+// `cache` holds it: read before, it may have gone since).
 void read_object_file(const SceneJson& s, const Json& v, std::string_view pointer, const fs::path& scene_path,
-                      ObjectSpec& spec) {
+                      const MeshFileCache* cache, ObjectSpec& spec) {
     const std::string file_pointer = json_child(pointer, "file");
     const std::string& file = read_string(s, require_member(s, v, pointer, "file"), file_pointer);
     if (file.empty()) json_fail(s, file_pointer, "expected a file name, not an empty string");
     // The system reads a path up to its first NUL: "a.obj\u0000b" must not quietly load a.obj.
     if (file.find('\0') != std::string::npos) json_fail(s, file_pointer, "the file name contains a NUL character");
     spec.path = scene_path.parent_path() / fs::path(file);
+    if (cache != nullptr) {
+        const auto cached = cache->meshes.find(cache_key(spec.path));
+        if (cached != cache->meshes.end() && cached->second != nullptr) return;
+    }
     std::error_code ec;
     const fs::file_status status = fs::status(spec.path, ec);
     if (!fs::exists(status))
@@ -68,12 +80,13 @@ void read_object_file(const SceneJson& s, const Json& v, std::string_view pointe
 
 ObjectSpec read_object(const SceneJson& s, const Json& v, std::string_view pointer, const fs::path& scene_path,
                        const std::map<std::string, std::uint32_t, std::less<>>& material_index,
-                       std::span<const LoadedMesh* const> given_meshes, double start_time, const Scene& scene) {
+                       std::span<const LoadedMesh* const> given_meshes, const MeshFileCache* cache,
+                       double start_time, const Scene& scene) {
     ObjectSpec spec;
     spec.pointer = std::string(pointer);
     if (given_meshes.empty()) {
         expect_keys(s, v, pointer, {"file", "material", "transform", "instances", "interior", "exterior"});
-        read_object_file(s, v, pointer, scene_path, spec);
+        read_object_file(s, v, pointer, scene_path, cache, spec);
     } else {
         expect_keys(s, v, pointer, {"file", "mesh", "material", "transform", "instances", "interior", "exterior"});
         if (const Json* m = find_member(v, "mesh")) {
@@ -83,7 +96,7 @@ ObjectSpec read_object(const SceneJson& s, const Json& v, std::string_view point
             spec.given = given_meshes[static_cast<std::size_t>(i)];
             spec.path = "mesh " + std::to_string(i);
         } else {
-            read_object_file(s, v, pointer, scene_path, spec);
+            read_object_file(s, v, pointer, scene_path, cache, spec);
         }
     }
 
@@ -296,6 +309,8 @@ PunctualLight placed_light(PunctualLight light, const Transform& transform, cons
     return light;
 }
 
+}  // namespace
+
 std::string read_scene_text(const fs::path& path) {
     const std::string name = path.string();
     std::error_code ec;
@@ -314,14 +329,12 @@ std::string read_scene_text(const fs::path& path) {
     return std::move(text).str();
 }
 
-}  // namespace
-
 LoadedScene load_scene_file(const fs::path& path, Diagnostics& diag) {
     return load_scene_text(read_scene_text(path), path, diag);
 }
 
 LoadedScene load_scene_text(const std::string& text, const fs::path& path, Diagnostics& diag,
-                            std::span<const LoadedMesh* const> given_meshes) {
+                            std::span<const LoadedMesh* const> given_meshes, MeshFileCache* cache) {
     const SceneJson s{path.string(), diag};
     const Json root = parse_scene_json(text, s.name);
     expect_keys(s, root, "",
@@ -372,7 +385,7 @@ LoadedScene load_scene_text(const std::string& text, const fs::path& path, Diagn
     specs.reserve(objects.size());
     for (std::size_t i = 0; i < objects.size(); ++i)
         specs.push_back(read_object(s, objects[i], json_child("/objects", i), path, material_index, given_meshes,
-                                    start_time, builder.scene()));
+                                    cache, start_time, builder.scene()));
     for (ObjectSpec& spec : specs)
         if (spec.interface) spec.material = builder.interface_material();
     place_grid_media(s, specs, builder);
@@ -392,7 +405,7 @@ LoadedScene load_scene_text(const std::string& text, const fs::path& path, Diagn
 
     // Load everything first so the world arrays are sized once, exactly. A
     // file used by several objects (one sphere, five materials) is read once.
-    std::vector<LoadedMesh> meshes;
+    std::vector<std::shared_ptr<const LoadedMesh>> meshes;
     std::vector<std::size_t> mesh_of(specs.size());
     std::vector<std::size_t> last_use;
     std::map<fs::path, std::size_t> loaded_index;
@@ -405,18 +418,25 @@ LoadedScene load_scene_text(const std::string& text, const fs::path& path, Diagn
             if (flattened) sizes += sizes_of(spec.given->mesh);
             continue;
         }
+        // One file through two names (a link) is read once; a cache knows files by their absolute path.
         std::error_code ec;
         fs::path key = fs::canonical(spec.path, ec);
-        if (ec) key = spec.path;
+        if (ec || cache != nullptr) key = cache_key(spec.path);
         const auto [it, is_new] = loaded_index.try_emplace(key, meshes.size());
         if (is_new) {
-            meshes.push_back(load_mesh_file(spec.path, diag));
+            std::shared_ptr<const LoadedMesh>* cached = nullptr;
+            if (cache != nullptr) cached = &cache->meshes[key];
+            if (cached != nullptr && *cached != nullptr)
+                meshes.push_back(*cached);
+            else
+                meshes.push_back(std::make_shared<const LoadedMesh>(load_mesh_file(spec.path, diag)));
+            if (cached != nullptr) *cached = meshes.back();
             last_use.push_back(i);
         }
         mesh_of[i] = it->second;
         last_use[it->second] = i;
-        const TriangleMesh& m = meshes[it->second].mesh;
-        if (m.triangles.empty() && meshes[it->second].instanced.empty())
+        const TriangleMesh& m = meshes[it->second]->mesh;
+        if (m.triangles.empty() && meshes[it->second]->instanced.empty())
             json_warn(s, json_child(spec.pointer, "file"), "the mesh has no triangles");
         if (flattened) sizes += sizes_of(m);
     }
@@ -435,7 +455,7 @@ LoadedScene load_scene_text(const std::string& text, const fs::path& path, Diagn
         }
         // Lights a glTF file places move with its object (§13, §16), and on
         // animated nodes or a keyed object with the clock (§22).
-        const LoadedMesh& file = meshes[mesh_of[i]];
+        const LoadedMesh& file = *meshes[mesh_of[i]];
         for (std::size_t j = 0; j < file.lights.size(); ++j) {
             const bool on_node = j < file.light_nodes.size() && file.light_nodes[j] >= 0;
             const auto add = [&](const Transform* instance) {  // null: the object has no "instances"
@@ -451,9 +471,10 @@ LoadedScene load_scene_text(const std::string& text, const fs::path& path, Diagn
             if (specs[i].instances.empty()) add(nullptr);
             for (const Transform& instance : specs[i].instances) add(&instance);
         }
-        add_object(builder, meshes[mesh_of[i]], specs[i], s, animation);
-        // Free each file's mesh after its last object: peak memory stays near two copies.
-        if (last_use[mesh_of[i]] == i) meshes[mesh_of[i]] = LoadedMesh{};
+        add_object(builder, file, specs[i], s, animation);
+        // Free each file's mesh after its last object (unless a cache keeps
+        // it): peak memory stays near two copies.
+        if (last_use[mesh_of[i]] == i) meshes[mesh_of[i]].reset();
     }
     for (std::size_t i = 0; i < quad_meshes.size(); ++i)
         add_object(builder, quad_meshes[i], quad_specs[i], s, animation);

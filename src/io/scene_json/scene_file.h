@@ -4,6 +4,8 @@
 #pragma once
 
 #include <filesystem>
+#include <map>
+#include <memory>
 #include <span>
 #include <string>
 
@@ -21,12 +23,22 @@ namespace sombra {
 // the file's "render" section, checked against render_settings_problem.
 LoadedScene load_scene_file(const std::filesystem::path& path, Diagnostics& diag);
 
+// The mesh files a scene has read, by canonical path: a Python scene that
+// is edited and assembled again reads none of them twice.
+struct MeshFileCache {
+    std::map<std::filesystem::path, std::shared_ptr<const LoadedMesh>> meshes;
+};
+
 // The same from JSON text already in memory; `path` names it in messages and
 // anchors relative mesh paths. With `given_meshes` (meshes made from arrays,
 // io/array_mesh.h: the Python module's scenes from code), an object may name
 // one by index, {"mesh": i, "material": …, "transform": …}, in place of a
-// "file"; without, "mesh" is an unknown key as in any scene file.
+// "file"; without, "mesh" is an unknown key as in any scene file. With
+// `cache`, a mesh file is taken from it when there, else read and kept in it.
 LoadedScene load_scene_text(const std::string& text, const std::filesystem::path& path, Diagnostics& diag,
-                            std::span<const LoadedMesh* const> given_meshes = {});
+                            std::span<const LoadedMesh* const> given_meshes = {}, MeshFileCache* cache = nullptr);
+
+// A scene file's text, as load_scene_file reads it (its size checked first).
+std::string read_scene_text(const std::filesystem::path& path);
 
 }  // namespace sombra

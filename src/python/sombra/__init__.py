@@ -16,6 +16,7 @@ from __future__ import annotations
 
 import json
 import math
+import os
 import warnings
 from typing import Any, Mapping, Optional, Sequence, Union
 
@@ -45,9 +46,14 @@ def load(path: PathLike, **overrides: Any) -> Scene:
     max_depth, texture_filter ("bilinear" or "mipmap"): they replace the
     scene's "render" values, checked as the command line checks them.
     The reader's warnings are issued as RuntimeWarning.
-    Raises Error for a file that is missing or wrong.
+    Raises Error for a file that is missing or wrong. A scene file's scene
+    can be edited afterwards (see Scene); a model's quick look cannot.
     """
-    return Scene._wrap(_sombra.load(_path(path, "load"), _options("load", overrides, _SCENE_OPTIONS)))
+    file = _path(path, "load")
+    options = _options("load", overrides, _SCENE_OPTIONS)
+    if os.path.splitext(file)[1].lower() == ".json" and not os.path.isdir(file):
+        return Scene._read(_sombra.read_scene_text(file), file, options)
+    return Scene._wrap(_sombra.load(file, options))
 
 
 def _scene_impl(scene: Any, function: str) -> Any:

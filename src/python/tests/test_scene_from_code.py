@@ -156,9 +156,9 @@ def test_normals_and_uvs_must_match_the_vertices():
         s.add_mesh(np.eye(3), np.array([[0, 1, 2]]), uvs=np.eye(3))
 
 
-def test_a_scene_read_from_a_file_is_not_built_from_code():
-    with pytest.raises(TypeError, match="sombra.Scene()"):
-        sombra.load("scenes/cornell-box.json").add_light({"position": [0, 1, 0], "intensity": [1, 1, 1]})
+def test_a_models_quick_look_cannot_be_edited():
+    with pytest.raises(TypeError, match=r"quick look, which cannot be edited; read it in a scene instead"):
+        sombra.load(REPO / "scenes" / "models" / "cube.obj").add_light({"position": [0, 1, 0], "intensity": [1, 1, 1]})
 
 
 SKY = REPO.parent / "shared" / "envmaps" / "sunset.exr"
