@@ -1,13 +1,17 @@
 #!/usr/bin/env bash
-# Builds sombra's .deb with CPack from the release build and checks it:
-#   - dpkg-deb -c lists the binary, the man page, the Python package, the
-#     copyright and changelog; its Depends name the libraries and Python;
+# Builds sombra's .debs with CPack from the release build and checks them:
+#   - sombra: dpkg-deb -c lists the binary, the man page, the Python
+#     package, the copyright and changelog; its Depends name the libraries
+#     and Python, and no MPI (it only suggests sombra-mpi);
+#   - sombra-mpi: the MPI plugin, depending on Open MPI and this sombra;
 #   - lintian reports no error (its warnings are printed; docs/install.md
 #     says which remain and why);
-#   - the package extracted into a throwaway folder (dpkg -x, nothing is
-#     installed on this system) runs: bin/sombra --version and a render, and
-#     /usr/bin/python3 imports sombra from the extracted tree and renders.
-# Prints the .deb's path last. CI (.ci/run) runs it after tools/test.sh.
+#   - the packages extracted into a throwaway folder (dpkg -x, nothing is
+#     installed on this system) run: bin/sombra --version and a render, and
+#     /usr/bin/python3 imports sombra from the extracted tree and renders;
+#     sombra alone refuses mpirun in one line, and with sombra-mpi beside it
+#     mpirun -np 2 writes the single process's bytes.
+# Prints the .debs' paths last. CI (.ci/run) runs it after tools/test.sh.
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 cd "$root"
@@ -18,7 +22,7 @@ fail() {
 
 tools/build.sh >/dev/null
 out=build/release/package
-rm -f "$out"/sombra_*.deb
+rm -f "$out"/sombra_*.deb "$out"/sombra-mpi_*.deb
 cpack --config build/release/CPackConfig.cmake -B "$out" >"$out.log" 2>&1 || {
     cat "$out.log" >&2
     fail "cpack failed (its log: $out.log)"
@@ -26,8 +30,12 @@ cpack --config build/release/CPackConfig.cmake -B "$out" >"$out.log" 2>&1 || {
 debs=("$out"/sombra_*.deb)
 [ ${#debs[@]} -eq 1 ] && [ -f "${debs[0]}" ] || fail "cpack made no single sombra_*.deb in $out"
 deb="${debs[0]}"
+mpi_debs=("$out"/sombra-mpi_*.deb)
+mpi_deb=""
+[ -f "${mpi_debs[0]}" ] && mpi_deb="${mpi_debs[0]}"
+[ -n "$mpi_deb" ] || [ -z "${SOMBRA_REQUIRE_MPI:-}" ] || fail "cpack made no sombra-mpi_*.deb (is Open MPI installed?)"
 echo "== package: $deb"
-dpkg-deb -f "$deb" Package Version Architecture Depends Section
+dpkg-deb -f "$deb" Package Version Architecture Depends Suggests Section
 
 echo "== package: contents (dpkg-deb -c)"
 contents="$(dpkg-deb -c "$deb" | awk '{print $NF}')"
@@ -47,10 +55,21 @@ depends="$(dpkg-deb -f "$deb" Depends)"
 for needed in libtbb12 libpng16-16 python3-numpy 'python3 (>='; do
     grep -qF "$needed" <<<"$depends" || fail "$deb's Depends lacks $needed: $depends"
 done
+! grep -qi "mpi" <<<"$depends" || fail "$deb depends on MPI, which only sombra-mpi should: $depends"
+if [ -n "$mpi_deb" ]; then
+    echo "== package: $mpi_deb"
+    dpkg-deb -f "$mpi_deb" Package Version Architecture Depends Section
+    dpkg-deb -c "$mpi_deb" | awk '{print $NF}' | grep -qxF ./usr/lib/sombra/plugins/libsombra_mpi.so ||
+        fail "$mpi_deb lacks ./usr/lib/sombra/plugins/libsombra_mpi.so"
+    mpi_depends="$(dpkg-deb -f "$mpi_deb" Depends)"
+    for needed in libopenmpi "sombra (= $(dpkg-deb -f "$deb" Version))"; do
+        grep -qF "$needed" <<<"$mpi_depends" || fail "$mpi_deb's Depends lacks $needed: $mpi_depends"
+    done
+fi
 
 echo "== package: lintian (fails on errors; warnings listed)"
 if command -v lintian >/dev/null; then
-    lintian --fail-on error --tag-display-limit 0 "$deb" || fail "lintian reports errors on $deb"
+    lintian --fail-on error --tag-display-limit 0 "$deb" $mpi_deb || fail "lintian reports errors on $deb $mpi_deb"
 else
     echo "lintian is not installed (tools/install-deps.sh --test installs it): not run"
     [ -z "${SOMBRA_REQUIRE_LINTIAN:-}" ] || fail "lintian is missing and SOMBRA_REQUIRE_LINTIAN is set"
@@ -77,4 +96,21 @@ img = sombra.render(sombra.load("scenes/cornell-box.json"), width=16, height=16,
 assert img.shape == (16, 16, 3) and img.max() > 0
 print("import sombra from", sombra.__file__, "renders", img.shape)' "$tree" ||
     fail "/usr/bin/python3 cannot import and render with sombra from the extracted package"
+
+# mpirun: refused in one line without the plugin, the single process's bytes with it.
+if [ -n "$mpi_deb" ] && command -v mpirun >/dev/null; then
+    echo "== package: mpirun without and with sombra-mpi"
+    mpi_run() {
+        OMPI_MCA_btl_vader_single_copy_mechanism=none timeout -k 5 60 mpirun --allow-run-as-root --oversubscribe \
+            -np 2 "$tree/usr/bin/sombra" render scenes/cornell-box.json --width 48 --height 32 --quiet -o "$1"
+    }
+    if mpi_run "$tree/mpi.png" 2>"$tree/mpi.err"; then fail "the sombra package alone ran under mpirun"; fi
+    grep -q "install the sombra-mpi package" "$tree/mpi.err" || fail "without sombra-mpi, mpirun said: $(cat "$tree/mpi.err")"
+    dpkg -x "$mpi_deb" "$tree"
+    mpi_run "$tree/mpi.png" || fail "with sombra-mpi extracted beside it, mpirun -np 2 sombra failed"
+    "$tree/usr/bin/sombra" render scenes/cornell-box.json --width 48 --height 32 --quiet -o "$tree/one.png"
+    cmp -s "$tree/mpi.png" "$tree/one.png" || fail "mpirun -np 2 wrote other bytes than one process"
+    echo "mpirun -np 2 from the extracted packages wrote the single process's image"
+fi
 echo "$deb"
+[ -z "$mpi_deb" ] || echo "$mpi_deb"

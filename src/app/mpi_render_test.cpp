@@ -136,6 +136,19 @@ TEST_F(Mpi, OptionsThatCannotBeSplitAreRefused) {
     }
 }
 
+TEST_F(Mpi, WithoutItsPluginMpirunIsRefusedInOneLine) {
+    // The MPI plugin (libsombra_mpi.so, the sombra-mpi package) is missing:
+    // mpirun's ranks refuse, rank 0 says why, and a plain run is unaffected.
+    const RunResult r = mpirun(2, "render s.json -q -o out.png", "SOMBRA_PLUGIN_DIR=/nonexistent");
+    EXPECT_NE(r.status, 0);
+    EXPECT_NE(r.err.find("sombra: error: command line: this sombra cannot run under mpirun: its MPI plugin "
+                         "libsombra_mpi.so is not in /nonexistent (install the sombra-mpi package"),
+              std::string::npos)
+        << r.err;
+    EXPECT_FALSE(fs::exists(dir_ / "out.png"));
+    EXPECT_EQ(run("render s.json -q -o out.png", 0, "SOMBRA_PLUGIN_DIR=/nonexistent").status, 0);
+}
+
 TEST_F(Mpi, WithoutALauncherNoMpiStarts) {
     // An Open MPI that had to start would fail with this (MPI_Init aborts on
     // an unknown component), so a run that succeeds never called it.

@@ -173,7 +173,9 @@ void silence_stderr() {
 // budget, a stopping rule reads neighbours in other blocks), --shard,
 // --display-server, or a build without MPI.
 std::optional<std::string> mpi_option_problem(const CliOptions& o) {
-    if (!mpi_built()) return "this sombra was built without MPI: run it without mpirun, or rebuild with Open MPI";
+    if (std::string why; !mpi_available(&why))
+        return "this sombra cannot run under mpirun: its MPI plugin " + why +
+               " (install the sombra-mpi package, or build with Open MPI)";
     if (o.sharded) return "--shard and mpirun cannot go together: mpirun already splits the work";
     if (!o.display_server.empty()) return "--display-server and mpirun cannot go together";
     if (!o.first_frame && o.render.time_budget)

@@ -13,9 +13,8 @@
 #include <thread>
 #include <vector>
 
-#ifdef SOMBRA_HAVE_MPI
-#include <mpi.h>
-#endif
+#include "core/plugin.h"
+#include "distributed/mpi_plugin.h"
 
 namespace sombra {
 
@@ -28,7 +27,17 @@ int env_int(std::initializer_list<const char*> names, int fallback) {
     return fallback;
 }
 
-#ifdef SOMBRA_HAVE_MPI
+// The MPI plugin's calls, or null with the reason in *why_not.
+const SombraMpiApi* load_mpi_api(std::string* why_not) {
+    const std::optional<PluginSymbol> entry = find_plugin_symbol("libsombra_mpi.so", kSombraMpiEntry, why_not);
+    if (!entry) return nullptr;
+    const SombraMpiApi* api = reinterpret_cast<SombraMpiApiEntry>(entry->address)();
+    if (api == nullptr || api->abi != kSombraMpiAbi) {
+        if (why_not != nullptr) *why_not = entry->path + " belongs to another version of sombra";
+        return nullptr;
+    }
+    return api;
+}
 
 constexpr int kReadyTag = 1;   // a worker's first request: no pixels yet
 constexpr int kResultTag = 2;  // a block's floats, and a request for the next
@@ -119,14 +128,12 @@ void maybe_die_for_test(int rank) {
     if (victim && std::atoi(victim) == rank) std::raise(SIGKILL);
 }
 
-RayCounters reduce_counters(const RayCounters& mine) {
+RayCounters reduce_counters(const SombraMpiApi& mpi, const RayCounters& mine) {
     std::array<std::uint64_t, 4> local{mine.camera_rays, mine.shadow_rays, mine.bounce_rays, mine.nonfinite_samples};
     std::array<std::uint64_t, 4> total{};
-    MPI_Reduce(local.data(), total.data(), 4, MPI_UINT64_T, MPI_SUM, 0, MPI_COMM_WORLD);
+    mpi.sum_on_rank0(local.data(), total.data(), 4);
     return {total[0], total[1], total[2], total[3]};
 }
-
-#endif
 
 }  // namespace
 
@@ -135,13 +142,7 @@ LaunchedRanks launched_ranks() {
             env_int({"OMPI_COMM_WORLD_SIZE", "PMI_SIZE"}, 1)};
 }
 
-bool mpi_built() {
-#ifdef SOMBRA_HAVE_MPI
-    return true;
-#else
-    return false;
-#endif
-}
+bool mpi_available(std::string* why_not) { return load_mpi_api(why_not) != nullptr; }
 
 int MpiRun::threads_per_rank(int asked) const {
     if (asked > 0 || !active()) return asked;
@@ -149,43 +150,40 @@ int MpiRun::threads_per_rank(int asked) const {
     return std::max(1, tbb::info::default_concurrency() / local);
 }
 
-#ifdef SOMBRA_HAVE_MPI
-
 MpiRun::MpiRun() {
     if (launched_ranks().size <= 1) return;
+    mpi_ = load_mpi_api(nullptr);  // run_render checked it is there (mpi_available)
+    if (mpi_ == nullptr) return;
     // Only this (the main) thread calls MPI; rank 0's render thread does not.
-    int provided = 0;
-    MPI_Init_thread(nullptr, nullptr, MPI_THREAD_FUNNELED, &provided);
-    MPI_Comm_rank(MPI_COMM_WORLD, &rank_);
-    MPI_Comm_size(MPI_COMM_WORLD, &size_);
+    mpi_->init(&rank_, &size_);
 }
 
 MpiRun::~MpiRun() {
-    if (active()) MPI_Finalize();
+    if (active()) mpi_->finalize();
 }
 
 void MpiRun::abort(int status) const {
-    MPI_Abort(MPI_COMM_WORLD, status);
-    std::_Exit(status);  // not reached: MPI_Abort does not return
+    if (active()) mpi_->abort(status);
+    std::_Exit(status);
 }
 
 RayCounters MpiRun::sum(const RayCounters& mine) const {
     if (!active()) return mine;
-    const RayCounters total = reduce_counters(mine);
+    const RayCounters total = reduce_counters(*mpi_, mine);
     return rank_ == 0 ? total : mine;
 }
 
 RenderOutput MpiRun::render(RenderJob job, RenderProgress& progress) const {
+    if (!active()) return render_image(job, progress);
     // The pixels rendered: the --crop window, or the whole image.
     const PixelWindow region = job.window.value_or(PixelWindow{0, 0, job.settings.width, job.settings.height});
     const int blocks = block_count(region);
     RenderOutput out;
     if (rank_ != 0) {
         // A worker: ask, render, send back (which asks again), until told −1.
-        MPI_Send(nullptr, 0, MPI_FLOAT, 0, kReadyTag, MPI_COMM_WORLD);
+        mpi_->send_floats(nullptr, 0, 0, kReadyTag);
         for (bool first = true;; first = false) {
-            int b = -1;
-            MPI_Recv(&b, 1, MPI_INT, 0, kWorkTag, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
+            const int b = mpi_->receive_int(0, kWorkTag);
             if (b < 0) break;
             RenderOutput block = render_block(job, region, b, progress);
             if (block.cancelled) {
@@ -195,7 +193,7 @@ RenderOutput MpiRun::render(RenderJob job, RenderProgress& progress) const {
             out.counters += block.counters;
             if (first) maybe_die_for_test(rank_);
             const std::vector<float> floats = pack(block, job.aovs);
-            MPI_Send(floats.data(), static_cast<int>(floats.size()), MPI_FLOAT, 0, kResultTag, MPI_COMM_WORLD);
+            mpi_->send_floats(floats.data(), static_cast<int>(floats.size()), 0, kResultTag);
         }
         out.counters = sum(out.counters);
         return out;
@@ -221,20 +219,15 @@ RenderOutput MpiRun::render(RenderJob job, RenderProgress& progress) const {
     std::vector<float> floats;
     const std::uint64_t block_samples_per_pixel = static_cast<std::uint64_t>(job.settings.spp);
     for (int stopped = 0; stopped < size_ - 1 && !progress.cancel.load();) {
-        int arrived = 0;
-        MPI_Status status;
-        MPI_Iprobe(MPI_ANY_SOURCE, MPI_ANY_TAG, MPI_COMM_WORLD, &arrived, &status);
-        if (!arrived) {
+        int source = 0, tag = 0, count = 0;
+        if (!mpi_->probe(&source, &tag, &count)) {
             // Polling with a nap, not a blocking receive: Open MPI's spins a core.
             std::this_thread::sleep_for(std::chrono::microseconds(200));
             continue;
         }
-        int count = 0;
-        MPI_Get_count(&status, MPI_FLOAT, &count);
         floats.resize(static_cast<std::size_t>(count));
-        const int source = status.MPI_SOURCE;
-        MPI_Recv(floats.data(), count, MPI_FLOAT, source, status.MPI_TAG, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
-        if (status.MPI_TAG == kResultTag) {
+        mpi_->receive_floats(floats.data(), count, source, tag);
+        if (tag == kResultTag) {
             const PixelWindow w = block_window(assigned[static_cast<std::size_t>(source)], region);
             {
                 const std::lock_guard<std::mutex> lock(placing);
@@ -249,7 +242,7 @@ RenderOutput MpiRun::render(RenderJob job, RenderProgress& progress) const {
             ++stopped;
         }
         assigned[static_cast<std::size_t>(source)] = b;
-        MPI_Send(&b, 1, MPI_INT, source, kWorkTag, MPI_COMM_WORLD);
+        mpi_->send_int(b, source, kWorkTag);
     }
     renderer.join();
     out.cancelled = progress.cancel.load();
@@ -263,14 +256,5 @@ RenderOutput MpiRun::render(RenderJob job, RenderProgress& progress) const {
     return out;
 }
 
-#else
-
-MpiRun::MpiRun() = default;
-MpiRun::~MpiRun() = default;
-void MpiRun::abort(int status) const { std::_Exit(status); }
-RayCounters MpiRun::sum(const RayCounters& mine) const { return mine; }
-RenderOutput MpiRun::render(RenderJob job, RenderProgress& progress) const { return render_image(job, progress); }
-
-#endif
 
 }  // namespace sombra

@@ -10,6 +10,8 @@
 
 #include "render/render.h"
 
+struct SombraMpiApi;  // distributed/mpi_plugin.h
+
 namespace sombra {
 
 // This process's rank and the number of ranks, as the launcher's environment
@@ -20,8 +22,9 @@ struct LaunchedRanks {
 };
 LaunchedRanks launched_ranks();
 
-// Whether this build can run as several MPI ranks (built with Open MPI).
-bool mpi_built();
+// Whether this sombra can run as several MPI ranks: its MPI plugin
+// (libsombra_mpi.so, mpi_plugin.h) is there and loads; if not, why not.
+bool mpi_available(std::string* why_not = nullptr);
 
 // MPI for one `sombra render`: initialised only when launched as one of
 // several ranks, finalised at the end.
@@ -32,7 +35,7 @@ public:
     MpiRun(const MpiRun&) = delete;
     MpiRun& operator=(const MpiRun&) = delete;
 
-    bool active() const { return size_ > 1; }
+    bool active() const { return mpi_ != nullptr && size_ > 1; }
     int rank() const { return rank_; }
     int size() const { return size_; }
 
@@ -53,6 +56,7 @@ public:
     RayCounters sum(const RayCounters& mine) const;
 
 private:
+    const SombraMpiApi* mpi_ = nullptr;  // the plugin's calls, under a launcher
     int rank_ = 0;
     int size_ = 1;
 };
