@@ -7,7 +7,7 @@
 #include <cstdio>
 
 #ifdef SOMBRA_HAVE_EMBREE
-#include "accel/embree_backend.h"
+#include "accel/embree_plugin.h"
 #endif
 
 namespace sombra::bench {
@@ -19,7 +19,9 @@ Accel make_compared_accel(const Scene& scene, AccelKind kind, const EmbreeSettin
         accel.kind = kind;
         accel.mesh = &scene.geometry;
         accel.cutouts = make_cutouts(scene.geometry, scene.materials, scene.textures);
-        accel.embree = make_embree_scene(scene, accel.cutouts, embree.quality == EmbreeQuality::High, embree.robust);
+        accel.embree_api = &embree_plugin();  // as sombra render --accel embree reaches it
+        accel.embree =
+            accel.embree_api->make_scene(scene, accel.cutouts, embree.quality == EmbreeQuality::High, embree.robust);
         return accel;
     }
 #endif

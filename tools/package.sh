@@ -4,13 +4,15 @@
 #     package, the copyright and changelog; its Depends name the libraries
 #     and Python, and no MPI (it only suggests sombra-mpi);
 #   - sombra-mpi: the MPI plugin, depending on Open MPI and this sombra;
+#     sombra-embree: the Embree plugin, depending on Embree and this sombra;
 #   - lintian reports no error (its warnings are printed; docs/install.md
 #     says which remain and why);
 #   - the packages extracted into a throwaway folder (dpkg -x, nothing is
 #     installed on this system) run: bin/sombra --version and a render, and
 #     /usr/bin/python3 imports sombra from the extracted tree and renders;
-#     sombra alone refuses mpirun in one line, and with sombra-mpi beside it
-#     mpirun -np 2 writes the single process's bytes.
+#     sombra alone refuses mpirun and --accel embree in one line; with
+#     sombra-mpi beside it mpirun -np 2 writes the single process's bytes,
+#     with sombra-embree --accel embree renders.
 # Prints the .debs' paths last. CI (.ci/run) runs it after tools/test.sh.
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
@@ -22,7 +24,7 @@ fail() {
 
 tools/build.sh >/dev/null
 out=build/release/package
-rm -f "$out"/sombra_*.deb "$out"/sombra-mpi_*.deb
+rm -f "$out"/sombra_*.deb "$out"/sombra-mpi_*.deb "$out"/sombra-embree_*.deb
 cpack --config build/release/CPackConfig.cmake -B "$out" >"$out.log" 2>&1 || {
     cat "$out.log" >&2
     fail "cpack failed (its log: $out.log)"
@@ -34,6 +36,9 @@ mpi_debs=("$out"/sombra-mpi_*.deb)
 mpi_deb=""
 [ -f "${mpi_debs[0]}" ] && mpi_deb="${mpi_debs[0]}"
 [ -n "$mpi_deb" ] || [ -z "${SOMBRA_REQUIRE_MPI:-}" ] || fail "cpack made no sombra-mpi_*.deb (is Open MPI installed?)"
+embree_debs=("$out"/sombra-embree_*.deb)
+embree_deb=""
+[ -f "${embree_debs[0]}" ] && embree_deb="${embree_debs[0]}"
 echo "== package: $deb"
 dpkg-deb -f "$deb" Package Version Architecture Depends Suggests Section
 
@@ -56,6 +61,7 @@ for needed in libtbb12 libpng16-16 python3-numpy 'python3 (>='; do
     grep -qF "$needed" <<<"$depends" || fail "$deb's Depends lacks $needed: $depends"
 done
 ! grep -qi "mpi" <<<"$depends" || fail "$deb depends on MPI, which only sombra-mpi should: $depends"
+! grep -qi "embree" <<<"$depends" || fail "$deb depends on Embree, which only sombra-embree should: $depends"
 if [ -n "$mpi_deb" ]; then
     echo "== package: $mpi_deb"
     dpkg-deb -f "$mpi_deb" Package Version Architecture Depends Section
@@ -66,10 +72,21 @@ if [ -n "$mpi_deb" ]; then
         grep -qF "$needed" <<<"$mpi_depends" || fail "$mpi_deb's Depends lacks $needed: $mpi_depends"
     done
 fi
+if [ -n "$embree_deb" ]; then
+    echo "== package: $embree_deb"
+    dpkg-deb -f "$embree_deb" Package Version Architecture Depends Section
+    dpkg-deb -c "$embree_deb" | awk '{print $NF}' | grep -qxF ./usr/lib/sombra/plugins/libsombra_embree.so ||
+        fail "$embree_deb lacks ./usr/lib/sombra/plugins/libsombra_embree.so"
+    embree_depends="$(dpkg-deb -f "$embree_deb" Depends)"
+    for needed in libembree3 "sombra (= $(dpkg-deb -f "$deb" Version))"; do
+        grep -qF "$needed" <<<"$embree_depends" || fail "$embree_deb's Depends lacks $needed: $embree_depends"
+    done
+fi
 
 echo "== package: lintian (fails on errors; warnings listed)"
 if command -v lintian >/dev/null; then
-    lintian --fail-on error --tag-display-limit 0 "$deb" $mpi_deb || fail "lintian reports errors on $deb $mpi_deb"
+    lintian --fail-on error --tag-display-limit 0 "$deb" $mpi_deb $embree_deb ||
+        fail "lintian reports errors on $deb $mpi_deb $embree_deb"
 else
     echo "lintian is not installed (tools/install-deps.sh --test installs it): not run"
     [ -z "${SOMBRA_REQUIRE_LINTIAN:-}" ] || fail "lintian is missing and SOMBRA_REQUIRE_LINTIAN is set"
@@ -112,5 +129,18 @@ if [ -n "$mpi_deb" ] && command -v mpirun >/dev/null; then
     cmp -s "$tree/mpi.png" "$tree/one.png" || fail "mpirun -np 2 wrote other bytes than one process"
     echo "mpirun -np 2 from the extracted packages wrote the single process's image"
 fi
+# --accel embree: refused in one line without its plugin, rendered with it.
+if [ -n "$embree_deb" ]; then
+    echo "== package: --accel embree without and with sombra-embree"
+    embree_run() { "$tree/usr/bin/sombra" render scenes/cornell-box.json --width 48 --height 32 --accel embree --quiet -o "$tree/embree.png"; }
+    if embree_run 2>"$tree/embree.err"; then fail "the sombra package alone rendered with --accel embree"; fi
+    grep -q "install the sombra-embree package" "$tree/embree.err" ||
+        fail "without sombra-embree, --accel embree said: $(cat "$tree/embree.err")"
+    dpkg -x "$embree_deb" "$tree"
+    embree_run || fail "with sombra-embree extracted beside it, --accel embree failed"
+    [ -s "$tree/embree.png" ] || fail "--accel embree wrote no image"
+    echo "--accel embree renders from the extracted packages"
+fi
 echo "$deb"
 [ -z "$mpi_deb" ] || echo "$mpi_deb"
+[ -z "$embree_deb" ] || echo "$embree_deb"

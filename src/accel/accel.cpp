@@ -3,7 +3,7 @@
 
 #include <cassert>
 
-#include "accel/embree_backend.h"
+#include "accel/embree_plugin.h"
 #include "accel/instance_level.h"
 #include "accel/triangle.h"
 
@@ -80,7 +80,10 @@ Accel make_accel(const TriangleMesh& mesh, AccelKind kind, Cutouts cutouts) {
     accel.cutouts = cutouts;
     if (kind == AccelKind::Bvh) accel.bvh = make_bvh(mesh);
 #ifdef SOMBRA_HAVE_EMBREE
-    if (kind == AccelKind::Embree) accel.embree = make_embree_scene(mesh, accel.cutouts);
+    if (kind == AccelKind::Embree) {
+        accel.embree_api = &embree_plugin();
+        accel.embree = accel.embree_api->make_mesh_scene(mesh, accel.cutouts, false, false);
+    }
 #endif
     return accel;
 }
@@ -94,7 +97,8 @@ Accel make_accel(const Scene& scene, AccelKind kind) {
         accel.kind = kind;
         accel.mesh = &scene.geometry;
         accel.cutouts = make_cutouts(scene.geometry, scene.materials, scene.textures);
-        accel.embree = make_embree_scene(scene, accel.cutouts);
+        accel.embree_api = &embree_plugin();
+        accel.embree = accel.embree_api->make_scene(scene, accel.cutouts, false, false);
         return accel;
     }
 #endif
@@ -121,7 +125,8 @@ namespace {
 [[gnu::noinline]] bool intersect_other(const Accel& accel, const Ray& ray, Hit& hit) {
     if (!is_traceable(ray)) return false;
 #ifdef SOMBRA_HAVE_EMBREE
-    if (accel.kind == AccelKind::Embree) return accel.embree != nullptr && intersect_embree(*accel.embree, ray, hit);
+    if (accel.kind == AccelKind::Embree)
+        return accel.embree != nullptr && accel.embree_api->intersect(*accel.embree, ray, hit);
 #endif
     return intersect_brute(*accel.mesh, accel.cutouts, ray, hit);
 }
@@ -129,7 +134,8 @@ namespace {
 [[gnu::noinline]] bool occluded_other(const Accel& accel, const Ray& ray) {
     if (!is_traceable(ray)) return false;
 #ifdef SOMBRA_HAVE_EMBREE
-    if (accel.kind == AccelKind::Embree) return accel.embree != nullptr && occluded_embree(*accel.embree, ray);
+    if (accel.kind == AccelKind::Embree)
+        return accel.embree != nullptr && accel.embree_api->occluded(*accel.embree, ray);
 #endif
     return occluded_brute(*accel.mesh, accel.cutouts, ray);
 }
@@ -185,7 +191,7 @@ std::size_t accel_memory_bytes(const Accel& accel) {
     const std::size_t instances = accel.instances != nullptr ? instance_level_memory_bytes(*accel.instances) : 0;
 #ifdef SOMBRA_HAVE_EMBREE
     if (accel.kind == AccelKind::Embree)
-        return instances + (accel.embree != nullptr ? embree_memory_bytes(*accel.embree) : 0);
+        return instances + (accel.embree != nullptr ? accel.embree_api->memory_bytes(*accel.embree) : 0);
 #endif
     return instances + (accel.kind == AccelKind::Bvh ? bvh_memory_bytes(accel.bvh) : 0);
 }

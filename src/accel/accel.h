@@ -57,6 +57,7 @@ std::string_view accel_name(AccelKind kind);
 std::vector<std::string_view> available_accels();
 
 struct EmbreeScene;    // accel/embree_backend.h
+struct EmbreeApi;      // accel/embree_plugin.h
 struct InstanceLevel;  // accel/instance_level.h
 
 struct Accel {
@@ -68,6 +69,7 @@ struct Accel {
     Cutouts cutouts;
 #ifdef SOMBRA_HAVE_EMBREE
     std::shared_ptr<const EmbreeScene> embree;  // null unless kind == Embree
+    const EmbreeApi* embree_api = nullptr;      // the plugin's calls on it (accel/embree_plugin.h)
 #endif
     // The scene's instances (spec §23): one structure per instanced mesh and
     // a tree over the instances' world bounds; null when there are none.
@@ -77,7 +79,8 @@ struct Accel {
 // Builds the structure for `mesh` (world space). The mesh must stay alive and
 // unchanged while the Accel is used. Brute builds nothing; Bvh builds in
 // parallel (TBB) and deterministically: the same tree for any thread count.
-// Embree builds its own BVH (and may throw Error("embree", ...)). With
+// Embree builds its own BVH in its plugin (and may throw Error("embree",
+// ...), or Error("--accel", ...) when the plugin is missing). With
 // active `cutouts` (over the same mesh, outliving the Accel), queries ignore
 // the cut-out parts of surfaces as if they were not there.
 Accel make_accel(const TriangleMesh& mesh, AccelKind kind, Cutouts cutouts = {});

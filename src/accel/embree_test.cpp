@@ -13,8 +13,8 @@
 
 #include "accel/accel.h"
 #include "accel/accel_test_util.h"
-#include "accel/embree_backend.h"
 #include "accel/embree_image_compare.h"
+#include "accel/embree_plugin.h"
 #include "io/mesh_file.h"
 #include "io/scene_json/scene_file.h"
 #include "render/render.h"
@@ -158,7 +158,8 @@ Agreement compare_with_bvh(const TriangleMesh& mesh, const std::vector<Ray>& ray
     Accel embree;
     embree.kind = AccelKind::Embree;
     embree.mesh = &mesh;
-    embree.embree = make_embree_scene(mesh, {}, high_quality);
+    embree.embree_api = &embree_plugin();
+    embree.embree = embree.embree_api->make_mesh_scene(mesh, {}, high_quality, false);
     constexpr float kEdge = 1e-4f;  // a weight this small is within rounding of an edge
     Agreement a;
     for (const Ray& ray : rays) {

@@ -50,7 +50,8 @@ std::optional<PluginSymbol> find_plugin_symbol(const std::string& file, const ch
         void* handle = ::dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL);
         if (handle == nullptr) {
             const char* error = ::dlerror();
-            if (why_not != nullptr) *why_not = "cannot load " + path.string() + ": " + (error ? error : "unknown error");
+            if (why_not != nullptr)
+                *why_not = "cannot load " + path.string() + ": " + (error ? error : "unknown error");
             return std::nullopt;
         }
         void* address = ::dlsym(handle, symbol);

@@ -52,8 +52,8 @@ void sum_on_rank0(const std::uint64_t* mine, std::uint64_t* total, int count) {
     MPI_Reduce(mine, total, count, MPI_UINT64_T, MPI_SUM, 0, MPI_COMM_WORLD);
 }
 
-const SombraMpiApi kApi{sombra::kSombraMpiAbi, init,         finalize,       abort_all,   send_floats, send_int,
-                        receive_int,           probe,        receive_floats, sum_on_rank0};
+const SombraMpiApi kApi{sombra::kSombraMpiAbi, init,  finalize,       abort_all,   send_floats, send_int,
+                        receive_int,           probe, receive_floats, sum_on_rank0};
 
 }  // namespace
 

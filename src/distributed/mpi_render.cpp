@@ -256,5 +256,4 @@ RenderOutput MpiRun::render(RenderJob job, RenderProgress& progress) const {
     return out;
 }
 
-
 }  // namespace sombra

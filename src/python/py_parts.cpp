@@ -134,8 +134,8 @@ void bind_parts(py::module_& m) {
         "triangle_count", [](const LoadedMesh& mesh) { return mesh.mesh.triangle_count(); });
     m.def("make_mesh", &make_mesh, py::arg("positions"), py::arg("indices"), py::arg("normals"), py::arg("uvs"),
           py::arg("where"));
-    m.def("check_part", &check_part, py::arg("kind"), py::arg("text"), py::arg("pointer"),
-          py::arg("name") = kSceneName, py::arg("folder") = ".");
+    m.def("check_part", &check_part, py::arg("kind"), py::arg("text"), py::arg("pointer"), py::arg("name") = kSceneName,
+          py::arg("folder") = ".");
 }
 
 }  // namespace sombra::python

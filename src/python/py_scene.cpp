@@ -115,7 +115,8 @@ void bind_scene(py::module_& m) {
     m.def("load_text", &load_text, py::arg("text"), py::arg("name"), py::arg("overrides"),
           py::arg("meshes") = std::vector<std::shared_ptr<LoadedMesh>>{},
           py::arg("cache") = std::shared_ptr<MeshFileCache>{});
-    m.def("read_scene_text", [](const std::string& path) { return read_scene_text(path); }, py::arg("path"));
+    m.def(
+        "read_scene_text", [](const std::string& path) { return read_scene_text(path); }, py::arg("path"));
 }
 
 }  // namespace sombra::python

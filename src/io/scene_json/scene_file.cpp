@@ -80,8 +80,8 @@ void read_object_file(const SceneJson& s, const Json& v, std::string_view pointe
 
 ObjectSpec read_object(const SceneJson& s, const Json& v, std::string_view pointer, const fs::path& scene_path,
                        const std::map<std::string, std::uint32_t, std::less<>>& material_index,
-                       std::span<const LoadedMesh* const> given_meshes, const MeshFileCache* cache,
-                       double start_time, const Scene& scene) {
+                       std::span<const LoadedMesh* const> given_meshes, const MeshFileCache* cache, double start_time,
+                       const Scene& scene) {
     ObjectSpec spec;
     spec.pointer = std::string(pointer);
     if (given_meshes.empty()) {
@@ -384,8 +384,8 @@ LoadedScene load_scene_text(const std::string& text, const fs::path& path, Diagn
     std::vector<ObjectSpec> specs;
     specs.reserve(objects.size());
     for (std::size_t i = 0; i < objects.size(); ++i)
-        specs.push_back(read_object(s, objects[i], json_child("/objects", i), path, material_index, given_meshes,
-                                    cache, start_time, builder.scene()));
+        specs.push_back(read_object(s, objects[i], json_child("/objects", i), path, material_index, given_meshes, cache,
+                                    start_time, builder.scene()));
     for (ObjectSpec& spec : specs)
         if (spec.interface) spec.material = builder.interface_material();
     place_grid_media(s, specs, builder);
