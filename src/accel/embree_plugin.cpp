@@ -23,6 +23,4 @@ const EmbreeApi kApi{kEmbreeApiAbi, mesh_scene, scene_scene, intersect_embree, o
 }  // namespace
 }  // namespace sombra
 
-extern "C" __attribute__((visibility("default"))) const sombra::EmbreeApi* sombra_embree_api() {
-    return &sombra::kApi;
-}
+extern "C" __attribute__((visibility("default"))) const sombra::EmbreeApi* sombra_embree_api() { return &sombra::kApi; }

@@ -40,3 +40,6 @@ using EmbreeApiEntry = const EmbreeApi* (*)();
 const EmbreeApi& embree_plugin();
 
 }  // namespace sombra
+
+// The plugin's one exported function (embree_plugin.cpp).
+extern "C" const sombra::EmbreeApi* sombra_embree_api();

@@ -28,6 +28,9 @@ int env_int(std::initializer_list<const char*> names, int fallback) {
 }
 
 // The MPI plugin's calls, or null with the reason in *why_not.
+#ifdef SOMBRA_STATIC_PLUGINS
+const SombraMpiApi* load_mpi_api(std::string*) { return sombra_mpi_api(); }  // compiled in
+#else
 const SombraMpiApi* load_mpi_api(std::string* why_not) {
     const std::optional<PluginSymbol> entry = find_plugin_symbol("libsombra_mpi.so", kSombraMpiEntry, why_not);
     if (!entry) return nullptr;
@@ -38,6 +41,7 @@ const SombraMpiApi* load_mpi_api(std::string* why_not) {
     }
     return api;
 }
+#endif
 
 constexpr int kReadyTag = 1;   // a worker's first request: no pixels yet
 constexpr int kResultTag = 2;  // a block's floats, and a request for the next
