@@ -301,10 +301,12 @@ void choose_candidates(NforPasses& s, const Guide& mean_guide, int threads, cons
     }
 }
 
-// Under `cancel`, once it is true the passes go on to their end without
-// filtering: their values are then unfinished.
+// Under `cancel`, once it is true the passes stop at the end of the stage
+// under way (a stage's filters skip their remaining tiles): their values
+// are then unfinished.
 NforPasses run_passes(const DenoiseLayers& layers, int threads, const std::atomic<bool>* cancel, DenoiseTimes& times,
                       Keep keep) {
+    const auto cancelled = [cancel] { return cancel != nullptr && cancel->load(); };
     Clock::time_point start = Clock::now();
     const int w = layers.width, h = layers.height;
     NforPasses s;
@@ -322,6 +324,7 @@ NforPasses run_passes(const DenoiseLayers& layers, int threads, const std::atomi
                                                kFeaturePrefilter, threads, cancel);
     }
     times.features += lap(start);
+    if (cancelled()) return s;
 
     for (int half = 0; half < 2; ++half) s.guide[half] = demodulated(s.color[half], s.half_variance, s.features[half]);
     Raster mean_features = pointwise(s.features[0], s.features[1], [](float a, float b) { return 0.5f * (a + b); });
@@ -338,12 +341,14 @@ NforPasses run_passes(const DenoiseLayers& layers, int threads, const std::atomi
     if (keep == Keep::Image)
         for (Guide& g : s.guide) release(g.color), release(g.variance);
     times.regression += lap(start);
+    if (cancelled()) return s;
     {
         const Raster mean_color = pointwise(s.color[0], s.color[1], [](float a, float b) { return 0.5f * (a + b); });
         const Raster variance = pointwise(s.half_variance, s.half_variance, [](float v, float) { return 0.5f * v; });
         choose_candidates(s, demodulated(mean_color, variance, mean_features), threads, cancel);
     }
     times.selection += lap(start);
+    if (cancelled()) return s;
 
     Raster result[2];
     for (int half = 0; half < 2; ++half) {
