@@ -214,7 +214,8 @@ TEST_F(Everyday, ADenoisedCropIsItsWindowOfTheWholeDenoisedRender) {
             if (exr.values.size() != 1) return out;
             for (int y = y0; y < y0 + 31; ++y)
                 for (int x = x0; x < x0 + 40; ++x)
-                    out.push_back(exr.values[0][static_cast<std::size_t>(y * width + x)]);
+                    out.push_back(exr.values[0][static_cast<std::size_t>(y) * static_cast<std::size_t>(width) +
+                                                static_cast<std::size_t>(x)]);
             return out;
         };
         EXPECT_EQ(noisy_red("crop.exr", 0, 0, 40), noisy_red("whole.exr", 131, 90, 200));

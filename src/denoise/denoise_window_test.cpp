@@ -23,7 +23,8 @@ DenoiseLayers layers_with_sky(int width, int height) {
     DenoiseLayers layers = synthetic_layers(width, height, 4, true, 11);
     for (int y = 0; y < height; ++y)
         for (int x = 0; x < width; ++x) {
-            const std::size_t p = static_cast<std::size_t>(y * width + x);
+            const std::size_t p =
+                static_cast<std::size_t>(y) * static_cast<std::size_t>(width) + static_cast<std::size_t>(x);
             const bool sky = y < height / 4 && x < 2 * width / 3;
             for (int h = 0; h < 2; ++h) {
                 layers.depth[h][p] =
@@ -46,7 +47,10 @@ DenoiseLayers cut(const DenoiseLayers& l, PixelRect r) {
         for (int y = r.y0; y < r.y1; ++y)
             for (int x = r.x0; x < r.x1; ++x)
                 for (std::size_t c = 0; c < channels; ++c)
-                    kept.push_back(values[static_cast<std::size_t>(y * l.width + x) * channels + c]);
+                    kept.push_back(values[(static_cast<std::size_t>(y) * static_cast<std::size_t>(l.width) +
+                                           static_cast<std::size_t>(x)) *
+                                              channels +
+                                          c]);
         return kept;
     };
     out.variance = take(l.variance, 3);
@@ -65,7 +69,10 @@ std::vector<float> pixels_of(const std::vector<float>& image, PixelRect area, Pi
     for (int y = kept.y0; y < kept.y1; ++y)
         for (int x = kept.x0; x < kept.x1; ++x)
             for (int c = 0; c < 3; ++c)
-                out.push_back(image[static_cast<std::size_t>((y - area.y0) * area.width() + x - area.x0) * 3 + c]);
+                out.push_back(image[(static_cast<std::size_t>(y - area.y0) * static_cast<std::size_t>(area.width()) +
+                                     static_cast<std::size_t>(x - area.x0)) *
+                                        3 +
+                                    static_cast<std::size_t>(c)]);
     return out;
 }
 
