@@ -29,14 +29,19 @@ namespace {
     std::abort();
 }
 
+// The input written to this process's scratch file with `extension`
+// (".exr", ".pfm"), which the readers take by path.
+std::filesystem::path written_input(const std::uint8_t* data, std::size_t size, const char* extension) {
+    const std::filesystem::path file =
+        std::filesystem::temp_directory_path() / ("sombra-fuzz-shard-" + std::to_string(::getpid()) + extension);
+    std::ofstream out(file, std::ios::binary | std::ios::trunc);
+    out.write(reinterpret_cast<const char*>(data), static_cast<std::streamsize>(size));
+    return file;
+}
+
 // A PFM file: refused with an Error or read whole, its size within the limits.
 void fuzz_pfm(const std::uint8_t* data, std::size_t size) {
-    static const std::filesystem::path file =
-        std::filesystem::temp_directory_path() / ("sombra-fuzz-shard-" + std::to_string(::getpid()) + ".pfm");
-    {
-        std::ofstream out(file, std::ios::binary | std::ios::trunc);
-        out.write(reinterpret_cast<const char*>(data), static_cast<std::streamsize>(size));
-    }
+    const std::filesystem::path file = written_input(data, size, ".pfm");
     try {
         const sombra::PfmImage image = sombra::read_pfm(file);
         if (image.width <= 0 || image.height <= 0 || image.width > sombra::kMaxImageSide ||
@@ -55,12 +60,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
         fuzz_pfm(data, size);
         return 0;
     }
-    static const std::filesystem::path file =
-        std::filesystem::temp_directory_path() / ("sombra-fuzz-shard-" + std::to_string(::getpid()) + ".exr");
-    {
-        std::ofstream out(file, std::ios::binary | std::ios::trunc);
-        out.write(reinterpret_cast<const char*>(data), static_cast<std::streamsize>(size));
-    }
+    const std::filesystem::path file = written_input(data, size, ".exr");
     try {
         const sombra::ExrChannels exr = sombra::read_exr_channels(file);
         if (exr.width <= 0 || exr.height <= 0 || exr.width > sombra::kMaxImageSide ||

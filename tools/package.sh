@@ -62,26 +62,20 @@ for needed in libtbb12 libpng16-16 python3-numpy 'python3 (>='; do
 done
 ! grep -qi "mpi" <<<"$depends" || fail "$deb depends on MPI, which only sombra-mpi should: $depends"
 ! grep -qi "embree" <<<"$depends" || fail "$deb depends on Embree, which only sombra-embree should: $depends"
-if [ -n "$mpi_deb" ]; then
-    echo "== package: $mpi_deb"
-    dpkg-deb -f "$mpi_deb" Package Version Architecture Depends Section
-    dpkg-deb -c "$mpi_deb" | awk '{print $NF}' | grep -qxF ./usr/lib/sombra/plugins/libsombra_mpi.so ||
-        fail "$mpi_deb lacks ./usr/lib/sombra/plugins/libsombra_mpi.so"
-    mpi_depends="$(dpkg-deb -f "$mpi_deb" Depends)"
-    for needed in libopenmpi "sombra (= $(dpkg-deb -f "$deb" Version))"; do
-        grep -qF "$needed" <<<"$mpi_depends" || fail "$mpi_deb's Depends lacks $needed: $mpi_depends"
+# check_plugin_deb DEB PLUGIN LIBRARY: a plugin package holds its plugin and
+# depends on its library's package and on this very sombra.
+check_plugin_deb() {
+    local plugin_deb="$1" plugin="./usr/lib/sombra/plugins/$2" plugin_depends needed
+    echo "== package: $plugin_deb"
+    dpkg-deb -f "$plugin_deb" Package Version Architecture Depends Section
+    dpkg-deb -c "$plugin_deb" | awk '{print $NF}' | grep -qxF "$plugin" || fail "$plugin_deb lacks $plugin"
+    plugin_depends="$(dpkg-deb -f "$plugin_deb" Depends)"
+    for needed in "$3" "sombra (= $(dpkg-deb -f "$deb" Version))"; do
+        grep -qF "$needed" <<<"$plugin_depends" || fail "$plugin_deb's Depends lacks $needed: $plugin_depends"
     done
-fi
-if [ -n "$embree_deb" ]; then
-    echo "== package: $embree_deb"
-    dpkg-deb -f "$embree_deb" Package Version Architecture Depends Section
-    dpkg-deb -c "$embree_deb" | awk '{print $NF}' | grep -qxF ./usr/lib/sombra/plugins/libsombra_embree.so ||
-        fail "$embree_deb lacks ./usr/lib/sombra/plugins/libsombra_embree.so"
-    embree_depends="$(dpkg-deb -f "$embree_deb" Depends)"
-    for needed in libembree3 "sombra (= $(dpkg-deb -f "$deb" Version))"; do
-        grep -qF "$needed" <<<"$embree_depends" || fail "$embree_deb's Depends lacks $needed: $embree_depends"
-    done
-fi
+}
+[ -z "$mpi_deb" ] || check_plugin_deb "$mpi_deb" libsombra_mpi.so libopenmpi
+[ -z "$embree_deb" ] || check_plugin_deb "$embree_deb" libsombra_embree.so libembree3
 
 echo "== package: lintian (fails on errors; warnings listed)"
 if command -v lintian >/dev/null; then
