@@ -1,10 +1,7 @@
 // Ctrl-C and kill during a render: a prompt stop, no output, and an earlier
 // image left exactly as it was.
-#include <arpa/inet.h>
 #include <gtest/gtest.h>
-#include <netinet/in.h>
 #include <signal.h>  // NOLINT(modernize-deprecated-headers): kill() is POSIX, declared here, not in <csignal>
-#include <sys/socket.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -19,6 +16,7 @@
 #include <thread>
 
 #include "cli_test_fixture.h"
+#include "view/view_test_util.h"
 
 namespace {
 
@@ -74,29 +72,6 @@ TEST_P(Interrupt, StopsWithinASecondAndWritesNothing) {
         EXPECT_EQ(entry.path().filename().string().find(".tmp"), std::string::npos) << entry.path();
 }
 
-// A connection to 127.0.0.1:port that sends `path`'s GET and never reads
-// the answer (a receive buffer of 1 KiB, so the server's writes block).
-int stalled_request(int port, const std::string& path) {
-    const int fd = ::socket(AF_INET, SOCK_STREAM, 0);
-    if (fd < 0) return -1;
-    const int small = 1024;
-    ::setsockopt(fd, SOL_SOCKET, SO_RCVBUF, &small, sizeof small);
-    sockaddr_in address{};
-    address.sin_family = AF_INET;
-    address.sin_port = htons(static_cast<std::uint16_t>(port));
-    address.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
-    if (::connect(fd, reinterpret_cast<const sockaddr*>(&address), sizeof address) != 0) {
-        ::close(fd);
-        return -1;
-    }
-    const std::string request = "GET " + path + " HTTP/1.1\r\nHost: 127.0.0.1:" + std::to_string(port) + "\r\n\r\n";
-    if (::send(fd, request.data(), request.size(), MSG_NOSIGNAL) < 0) {
-        ::close(fd);
-        return -1;
-    }
-    return fd;
-}
-
 TEST_P(Interrupt, EndsTheViewerAtOnceWhateverItsClientsDo) {
     // Spec §20: Ctrl-C ends the server at once, even with event streams and
     // an image download that their clients stopped reading (still open).
@@ -125,7 +100,7 @@ TEST_P(Interrupt, EndsTheViewerAtOnceWhateverItsClientsDo) {
     const std::string token = m[2].str();
     std::vector<int> stalled;
     for (const char* path : {"/events", "/events", "/image.exr"})
-        stalled.push_back(stalled_request(port, std::string(path) + "?token=" + token));
+        stalled.push_back(sombra::view_test::open_unread_stream(port, std::string(path) + "?token=" + token));
     for (const int fd : stalled) EXPECT_GE(fd, 0);
     std::this_thread::sleep_for(std::chrono::milliseconds(700));  // the streams and the download under way
 
