@@ -1,6 +1,6 @@
-// Decoding texture images: PNG, JPEG, TGA and BMP through stb_image (Debian's
-// libstb), WebP through libwebp (texture_webp.cpp), EXR and Radiance HDR
-// through read_hdr_image. The format is told
+// Decoding texture images: PNG, TGA and BMP through stb_image (Debian's
+// libstb), JPEG through libjpeg-turbo (texture_jpeg.cpp), WebP through
+// libwebp (texture_webp.cpp), EXR and Radiance HDR through read_hdr_image. The format is told
 // by the content's first bytes, the size read from the header and checked
 // before any pixel is decoded, and the decoder reads through callbacks that
 // notice when it wants bytes beyond the end (a truncated file; stb would
@@ -22,6 +22,7 @@
 #include "core/image_limits.h"
 #include "io/images/hdr_image.h"
 #include "io/images/stb_guards.h"
+#include "io/images/texture_jpeg.h"
 #include "io/images/texture_webp.h"
 #include "scene/texture.h"
 
@@ -46,7 +47,7 @@ bool starts_with(std::span<const unsigned char> bytes, std::string_view magic) {
 // other format's signature is given to stb's TGA reader, which checks the header.
 Sniffed sniff(std::span<const unsigned char> bytes) {
     if (starts_with(bytes, "\x89PNG\r\n\x1a\n")) return {Format::Png, "PNG"};
-    // stb's JPEG reader skips 0xff fill bytes before the start-of-image marker.
+    // 0xff fill bytes may come before the start-of-image marker (decode_jpeg skips them).
     std::size_t fill = 0;
     while (fill < bytes.size() && bytes[fill] == 0xff) ++fill;
     if (fill > 0 && fill < bytes.size() && bytes[fill] == 0xd8) return {Format::Jpeg, "JPEG"};
@@ -163,8 +164,6 @@ Texture texture_from_pixels(const void* pixels, bool sixteen, int width, int hei
 
 Texture decode_stb(std::span<const unsigned char> bytes, Format format, const char* format_name,
                    TextureEncoding encoding, const std::string& where) {
-    if (format == Format::Jpeg)
-        if (const std::string problem = jpeg_huffman_problem(bytes); !problem.empty()) throw Error(where, problem);
     std::optional<std::vector<unsigned char>> mended;
     if (format == Format::Png && (mended = png_without_leading_empty_idat(bytes))) bytes = *mended;
     MemorySource source{bytes};
@@ -215,9 +214,11 @@ Texture decode_texture(std::span<const unsigned char> bytes, TextureEncoding enc
     if (kind.format == Format::Unsupported)
         throw Error(source, std::string("unsupported image format: ") + kind.name +
                                 " (supported: PNG, JPEG, TGA, BMP, WebP, .exr, .hdr)");
-    if (kind.format == Format::Webp) {
-        const WebpPixels webp = decode_webp(bytes, source);
-        return texture_from_pixels(webp.pixels.data(), false, webp.width, webp.height, webp.channels, encoding, source);
+    if (kind.format == Format::Webp || kind.format == Format::Jpeg) {
+        const DecodedPixels image =
+            kind.format == Format::Webp ? decode_webp(bytes, source) : decode_jpeg(bytes, source);
+        return texture_from_pixels(image.pixels.data(), false, image.width, image.height, image.channels, encoding,
+                                   source);
     }
     return decode_stb(bytes, kind.format, kind.name, encoding, source);
 }

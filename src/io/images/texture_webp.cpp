@@ -28,12 +28,12 @@ std::string status_name(VP8StatusCode status) {
 
 }  // namespace
 
-WebpPixels decode_webp(std::span<const unsigned char> bytes, const std::string& where) {
+DecodedPixels decode_webp(std::span<const unsigned char> bytes, const std::string& where) {
     WebPBitstreamFeatures features;
     if (const VP8StatusCode status = WebPGetFeatures(bytes.data(), bytes.size(), &features); status != VP8_STATUS_OK)
         throw Error(where, "cannot read the WebP header: " + status_name(status));
     if (features.has_animation) throw Error(where, "animated WebP images are not supported");
-    WebpPixels out;
+    DecodedPixels out;
     out.width = features.width;
     out.height = features.height;
     out.channels = features.has_alpha ? 4 : 3;

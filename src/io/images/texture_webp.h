@@ -4,20 +4,16 @@
 
 #include <span>
 #include <string>
-#include <vector>
+
+#include "io/images/decoded_pixels.h"
 
 namespace sombra {
-
-struct WebpPixels {
-    int width = 0, height = 0;
-    int channels = 0;                   // 3 (RGB), or 4 when the image has alpha
-    std::vector<unsigned char> pixels;  // rows top to bottom, channels interleaved, 8 bits each
-};
 
 // Decodes a still WebP image, lossy or lossless. Its size is read from the
 // header and checked (check_texture_size) before the pixels are allocated.
 // Throws Error(where, what) for bytes that are no WebP image, an animation,
 // a size beyond the limits, or data that does not decode (truncated, corrupt).
-WebpPixels decode_webp(std::span<const unsigned char> bytes, const std::string& where);
+// The pixels come as RGB, or RGBA when the image has alpha.
+DecodedPixels decode_webp(std::span<const unsigned char> bytes, const std::string& where);
 
 }  // namespace sombra
