@@ -113,9 +113,9 @@ void decode_into(std::span<const unsigned char> bytes, const std::string& where,
     const std::size_t stride = std::size_t{info.output_width} * static_cast<std::size_t>(out.channels);
     out.pixels.resize(stride * info.output_height);
     // A CMYK row is decoded into libjpeg's own memory (freed with the decompressor), then converted.
-    JSAMPARRAY cmyk_row = cmyk ? (*info.mem->alloc_sarray)(reinterpret_cast<j_common_ptr>(&info), JPOOL_IMAGE,
-                                                          info.output_width * 4, 1)
-                               : nullptr;
+    JSAMPARRAY cmyk_row =
+        cmyk ? (*info.mem->alloc_sarray)(reinterpret_cast<j_common_ptr>(&info), JPOOL_IMAGE, info.output_width * 4, 1)
+             : nullptr;
     while (info.output_scanline < info.output_height) {
         unsigned char* row = out.pixels.data() + stride * info.output_scanline;
         JSAMPROW target = cmyk ? cmyk_row[0] : row;
