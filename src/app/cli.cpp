@@ -326,10 +326,6 @@ CliParse parse(int argc, const char* const* argv, std::ostream& out, std::ostrea
     if (o.render.frame && o.first_frame) return refuse("give --frame or --frames, not both");
     if (o.render.crop && !o.display_server.empty())
         return refuse("--crop and --display-server cannot go together yet: tev is sent the whole image's size");
-    if (o.render.crop && o.render.denoise && o.sharded)
-        return refuse(
-            "--crop with --denoise cannot be split into shards yet: merge --denoise would lack the "
-            "pixels around the window that the denoiser reads");
     if (o.render.aovs.noisy && !o.render.denoise)
         return refuse("--aov noisy is the image before denoising: it needs --denoise");
     if (o.render.denoise && o.render.overrides.spp && *o.render.overrides.spp < 2)

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "cli_test_fixture.h"
@@ -222,7 +223,55 @@ TEST_F(Everyday, ADenoisedCropIsItsWindowOfTheWholeDenoisedRender) {
     }
 }
 
-TEST_F(Everyday, ACropOutsideTheImageOrSplitWithTheDenoiserIsRefused) {
+TEST_F(Everyday, ADenoisedCropSplitIntoShardsMergesToTheDenoisedCrop) {
+    write_text(dir_ / "s.json", scene(R"({"width": 200, "height": 130, "spp": 4, "integrator": "path"})"));
+    const std::string crop = " --crop 131 90 171 121";
+    ASSERT_EQ(run("render s.json -q --denoise -o denoised.pfm" + crop).status, 0);
+    ASSERT_EQ(run("render s.json -q -o noisy.pfm" + crop).status, 0);
+    // The shards split the window grown by the denoiser's 54-pixel reach,
+    // its corner moved back to a multiple of 64: x 64 to 200, y 0 to 130;
+    // and they say where the crop lies in it.
+    for (const char* part : {"0/2", "1/2"}) {
+        const RunResult r =
+            run(std::string("render s.json -q --denoise --shard ") + part + " -o part" + part[0] + ".exr" + crop);
+        ASSERT_EQ(r.status, 0) << r.err;
+    }
+    const sombra::ExrChannels part = sombra::read_exr_channels(dir_ / "part0.exr", {"R"});
+    EXPECT_EQ(part.width, 200 - 64);
+    EXPECT_EQ(part.height, 130);
+    const auto kept = std::find_if(part.attributes.begin(), part.attributes.end(),
+                                   [](const sombra::ImageAttribute& a) { return a.name == "sombra.kept"; });
+    ASSERT_NE(kept, part.attributes.end());
+    EXPECT_EQ(kept->value, "67 90 40 31");
+
+    RunResult merged = run("merge part0.exr part1.exr -q --denoise -o merged.pfm");
+    ASSERT_EQ(merged.status, 0) << merged.err;
+    EXPECT_EQ(read_text(dir_ / "merged.pfm"), read_text(dir_ / "denoised.pfm"));
+    // Merged without denoising: the noisy crop.
+    merged = run("merge part0.exr part1.exr -q -o merged-noisy.pfm");
+    ASSERT_EQ(merged.status, 0) << merged.err;
+    EXPECT_EQ(read_text(dir_ / "merged-noisy.pfm"), read_text(dir_ / "noisy.pfm"));
+    // A shard that keeps another window does not merge with them.
+    ASSERT_EQ(run("render s.json -q --denoise --shard 1/2 -o other.exr --crop 131 90 171 120").status, 0);
+    merged = run("merge part0.exr other.exr -q --denoise -o x.pfm");
+    EXPECT_EQ(merged.status, 1);
+    EXPECT_FALSE(fs::exists(dir_ / "x.pfm"));
+    // Nor one whose attribute is damaged (edited in place: same length, a valid EXR).
+    const std::string bytes = read_text(dir_ / "part1.exr");
+    const std::size_t at = bytes.find("67 90 40 31");
+    ASSERT_NE(at, std::string::npos);
+    for (const auto& [text, message] :
+         {std::pair{"67 90 99 31", "sombra.kept '67 90 99 31' is not a window of its 136x130 pixels"},
+          std::pair{"67 90 4x 31", "unreadable sombra.kept '67 90 4x 31'"}}) {
+        write_text(dir_ / "bad.exr", std::string(bytes).replace(at, 11, text));
+        merged = run("merge part0.exr bad.exr -q --denoise -o x.pfm");
+        EXPECT_EQ(merged.status, 1);
+        EXPECT_EQ(merged.err, std::string("sombra: error: bad.exr: damaged shard: ") + message + "\n");
+        EXPECT_FALSE(fs::exists(dir_ / "x.pfm"));
+    }
+}
+
+TEST_F(Everyday, ACropOutsideTheImageIsRefused) {
     write_text(dir_ / "s.json", scene());  // 32 × 24
     const RunResult outside = run("render s.json -q -o a.png --crop 0 0 33 10");
     EXPECT_EQ(outside.status, 1);
@@ -230,8 +279,7 @@ TEST_F(Everyday, ACropOutsideTheImageOrSplitWithTheDenoiserIsRefused) {
               "sombra: error: --crop: expected X0 Y0 X1 Y1 with 0 <= X0 < X1 <= 32 and 0 <= Y0 < Y1 <= 24 (the image), "
               "not 0 0 33 10\n");
     EXPECT_FALSE(fs::exists(dir_ / "a.png"));
-    for (const char* bad :
-         {"--crop 5 5 5 9", "--crop 1 2 3", "--crop 0 0 8 8 --denoise --integrator path --shard 0/2"}) {
+    for (const char* bad : {"--crop 5 5 5 9", "--crop 1 2 3"}) {
         const RunResult r = run(std::string("render s.json -q -o a.png ") + bad);
         EXPECT_EQ(r.status, 2) << bad << ": " << r.err;
     }

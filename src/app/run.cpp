@@ -93,8 +93,13 @@ int render_frame(const CliOptions& o, const Scene& scene, const Accel& accel, co
     const bool pixel_shard = o.sharded && !o.first_frame;
     if (pixel_shard) job.shard = ShardSpec{o.shard_index, o.shard_count};
     // A shard's header says which share it is, of which render (spec §21).
+    // With --crop and --denoise it splits the grown window, and says where the crop lies in it.
+    std::optional<PixelWindow> kept;
+    if (o.render.crop && job.window && !(*job.window == *o.render.crop))
+        kept = PixelWindow{o.render.crop->x0 - job.window->x0, o.render.crop->y0 - job.window->y0, o.render.crop->width,
+                           o.render.crop->height};
     const std::vector<ImageAttribute> shard_header =
-        pixel_shard ? shard_attributes(o.input, o.render, settings, job.shard) : std::vector<ImageAttribute>{};
+        pixel_shard ? shard_attributes(o.input, o.render, settings, job.shard, kept) : std::vector<ImageAttribute>{};
     std::optional<DisplayConnection> display;
     if (!o.display_server.empty()) {
         display.emplace(*parse_display_address(o.display_server), output.filename().string(), settings.width,

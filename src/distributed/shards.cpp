@@ -7,6 +7,7 @@
 #include <map>
 #include <optional>
 #include <span>
+#include <system_error>
 #include <utility>
 
 #include "core/error.h"
@@ -19,6 +20,7 @@ namespace {
 
 constexpr const char* kShardAttribute = "sombra.shard";
 constexpr const char* kRenderAttribute = "sombra.render";
+constexpr const char* kKeptAttribute = "sombra.kept";
 
 // FNV-1a, 64 bits, over the file's bytes: an identity, not a defence.
 std::string content_hash(const std::string& path) {
@@ -74,6 +76,27 @@ const std::string* attribute(const ExrChannels& exr, const char* name) {
     return nullptr;
 }
 
+// The window "sombra.kept" names inside a width × height shard image; none
+// without the attribute. Throws Error for one that is malformed or outside.
+std::optional<PixelWindow> kept_window(const ExrChannels& exr, const std::string& path) {
+    const std::string* text = attribute(exr, kKeptAttribute);
+    if (!text) return std::nullopt;
+    PixelWindow w{};
+    const char* at = text->data();
+    const char* end = text->data() + text->size();
+    for (int* value : {&w.x0, &w.y0, &w.width, &w.height}) {
+        while (at != end && *at == ' ') ++at;
+        const auto [next, ec] = std::from_chars(at, end, *value);
+        if (ec != std::errc()) throw Error(path, "damaged shard: unreadable sombra.kept '" + *text + "'");
+        at = next;
+    }
+    if (at != end || w.x0 < 0 || w.y0 < 0 || w.width < 1 || w.height < 1 || w.width > exr.width - w.x0 ||
+        w.height > exr.height - w.y0)
+        throw Error(path, "damaged shard: sombra.kept '" + *text + "' is not a window of its " +
+                              std::to_string(exr.width) + "x" + std::to_string(exr.height) + " pixels");
+    return w;
+}
+
 struct Part {
     std::string path;
     ShardSpec shard;
@@ -93,7 +116,7 @@ Part read_part(const std::string& path) {
 }  // namespace
 
 std::vector<ImageAttribute> shard_attributes(const std::string& input, const RenderOptions& o, const RenderSettings& s,
-                                             ShardSpec shard) {
+                                             ShardSpec shard, std::optional<PixelWindow> kept) {
     const std::string render =
         std::string("sombra ") + SOMBRA_VERSION + "; input " + content_hash(input) + "; " + std::to_string(s.width) +
         "x" + std::to_string(s.height) + ", spp " + std::to_string(s.spp) + ", seed " + std::to_string(s.seed) + ", " +
@@ -105,8 +128,12 @@ std::vector<ImageAttribute> shard_attributes(const std::string& input, const Ren
                       std::to_string(o.crop->x0 + o.crop->width) + " " + std::to_string(o.crop->y0 + o.crop->height)
                 : std::string()) +
         ", aov [" + aov_list(o.aovs) + "]";
-    return {{kShardAttribute, std::to_string(shard.index) + "/" + std::to_string(shard.count)},
-            {kRenderAttribute, render}};
+    std::vector<ImageAttribute> attributes{
+        {kShardAttribute, std::to_string(shard.index) + "/" + std::to_string(shard.count)}, {kRenderAttribute, render}};
+    if (kept)
+        attributes.push_back({kKeptAttribute, std::to_string(kept->x0) + " " + std::to_string(kept->y0) + " " +
+                                                  std::to_string(kept->width) + " " + std::to_string(kept->height)});
+    return attributes;
 }
 
 MergedShards merge_shards(const std::vector<std::string>& paths, const std::filesystem::path& output,
@@ -128,6 +155,8 @@ MergedShards merge_shards(const std::vector<std::string>& paths, const std::file
                                     " is one of " + std::to_string(count));
         if (p.exr.width != first.exr.width || p.exr.height != first.exr.height || p.exr.names != first.exr.names)
             throw Error(p.path, "its size or channels differ from " + first.path + "'s");
+        if (kept_window(p.exr, p.path) != kept_window(first.exr, first.path))
+            throw Error(p.path, "it keeps another window (sombra.kept) than " + first.path);
         if (const auto [it, added] = by_index.emplace(p.shard.index, &p); !added)
             throw Error(p.path, "shard " + std::to_string(p.shard.index) + "/" + std::to_string(count) +
                                     " given twice (also " + it->second->path + ")");
@@ -139,7 +168,7 @@ MergedShards merge_shards(const std::vector<std::string>& paths, const std::file
                                         std::to_string(count) + " given)");
 
     // Every pixel from the shard that rendered it.
-    const int width = first.exr.width, height = first.exr.height;
+    int width = first.exr.width, height = first.exr.height;
     std::vector<std::vector<float>> channels(first.exr.names.size(),
                                              std::vector<float>(static_cast<std::size_t>(width) * height));
     for (const Part& p : parts)
@@ -150,20 +179,28 @@ MergedShards merge_shards(const std::vector<std::string>& paths, const std::file
                 for (std::size_t c = 0; c < channels.size(); ++c) channels[c][k] = p.exr.values[c][k];
             }
     std::vector<float> rgb(static_cast<std::size_t>(width) * height * 3, 0.0f);
-    std::vector<ImageChannel> layers;
     for (std::size_t c = 0; c < channels.size(); ++c) {
         const std::string& name = first.exr.names[c];
         const int rgb_channel = name == "R" ? 0 : name == "G" ? 1 : name == "B" ? 2 : -1;
-        if (rgb_channel >= 0) {
+        if (rgb_channel >= 0)
             for (std::size_t k = 0; k < channels[c].size(); ++k) rgb[3 * k + rgb_channel] = channels[c][k];
-        } else {
-            layers.push_back({name, channels[c].data(), 1});
-        }
     }
     if (denoise) {
         const DenoiseLayers denoise_input = denoise_layers_from(first.exr.names, channels, width, height, first.path);
         check_denoise_layers(denoise_input, first.path);
         rgb = denoise_image(denoise_input, threads);
+    }
+    if (const std::optional<PixelWindow> kept = kept_window(first.exr, first.path)) {
+        const PixelWindow whole{0, 0, width, height};
+        rgb = window_values(rgb, whole, *kept);
+        for (std::vector<float>& values : channels) values = window_values(values, whole, *kept);
+        width = kept->width;
+        height = kept->height;
+    }
+    std::vector<ImageChannel> layers;
+    for (std::size_t c = 0; c < channels.size(); ++c) {
+        const std::string& name = first.exr.names[c];
+        if (name != "R" && name != "G" && name != "B") layers.push_back({name, channels[c].data(), 1});
     }
     // The AOV layers go into an .exr output only, as `render --aov` allows only that.
     const bool exr = image_format_for(output) == ImageFormat::Exr;

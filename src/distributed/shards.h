@@ -6,6 +6,7 @@
 #pragma once
 
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -21,8 +22,13 @@ namespace sombra {
 // input file's content hash, the resolved settings, the options that change
 // pixels, sombra's version; not the thread count, exposure or the output's
 // name). Reads the input file to hash it. Throws Error.
+// `kept`: the part of the shard's image that the merged image keeps, in the
+// shard image's own pixels ("sombra.kept" = "X Y WIDTH HEIGHT"): with --crop
+// and --denoise the shards split the window grown by the denoiser's reach,
+// which merge denoises whole, then cuts to the crop.
 std::vector<ImageAttribute> shard_attributes(const std::string& input, const RenderOptions& options,
-                                             const RenderSettings& settings, ShardSpec shard);
+                                             const RenderSettings& settings, ShardSpec shard,
+                                             std::optional<PixelWindow> kept = std::nullopt);
 
 // What merge_shards joined.
 struct MergedShards {
@@ -34,7 +40,8 @@ struct MergedShards {
 // that render writes whole, bit for bit, to `output` (AOV layers into an
 // .exr only). Throws Error, with nothing written, for a part that is not a
 // readable shard, shards of different renders or counts, a share missing
-// or given twice.
+// or given twice. Shards that say what is kept (above) are cut to it, after
+// denoising.
 // With `denoise`, the merged image is denoised (spec §25) on `threads`
 // (0 = all) from the denoiser's layers the shards carry; Error naming
 // the first missing one.

@@ -107,22 +107,24 @@ PixelWindow grown_window(const PixelWindow& w, int margin, int width, int height
 
 }  // namespace
 
+std::vector<float> window_values(const std::vector<float>& values, const PixelWindow& area, const PixelWindow& kept) {
+    if (values.empty()) return {};
+    const std::size_t channels =
+        values.size() / (static_cast<std::size_t>(area.width) * static_cast<std::size_t>(area.height));
+    std::vector<float> inside;
+    inside.reserve(static_cast<std::size_t>(kept.width) * static_cast<std::size_t>(kept.height) * channels);
+    for (int j = kept.y0; j < kept.y0 + kept.height; ++j) {
+        const std::size_t row = static_cast<std::size_t>(j - area.y0) * static_cast<std::size_t>(area.width) +
+                                static_cast<std::size_t>(kept.x0 - area.x0);
+        inside.insert(inside.end(), values.begin() + static_cast<std::ptrdiff_t>(row * channels),
+                      values.begin() +
+                          static_cast<std::ptrdiff_t>((row + static_cast<std::size_t>(kept.width)) * channels));
+    }
+    return inside;
+}
+
 void cut_to_window(RenderOutput& out, const PixelWindow& area, const PixelWindow& kept) {
-    const auto cut = [&](std::vector<float>& values) {
-        if (values.empty()) return;
-        const std::size_t channels =
-            values.size() / (static_cast<std::size_t>(area.width) * static_cast<std::size_t>(area.height));
-        std::vector<float> inside;
-        inside.reserve(static_cast<std::size_t>(kept.width) * static_cast<std::size_t>(kept.height) * channels);
-        for (int j = kept.y0; j < kept.y0 + kept.height; ++j) {
-            const std::size_t row = static_cast<std::size_t>(j - area.y0) * static_cast<std::size_t>(area.width) +
-                                    static_cast<std::size_t>(kept.x0 - area.x0);
-            inside.insert(inside.end(), values.begin() + static_cast<std::ptrdiff_t>(row * channels),
-                          values.begin() +
-                              static_cast<std::ptrdiff_t>((row + static_cast<std::size_t>(kept.width)) * channels));
-        }
-        values = std::move(inside);
-    };
+    const auto cut = [&](std::vector<float>& values) { values = window_values(values, area, kept); };
     cut(out.film.rgb);
     out.film.width = kept.width;
     out.film.height = kept.height;

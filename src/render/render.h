@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <functional>
 #include <optional>
+#include <vector>
 
 #include "accel/accel.h"
 #include "render/accumulation.h"
@@ -132,6 +133,10 @@ struct RenderOutput {
     RayCounters counters;
     bool cancelled = false;  // true when progress.cancel stopped the loop: the film is incomplete
 };
+
+// The values of the pixels of `kept` among `values`, which hold `area`'s
+// pixels top row first, each with the same number of channels, interleaved.
+std::vector<float> window_values(const std::vector<float>& values, const PixelWindow& area, const PixelWindow& kept);
 
 // Keeps the pixels of `kept` of everything `out` holds over `area` (film,
 // AOVs, the denoiser's layers), top row first: --crop's image from a
