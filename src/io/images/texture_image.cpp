@@ -164,6 +164,8 @@ Texture texture_from_pixels(const void* pixels, bool sixteen, int width, int hei
 
 Texture decode_stb(std::span<const unsigned char> bytes, Format format, const char* format_name,
                    TextureEncoding encoding, const std::string& where) {
+    if (format == Format::Png)
+        if (const std::string problem = png_chunk_problem(bytes); !problem.empty()) throw Error(where, problem);
     std::optional<std::vector<unsigned char>> mended;
     if (format == Format::Png && (mended = png_without_leading_empty_idat(bytes))) bytes = *mended;
     MemorySource source{bytes};

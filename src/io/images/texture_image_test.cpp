@@ -243,6 +243,14 @@ TEST(Texture, BrokenTruncatedAndHugeImagesAreOneLineErrors) {
                          std::string(b.begin(), b.begin() + static_cast<long>(b.size() / 2)));
     };
     EXPECT_NE(error_of(half("full.png")).find("PNG"), std::string::npos);
+    // An IDAT chunk claiming 1 GiB: stb would grow its buffer to that before reading (fuzz_gltf).
+    std::string claiming(png.begin(), png.end());
+    const std::size_t idat = claiming.find("IDAT");
+    ASSERT_NE(idat, std::string::npos);
+    claiming.replace(idat - 4, 4, std::string("\x40\x00\x00\x00", 4));
+    EXPECT_EQ(error_of(tmp.write("claims.png", claiming)),
+              "PNG file is truncated: an IDAT chunk claims 1073741824 bytes, " +
+                  std::to_string(claiming.size() - idat - 4) + " are left");
     EXPECT_NE(error_of(half("full.jpg")).find("JPEG"), std::string::npos);
     EXPECT_NE(error_of(half("full.tga")).find("TGA"), std::string::npos);
     EXPECT_NE(error_of(half("full.bmp")).find("BMP"), std::string::npos);

@@ -1,10 +1,14 @@
-// A guard in front of stb_image's PNG decoder. Debian's stb (2022-09) copies
+// Guards in front of stb_image's PNG decoder. stb grows its buffer for the
+// image data to what each IDAT chunk's length claims before reading it, up
+// to 2 GiB for a few bytes of file (found by fuzz_gltf): a chunk claiming
+// more than the file holds is refused first. And Debian's stb (2022-09) copies
 // an IDAT chunk's bytes into its growing buffer with memcpy; for a zero-length
 // IDAT before any data that buffer is still null, and memcpy(null, p, 0) is
 // undefined behaviour (found by fuzz_texture under UBSan). Empty IDAT chunks
 // are legal and carry nothing, so they are dropped from a copy of the file
 // handed to stb; files without one before the data (all real ones) are not copied.
 #include <cstdint>
+#include <string>
 #include <string_view>
 
 #include "io/images/stb_guards.h"
@@ -45,6 +49,20 @@ std::size_t leading_chunks_end(std::span<const unsigned char> bytes, bool& has_e
 }
 
 }  // namespace
+
+std::string png_chunk_problem(std::span<const unsigned char> bytes) {
+    std::uint32_t length = 0;
+    std::string_view type;
+    for (std::size_t at = kSignatureSize; at < bytes.size() && chunk_at(bytes, at, length, type);
+         at += kChunkOverhead + length) {
+        const std::size_t left = bytes.size() - at - 8;  // after the length and type
+        if (type == "IDAT" && length > left)
+            return "PNG file is truncated: an IDAT chunk claims " + std::to_string(length) + " bytes, " +
+                   std::to_string(left) + " are left";
+        if (type == "IEND" || left < std::size_t{length} + 4) break;
+    }
+    return {};
+}
 
 std::optional<std::vector<unsigned char>> png_without_leading_empty_idat(std::span<const unsigned char> bytes) {
     if (bytes.size() < kSignatureSize) return std::nullopt;
